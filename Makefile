@@ -1,0 +1,34 @@
+# A thin front for the standard commands; CI calls these same targets.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed-stamp
+BUILD ?= build
+
+.PHONY: run test lint notebooks bench clean
+
+$(STAMP): pyproject.toml constraints.txt
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev]'
+	touch $(STAMP)
+
+run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and figures to build/
+	$(PY) derivations/run_all.py --out $(BUILD)
+
+test: $(STAMP)  ## unit tests, doctests and notebooks (nbval)
+	$(PY) -m pytest
+
+lint: $(STAMP)
+	$(PY) -m ruff check src tests derivations
+
+notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before committing
+	$(PY) -m jupyter nbconvert --to notebook --execute --inplace notebooks/*.ipynb
+
+bench: $(STAMP)  ## accuracy against time; slow checks
+	$(PY) -m rigidimpact bench --out $(BUILD)/bench
+	$(PY) -m pytest -m slow
+
+clean:
+	rm -rf $(BUILD) .pytest_cache .ruff_cache .hypothesis
+	find . -name __pycache__ -prune -exec rm -rf {} +

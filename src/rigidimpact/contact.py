@@ -1,0 +1,102 @@
+"""The contact: line of impact, restitution law and tangential behaviour.
+
+The normal is the line of impact at O, pointing from the first body into the second.
+Restitution is Newton's kinematic coefficient ``e`` (the paper's eq. 3): the normal
+relative velocity of the contact points reverses and is scaled by ``e``. Tangentially
+the contact is either smooth (no tangential impulse, the paper's section 3) or sticking
+(the contact points leave with the same tangential velocity, the clay ball of figure 2).
+
+Examples
+--------
+>>> from rigidimpact.notation import symbol
+>>> c = Contact(restitution=symbol("e"))
+>>> c.normal.T, c.tangential
+(Matrix([[1, 0]]), 'smooth')
+>>> Contact(normal=(0, 2)).frame
+Matrix([
+[ 0, 1],
+[-1, 0]])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.bodies import _expr, as_vector
+from rigidimpact.errors import InputError
+
+__all__ = ["Contact", "RESTITUTION_LAWS", "TANGENTIAL"]
+
+RESTITUTION_LAWS = ("newton",)  # kinematic; Poisson and energetic laws may join later
+TANGENTIAL = ("smooth", "stick")
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Where and how two bodies meet.
+
+    Parameters
+    ----------
+    normal : 2-vector
+        Direction of the line of impact (any nonzero length), from body 1 into body 2.
+    restitution : expr
+        Newton's kinematic coefficient e, in [0, 1].
+    tangential : {"smooth", "stick"}
+        Smooth: the impulse is purely normal. Stick: a tangential impulse makes the
+        contact points leave with equal tangential velocities.
+    law : {"newton"}
+        The restitution law.
+
+    Examples
+    --------
+    >>> Contact(restitution=1, tangential="stick")
+    Contact(normal=(1, 0), restitution=1, tangential='stick', law='newton')
+    """
+
+    normal: Any = (1, 0)
+    restitution: Any = 0
+    tangential: str = "smooth"
+    law: str = "newton"
+
+    def __post_init__(self) -> None:
+        normal = as_vector(self.normal, "contact.normal")
+        if all(c.is_zero for c in normal):
+            raise InputError("contact.normal", "must not be the zero vector")
+        object.__setattr__(self, "normal", normal)
+        e = _expr(self.restitution, "contact.restitution")
+        if e.is_negative or (e - 1).is_positive:
+            raise InputError("contact.restitution", f"must lie in [0, 1], got {e}")
+        object.__setattr__(self, "restitution", e)
+        if self.tangential not in TANGENTIAL:
+            raise InputError("contact.tangential", f"must be one of {', '.join(TANGENTIAL)}, "
+                             f"got {self.tangential!r}")
+        if self.law not in RESTITUTION_LAWS:
+            raise InputError("contact.law", f"must be one of {', '.join(RESTITUTION_LAWS)}, "
+                             f"got {self.law!r}")
+
+    def __repr__(self) -> str:
+        n = self.normal
+        return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
+                f"tangential={self.tangential!r}, law={self.law!r})")
+
+    @property
+    def frame(self) -> sp.ImmutableMatrix:
+        """Rotation taking scene coordinates to contact coordinates (x along the normal).
+
+        Its rows are the unit normal and the unit tangent (the normal turned by +90
+        degrees); for the default normal it is the identity.
+
+        Examples
+        --------
+        >>> Contact().frame
+        Matrix([
+        [1, 0],
+        [0, 1]])
+        """
+        n = self.normal
+        length = sp.sqrt(n[0] ** 2 + n[1] ** 2)
+        nx, ny = sp.cancel(n[0] / length), sp.cancel(n[1] / length)
+        return sp.ImmutableMatrix([[nx, ny], [-ny, nx]])

@@ -1,0 +1,171 @@
+"""The paper's symbols, made once with their assumptions, and their LaTeX names.
+
+Every other module takes its symbols from here: a SymPy symbol with assumptions is
+not equal to a bare one of the same name, so making them in one place keeps the
+algebra from silently splitting into two variables.
+
+Examples
+--------
+>>> from rigidimpact.notation import symbol, latex_name
+>>> symbol("M").is_positive
+True
+>>> latex_name(symbol("v_ix"))
+'v_{ix}'
+>>> latex_name(symbol("omega_1iz"))
+'\\omega_{1iz}'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+
+import sympy as sp
+
+__all__ = ["SYMBOLS", "symbol", "make_symbol", "latex_name", "latex_names", "GREEK"]
+
+GREEK = frozenset(
+    "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
+    "tau upsilon phi chi psi omega Gamma Delta Theta Lambda Xi Pi Sigma Phi Psi Omega".split()
+)
+
+# name -> assumptions; the problem symbols of DESIGN.md plus a few generic names scenes use.
+_ASSUMPTIONS: dict[str, dict[str, bool]] = {
+    # section 1: ball and barbell
+    "m": {"positive": True},
+    "M": {"positive": True},
+    "L": {"positive": True},
+    "theta": {"real": True},
+    "e": {"nonnegative": True},
+    "v_ix": {"positive": True},
+    # results named by the paper
+    "f": {"positive": True},
+    "h": {"positive": True},
+    "v_fx": {"real": True},
+    "v_fy": {"real": True},
+    "V_x": {"real": True},
+    "V_y": {"real": True},
+    "omega_z": {"real": True},
+    "u_x": {"real": True},
+    "u_y": {"real": True},
+    # section 3: two extended bodies
+    "m_1": {"positive": True},
+    "m_2": {"positive": True},
+    "I_1": {"positive": True},
+    "I_2": {"positive": True},
+    "R_1x": {"real": True},
+    "R_1y": {"real": True},
+    "R_2x": {"real": True},
+    "R_2y": {"real": True},
+    "V_1ix": {"real": True},
+    "V_1iy": {"real": True},
+    "omega_1iz": {"real": True},
+    "V_2ix": {"real": True},
+    "V_2iy": {"real": True},
+    "omega_2iz": {"real": True},
+    "V_1fx": {"real": True},
+    "V_1fy": {"real": True},
+    "omega_1fz": {"real": True},
+    "V_2fx": {"real": True},
+    "V_2fy": {"real": True},
+    "omega_2fz": {"real": True},
+    # generic names a scene may use without declaring them
+    "r": {"positive": True},
+    "r_1": {"positive": True},
+    "r_2": {"positive": True},
+    "l": {"positive": True},
+    "d": {"real": True},
+    "b": {"real": True},
+    "I": {"positive": True},
+    "v": {"real": True},
+    "u": {"real": True},
+    "w": {"real": True},
+    "omega": {"real": True},
+    "phi": {"real": True},
+    "alpha": {"real": True},
+    "psi": {"real": True},
+}
+
+SYMBOLS: Mapping[str, sp.Symbol] = MappingProxyType(
+    {name: sp.Symbol(name, **assumptions) for name, assumptions in _ASSUMPTIONS.items()}
+)
+
+
+def symbol(name: str) -> sp.Symbol:
+    """Return the project's symbol called `name`, with its assumptions.
+
+    Parameters
+    ----------
+    name : str
+        A name from :data:`SYMBOLS`.
+
+    Returns
+    -------
+    sympy.Symbol
+
+    Raises
+    ------
+    KeyError
+        If no symbol of that name is known.
+
+    Examples
+    --------
+    >>> symbol("e").is_nonnegative
+    True
+    """
+    try:
+        return SYMBOLS[name]
+    except KeyError:
+        raise KeyError(f"unknown symbol {name!r}") from None
+
+
+def make_symbol(name: str, **assumptions: bool) -> sp.Symbol:
+    """Return the known symbol `name`, or a new one with the given assumptions.
+
+    A scene may declare its own symbols; a declaration of a known name must not
+    contradict the project's assumptions, or the two would be different symbols.
+
+    Examples
+    --------
+    >>> make_symbol("k", positive=True).is_positive
+    True
+    >>> make_symbol("m") is symbol("m")
+    True
+    """
+    if name in SYMBOLS and (not assumptions or assumptions == _ASSUMPTIONS[name]):
+        return SYMBOLS[name]
+    if name in SYMBOLS:
+        raise ValueError(
+            f"symbol {name!r} is already defined with {_ASSUMPTIONS[name]}; "
+            f"redeclaring it with {assumptions} would make a second, unequal symbol"
+        )
+    return sp.Symbol(name, **assumptions)
+
+
+def latex_name(sym: sp.Symbol) -> str:
+    """LaTeX for a symbol name in the paper's style: ``V_1ix`` -> ``V_{1ix}``.
+
+    Examples
+    --------
+    >>> latex_name(symbol("theta"))
+    '\\theta'
+    >>> latex_name(symbol("R_2y"))
+    'R_{2y}'
+    """
+    head, _, tail = sym.name.partition("_")
+    head_tex = "\\" + head if head in GREEK else head
+    if not tail:
+        return head_tex
+    tail_tex = "\\" + tail if tail in GREEK else tail
+    return f"{head_tex}_{{{tail_tex}}}"
+
+
+def latex_names(expr: sp.Basic) -> dict[sp.Symbol, str]:
+    """Map every free symbol of `expr` to its LaTeX name.
+
+    Examples
+    --------
+    >>> sorted(latex_names(symbol("m") * symbol("v_ix")).values())
+    ['m', 'v_{ix}']
+    """
+    return {s: latex_name(s) for s in expr.free_symbols if isinstance(s, sp.Symbol)}

@@ -1,0 +1,150 @@
+"""What an impact leaves: final velocities and spins, impulse, energy, contact velocities.
+
+Examples
+--------
+>>> from rigidimpact.bodies import Body
+>>> from rigidimpact.contact import Contact
+>>> from rigidimpact.impact import Impact
+>>> sol = Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+...              Contact(restitution=0)).solve()
+>>> sol.energy_loss_fraction
+1/2
+>>> sol.impulse.T
+Matrix([[1, 0]])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from rigidimpact.bodies import Body
+from rigidimpact.rewrite import tidy
+
+if TYPE_CHECKING:
+    from rigidimpact.impact import Impact
+    from rigidimpact.laws import Equation
+
+__all__ = ["Solution"]
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The solved impact.
+
+    Parameters
+    ----------
+    impact : Impact
+        The problem that was solved.
+    equations : tuple of Equation
+        The laws used, in the contact frame.
+    unknowns : tuple of Symbol
+        What was solved for (contact-frame components).
+    values : mapping
+        Unknown -> exact expression.
+    """
+
+    impact: Impact
+    equations: tuple[Equation, ...]
+    unknowns: tuple[sp.Symbol, ...]
+    values: Mapping[sp.Symbol, sp.Expr]
+
+    def __repr__(self) -> str:
+        return (f"Solution({self.impact.first.name!r}, {self.impact.second.name!r}, "
+                f"unknowns={[str(u) for u in self.unknowns]})")
+
+    def _final(self, index: int) -> Body:
+        after = self.impact.after[index]
+        velocity = after.velocity.subs(self.values)
+        spin = sp.sympify(after.spin).subs(self.values)
+        original = (self.impact.first, self.impact.second)[index]
+        back = self.impact.frame.T  # contact frame -> scene frame
+        return original.with_motion((back * velocity).applyfunc(tidy), tidy(spin))
+
+    @cached_property
+    def first_after(self) -> Body:
+        """The first body just after the impact (scene frame)."""
+        return self._final(0)
+
+    @cached_property
+    def second_after(self) -> Body:
+        """The second body just after the impact (scene frame)."""
+        return self._final(1)
+
+    @cached_property
+    def impulse(self) -> sp.ImmutableMatrix:
+        """The impulse that the first body gives the second (scene frame).
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> from rigidimpact.contact import Contact
+        >>> from rigidimpact.impact import Impact
+        >>> Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+        ...        Contact(restitution=1)).solve().impulse.T
+        Matrix([[2, 0]])
+        """
+        change = self.second_after.momentum - self.impact.second.momentum
+        return change.applyfunc(tidy)
+
+    @cached_property
+    def normal_impulse(self) -> sp.Expr:
+        """The impulse along the normal, non-negative for an impact."""
+        return tidy((self.impact.frame * self.impulse)[0])
+
+    @cached_property
+    def tangential_impulse(self) -> sp.Expr:
+        """The impulse along the tangent (zero for a smooth contact)."""
+        return tidy((self.impact.frame * self.impulse)[1])
+
+    @cached_property
+    def kinetic_energy_before(self) -> sp.Expr:
+        """Total kinetic energy just before the impact."""
+        return tidy(self.impact.first.kinetic_energy + self.impact.second.kinetic_energy)
+
+    @cached_property
+    def kinetic_energy_after(self) -> sp.Expr:
+        """Total kinetic energy just after the impact, the bracket of eq. (6)."""
+        return tidy(self.first_after.kinetic_energy + self.second_after.kinetic_energy)
+
+    @cached_property
+    def energy_loss_fraction(self) -> sp.Expr:
+        """``(K_i - K_f) / K_i``, the paper's eq. (7) for the barbell."""
+        before = self.impact.first.kinetic_energy + self.impact.second.kinetic_energy
+        after = self.first_after.kinetic_energy + self.second_after.kinetic_energy
+        return tidy((before - after) / before)
+
+    @cached_property
+    def contact_velocities_after(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+        """Velocities of the two material points at O just after (eq. 11)."""
+        return (self.first_after.contact_velocity.applyfunc(tidy),
+                self.second_after.contact_velocity.applyfunc(tidy))
+
+    def results(self) -> dict[str, sp.Expr]:
+        """Results under the keys of DESIGN.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
+        ``impulse`` and ``energy_loss_fraction`` (and ``impulse_t`` when sticking).
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> from rigidimpact.contact import Contact
+        >>> from rigidimpact.impact import Impact
+        >>> sorted(Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+        ...               Contact()).solve().results())  # doctest: +NORMALIZE_WHITESPACE
+        ['a.omega', 'a.vx', 'a.vy', 'b.omega', 'b.vx', 'b.vy', 'energy_loss_fraction',
+         'impulse']
+        """
+        results: dict[str, sp.Expr] = {}
+        for body in (self.first_after, self.second_after):
+            results[f"{body.name}.vx"] = body.velocity[0]
+            results[f"{body.name}.vy"] = body.velocity[1]
+            results[f"{body.name}.omega"] = body.spin
+        results["impulse"] = self.normal_impulse
+        if self.impact.contact.tangential == "stick":
+            results["impulse_t"] = self.tangential_impulse
+        results["energy_loss_fraction"] = self.energy_loss_fraction
+        return results

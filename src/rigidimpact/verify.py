@@ -1,0 +1,406 @@
+"""Checking derived results against the paper.
+
+Two independent tests must both pass for a result to count as equal to the paper's:
+
+* symbolic: the difference is an exact zero after every sine, cosine and tangent of an
+  angle is replaced by its rational form in ``t = tan(angle/2)`` and the whole is put
+  over one denominator (a decision procedure for rational trig identities, where a
+  weak simplifier could fail to see a zero);
+* numeric: at seeded random points within the symbols' assumptions, both sides are
+  evaluated to 50 significant digits and must agree to 40 (so a lucky rewrite cannot
+  pass alone, nor a lucky sample).
+
+Examples
+--------
+>>> t = sp.Symbol("t", real=True)
+>>> agree(sp.sin(t)**2, 1 - sp.cos(t)**2).passed
+True
+>>> agree(sp.sin(t), sp.cos(t)).passed
+False
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+
+import mpmath
+import sympy as sp
+
+from rigidimpact import problems
+from rigidimpact.bodies import Body
+from rigidimpact.contact import Contact
+from rigidimpact.impact import Impact
+from rigidimpact.notation import symbol
+from rigidimpact.paper import REFERENCES
+from rigidimpact.rewrite import tidy
+
+__all__ = ["Verdict", "Check", "agree", "same_equation", "symbolic_zero", "run_checks",
+           "CHECKS"]
+
+DIGITS = 50
+TOLERANCE = mpmath.mpf(10) ** -40
+SEED = 20070301  # numeric spot checks are reproducible
+SAMPLES = 6
+
+m, M, L, theta, e, v_ix = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Whether a comparison passed, and what it saw."""
+
+    passed: bool
+    detail: str
+
+
+@dataclass(frozen=True)
+class Check:
+    """One row of ``rigidimpact verify``."""
+
+    id: str
+    paper: str
+    description: str
+    status: str
+    detail: str
+    seconds: float
+
+
+def _rational_trig(expr: sp.Expr) -> sp.Expr:
+    """Replace sin, cos, tan of each angle by rational functions of tan(angle/2)."""
+    replacements = {}
+    for k, angle in enumerate(sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos, sp.tan)},
+                                     key=sp.default_sort_key)):
+        t = sp.Dummy(f"t{k}", real=True)
+        replacements[sp.sin(angle)] = 2 * t / (1 + t**2)
+        replacements[sp.cos(angle)] = (1 - t**2) / (1 + t**2)
+        replacements[sp.tan(angle)] = 2 * t / (1 - t**2)
+    return expr.xreplace(replacements)
+
+
+def symbolic_zero(expr: sp.Expr) -> bool:
+    """True when `expr` is exactly zero as a rational function of its symbols and trig.
+
+    Examples
+    --------
+    >>> t = sp.Symbol("t", real=True)
+    >>> symbolic_zero(sp.sin(t)**2 + sp.cos(t)**2 - 1)
+    True
+    """
+    return sp.cancel(sp.together(_rational_trig(sp.sympify(expr)))) == 0
+
+
+def _sample(sym: sp.Symbol, rng: random.Random) -> sp.Rational:
+    """A random exact value allowed by the symbol's assumptions."""
+    if sym.name == "e" or sym.is_nonnegative and not sym.is_positive:
+        value = rng.uniform(0.0, 1.0)
+    elif sym.is_positive:
+        value = 10 ** rng.uniform(-0.7, 0.7)
+    else:
+        value = rng.uniform(-3.0, 3.0)
+    return sp.Rational(repr(value))
+
+
+def _points(exprs: Iterable[sp.Expr], seed: int) -> list[dict[sp.Symbol, sp.Rational]]:
+    symbols = sorted(set().union(*(sp.sympify(x).free_symbols for x in exprs)),
+                     key=lambda s: s.name)
+    rng = random.Random(seed)
+    return [{s: _sample(s, rng) for s in symbols} for _ in range(SAMPLES)]
+
+
+def _value(expr: sp.Expr, point: dict) -> mpmath.mpf:
+    with mpmath.workdps(DIGITS + 10):
+        return mpmath.mpmathify(sp.sympify(expr).evalf(DIGITS + 10, subs=point))
+
+
+def agree(derived: sp.Expr, reference: sp.Expr, seed: int = SEED) -> Verdict:
+    """Do `derived` and `reference` agree symbolically *and* numerically?
+
+    Examples
+    --------
+    >>> agree(e * (1 + e), e + e**2)
+    Verdict(passed=True, detail='symbolic zero; 6 points agree to 1e-40 (seed 20070301)')
+    """
+    derived, reference = sp.sympify(derived), sp.sympify(reference)
+    exact = symbolic_zero(derived - reference)
+    worst = mpmath.mpf(0)
+    with mpmath.workdps(DIGITS + 10):
+        for point in _points((derived, reference), seed):
+            a, b = _value(derived, point), _value(reference, point)
+            scale = max(abs(a), abs(b), mpmath.mpf(10) ** -30)
+            worst = max(worst, abs(a - b) / scale)
+    numeric = worst <= TOLERANCE
+    detail = (f"{'symbolic zero' if exact else 'NOT a symbolic zero'}; "
+              f"{SAMPLES} points {'agree to 1e-40' if numeric else 'differ by'}"
+              f"{'' if numeric else ' ' + mpmath.nstr(worst, 3)} (seed {seed})")
+    return Verdict(exact and numeric, detail)
+
+
+def same_equation(derived: sp.Expr, reference: sp.Expr, unknowns: Iterable[sp.Symbol],
+                  seed: int = SEED) -> Verdict:
+    """Are ``derived = 0`` and ``reference = 0`` the same equation in the `unknowns`?
+
+    They are when one is the other times a factor that is free of the unknowns and
+    cannot vanish (by the symbols' assumptions).
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> same_equation(2 * M * x - 4 * M, x - 2, [x]).passed
+    True
+    >>> same_equation(x - 2, x - 3, [x]).passed
+    False
+    """
+    ratio = tidy(_rational_trig(sp.sympify(derived) / sp.sympify(reference)))
+    if ratio.free_symbols & set(unknowns) or not ratio.is_nonzero:
+        return Verdict(False, f"not proportional: ratio {ratio}")
+    verdict = agree(derived, ratio * reference, seed)
+    return Verdict(verdict.passed, f"proportional with factor {ratio}; {verdict.detail}")
+
+
+def _all(verdicts: Iterable[tuple[str, Verdict]]) -> Verdict:
+    verdicts = list(verdicts)
+    failed = [f"{name}: {v.detail}" for name, v in verdicts if not v.passed]
+    if failed:
+        return Verdict(False, "; ".join(failed))
+    return Verdict(True, "; ".join(f"{name}: {v.detail}" for name, v in verdicts[:1])
+                   + (f" (and {len(verdicts) - 1} more)" if len(verdicts) > 1 else ""))
+
+
+def _ref(key: str) -> sp.Expr:
+    return REFERENCES[key].expr
+
+
+# ---- the checks ----------------------------------------------------------------------
+
+CHECKS: list[tuple[str, str, str, Callable[[], Verdict]]] = []
+
+
+def _check(check_id: str, paper: str, description: str):
+    def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
+        CHECKS.append((check_id, paper, description, fn))
+        return fn
+
+    return register
+
+
+def _barbell() -> problems.Derivation:
+    return problems.barbell()
+
+
+@_check("barbell.equations", "(1), (2), (4)",
+        "the laws built from the bodies are the paper's equations (with V_y = 0 from (13))")
+def _barbell_equations() -> Verdict:
+    by_number = {eq.paper: eq for eq in problems.barbell_impact().equations()}
+    no_y = {symbol("V_y"): 0, symbol("v_fy"): 0}
+    unknowns = [symbol(n) for n in ("v_fx", "V_x", "omega_z")]
+    return _all([
+        ("(1)", same_equation(by_number["(1), (12)"].residual, _ref("barbell.eq1"), unknowns)),
+        ("(2)", same_equation(by_number["(2), (14)"].residual.subs(no_y), _ref("barbell.eq2"),
+                              unknowns)),
+        ("(4)", same_equation(by_number["(3), (4)"].residual, _ref("barbell.eq4"), unknowns)),
+    ])
+
+
+@_check("barbell.f", "(5)", "the dimensionless ratio f recognised in V_x / v_ix")
+def _barbell_f() -> Verdict:
+    return agree(_barbell().definitions["f"], _ref("barbell.f"))
+
+
+@_check("barbell.solution", "(5)", "v_fx, V_x and omega_z solved from (1), (2), (4)")
+def _barbell_solution() -> Verdict:
+    d = _barbell()
+    f = symbol("f")
+    named_back = {k: d.named[k].subs(f, d.definitions["f"]) for k in d.named}
+    return _all([(k, agree(d.results[k], _ref(f"barbell.{k}"))) for k in
+                 ("v_fx", "V_x", "omega_z")]
+                + [(f"{k} via f", agree(named_back[k], _ref(f"barbell.{k}"))) for k in
+                   ("v_fx", "V_x", "omega_z")])
+
+
+@_check("barbell.head-on", "(5), section 1",
+        "theta = 0: no spin; e = 0 and e = 1 give the 1-D results")
+def _barbell_head_on() -> Verdict:
+    r = _barbell().results
+    at = {theta: 0}
+    return _all([
+        ("omega_z = 0", agree(r["omega_z"].subs(at), 0)),
+        ("e = 0 v_fx", agree(r["v_fx"].subs({**at, e: 0}), _ref("barbell.theta0.e0"))),
+        ("e = 0 V_x", agree(r["V_x"].subs({**at, e: 0}), _ref("barbell.theta0.e0"))),
+        ("e = 1 v_fx", agree(r["v_fx"].subs({**at, e: 1}), _ref("barbell.theta0.e1.v_fx"))),
+        ("e = 1 V_x", agree(r["V_x"].subs({**at, e: 1}), _ref("barbell.theta0.e1.V_x"))),
+    ])
+
+
+@_check("barbell.right-angle", "section 2", "theta = 90 degrees, e = 0: v_fx = 2 V_x")
+def _barbell_right_angle() -> Verdict:
+    r = _barbell().results
+    at = {theta: sp.pi / 2, e: 0}
+    return _all([("v_fx", agree(r["v_fx"].subs(at), _ref("barbell.theta90.e0.v_fx"))),
+                 ("v_fx = 2 V_x", agree(r["v_fx"].subs(at), 2 * r["V_x"].subs(at)))])
+
+
+@_check("barbell.energy", "(6) -> (7)", "K_i - K_f over K_i reduces to (7)")
+def _barbell_energy() -> Verdict:
+    return agree(_barbell().results["energy_loss_fraction"],
+                 _ref("barbell.energy_loss_fraction"))
+
+
+@_check("barbell.energy-minimum", "section 2",
+        "no loss at e = 1; for e < 1 the loss is least at theta = 90 degrees")
+def _barbell_energy_minimum() -> Verdict:
+    loss = _barbell().results["energy_loss_fraction"]
+    slope = sp.diff(loss, theta)
+    # loss(theta) - loss(90) is (1 - e^2) times a square over positive factors
+    excess = tidy(loss - loss.subs(theta, sp.pi / 2))
+    by_hand = ((1 - e**2) * 2 * M * m * sp.cos(theta) ** 2
+               / ((2 * M + m * (1 + sp.sin(theta) ** 2)) * (2 * M + 2 * m)))
+    return _all([("e = 1", agree(loss.subs(e, 1), 0)),
+                 ("slope at 90", agree(slope.subs(theta, sp.pi / 2), 0)),
+                 ("excess over 90 is non-negative", agree(excess, by_hand))])
+
+
+@_check("barbell.sphere-A", "section 2, before (4)",
+        "sphere A leaves with a -y velocity for 0 < theta < 90 degrees")
+def _barbell_sphere_a() -> Verdict:
+    v_a = problems.sphere_a_velocity()
+    # the paper's kinematics v_2f = V + omega x (-R), with omega from (5)
+    by_paper = -_ref("barbell.omega_z") * L * sp.cos(theta)
+    verdict = agree(v_a[1], by_paper)
+    rng = random.Random(SEED)
+    values = [v_a[1].subs({theta: rng.uniform(1e-3, float(sp.pi) / 2 - 1e-3), m: 1, M: 1,
+                           L: 1, e: rng.uniform(0, 1), v_ix: 1}) for _ in range(20)]
+    negative = all(v < 0 for v in values)
+    return Verdict(verdict.passed and negative,
+                   f"{verdict.detail}; sign {'negative' if negative else 'NOT negative'} at "
+                   f"20 angles in (0, 90) degrees")
+
+
+@_check("sticking.h", "section 2", "the pair's centre S is h = mL/(2M + m) from C")
+def _sticking_h() -> Verdict:
+    return agree(problems.sticking().results["h"], _ref("sticking.h"))
+
+
+@_check("sticking.equations", "(8), (9)",
+        "the composite body's laws are the paper's (8) and (9) (with u_y = 0)")
+def _sticking_equations() -> Verdict:
+    eqs = problems.sticking().equations
+    no_y = {symbol("u_y"): 0}
+    unknowns = [symbol("u_x"), symbol("omega_z")]
+    return _all([("(8)", same_equation(eqs[0].residual, _ref("sticking.eq8"), unknowns)),
+                 ("(9)", same_equation(eqs[2].residual.subs(no_y), _ref("sticking.eq9"),
+                                       unknowns))])
+
+
+@_check("sticking.routes", "(10)",
+        "u_x and omega_z by four routes: composite, alternative, parallel axis, solver")
+def _sticking_routes() -> Verdict:
+    return _all([(f"{route} {key}", agree(values[key], _ref(f"sticking.{key}")))
+                 for route, values in problems.sticking_routes().items()
+                 for key in ("u_x", "omega_z")])
+
+
+@_check("sticking.right-angle", "section 2",
+        "at theta = 90 degrees sticking and bouncing with e = 0 leave the same motion")
+def _sticking_right_angle() -> Verdict:
+    at = {theta: sp.pi / 2}
+    stuck = problems.barbell_impact(restitution=0, tangential="stick").solve()
+    bounced = problems.barbell_impact(restitution=0).solve()
+    pairs = [("v_fx", stuck.first_after.velocity[0], bounced.first_after.velocity[0]),
+             ("V_x", stuck.second_after.velocity[0], bounced.second_after.velocity[0]),
+             ("omega_z", stuck.second_after.spin, bounced.second_after.spin)]
+    return _all([(name, agree(a.subs(at), b.subs(at))) for name, a, b in pairs])
+
+
+@_check("discs.solution", "(16)", "equal smooth discs: V_1fx and V_2fx")
+def _discs() -> Verdict:
+    r = problems.discs().results
+    return _all([(k, agree(r[k], _ref(f"discs.{k}"))) for k in ("V_1fx", "V_2fx")])
+
+
+@_check("discs.right-angle", "section 3",
+        "an elastic oblique impact on a disc at rest: the discs leave at right angles")
+def _discs_right_angle() -> Verdict:
+    speed, angle, mass, radius = symbol("v"), symbol("phi"), symbol("m"), symbol("r")
+    first = Body.disc(mass, radius, side=-1, name="disc1",
+                      velocity=(speed * sp.cos(angle), speed * sp.sin(angle)))
+    second = Body.disc(mass, radius, name="disc2")
+    sol = Impact(first, second, Contact(restitution=1)).solve()
+    v1, v2 = sol.first_after.velocity, sol.second_after.velocity
+    return _all([("dot product", agree(v1.dot(v2), 0)),
+                 ("disc 1 along y", agree(v1[0], 0)),
+                 ("disc 2 along x", agree(v2[1], 0))])
+
+
+def _two_body_results() -> dict[str, sp.Expr]:
+    return dict(problems.two_body().results)
+
+
+@_check("two-body.central", "(15)", "a central impact leaves both spins unchanged")
+def _two_body_central() -> Verdict:
+    r = _two_body_results()
+    central = {symbol("R_1y"): 0, symbol("R_2y"): 0}
+    return _all([(f"omega_{k}fz", agree(r[f"omega_{k}fz"].subs(central),
+                                        symbol(f"omega_{k}iz"))) for k in (1, 2)])
+
+
+@_check("two-body.laws", "(11)-(14)", "the general solution satisfies every law it came from")
+def _two_body_laws() -> Verdict:
+    solution = problems.two_body().solution
+    return _all([(eq.paper, agree(eq.residual.subs(solution.values), 0))
+                 for eq in solution.equations])
+
+
+@_check("two-body.barbell", "(5) from (11)-(14)",
+        "the general theory with a particle and a barbell gives (5)")
+def _two_body_barbell() -> Verdict:
+    r = _two_body_results()
+    particle = {symbol("R_1x"): 0, symbol("R_1y"): 0}
+    barbell = {symbol("m_1"): m, symbol("m_2"): 2 * M, symbol("I_2"): 2 * M * L**2,
+               symbol("R_2x"): L * sp.cos(theta), symbol("R_2y"): L * sp.sin(theta),
+               symbol("V_1ix"): v_ix, symbol("V_1iy"): 0, symbol("omega_1iz"): 0,
+               symbol("V_2ix"): 0, symbol("V_2iy"): 0, symbol("omega_2iz"): 0}
+
+    def reduce(expr: sp.Expr) -> sp.Expr:
+        return tidy(tidy(expr.subs(particle)).subs(barbell))  # I_1 cancels once R_1 = 0
+
+    return _all([("v_fx", agree(reduce(r["V_1fx"]), _ref("barbell.v_fx"))),
+                 ("V_x", agree(reduce(r["V_2fx"]), _ref("barbell.V_x"))),
+                 ("omega_z", agree(reduce(r["omega_2fz"]), _ref("barbell.omega_z")))])
+
+
+@_check("two-body.discs", "(16) from (11)-(14)",
+        "the general theory with two equal discs gives (16)")
+def _two_body_discs() -> Verdict:
+    r = _two_body_results()
+    radius = symbol("r")
+    discs = {symbol("m_1"): m, symbol("m_2"): m, symbol("I_1"): m * radius**2 / 2,
+             symbol("I_2"): m * radius**2 / 2, symbol("R_1x"): -radius, symbol("R_1y"): 0,
+             symbol("R_2x"): radius, symbol("R_2y"): 0, symbol("omega_1iz"): 0,
+             symbol("omega_2iz"): 0}
+    return _all([(k, agree(tidy(r[k].subs(discs)), _ref(f"discs.{k}")))
+                 for k in ("V_1fx", "V_2fx")])
+
+
+def run_checks(select: Callable[[str], bool] = lambda _id: True) -> list[Check]:
+    """Run every registered check (or those `select` keeps) and time each.
+
+    Examples
+    --------
+    >>> [c.status for c in run_checks(lambda i: i == "barbell.f")]
+    ['pass']
+    """
+    rows = []
+    for check_id, paper, description, fn in CHECKS:
+        if not select(check_id):
+            continue
+        start = time.perf_counter()
+        try:
+            verdict = fn()
+        except Exception as exc:  # a crashing check is a failed check, reported as such
+            verdict = Verdict(False, f"error: {type(exc).__name__}: {exc}")
+        rows.append(Check(check_id, paper, description, "pass" if verdict.passed else "fail",
+                          verdict.detail, time.perf_counter() - start))
+    return rows
