@@ -21,12 +21,14 @@ Matrix([
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import sympy as sp
 
 from rigidimpact.bodies import _expr, as_vector
 from rigidimpact.errors import InputError
+from rigidimpact.rewrite import tidy
 
 __all__ = ["Contact", "RESTITUTION_LAWS", "TANGENTIAL"]
 
@@ -82,7 +84,7 @@ class Contact:
         return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
                 f"tangential={self.tangential!r}, law={self.law!r})")
 
-    @property
+    @cached_property
     def frame(self) -> sp.ImmutableMatrix:
         """Rotation taking scene coordinates to contact coordinates (x along the normal).
 
@@ -97,6 +99,6 @@ class Contact:
         [0, 1]])
         """
         n = self.normal
-        length = sp.sqrt(n[0] ** 2 + n[1] ** 2)
-        nx, ny = sp.cancel(n[0] / length), sp.cancel(n[1] / length)
+        length = sp.sqrt(tidy(n[0] ** 2 + n[1] ** 2))  # tidy sees cos^2 + sin^2 = 1
+        nx, ny = tidy(n[0] / length), tidy(n[1] / length)
         return sp.ImmutableMatrix([[nx, ny], [-ny, nx]])

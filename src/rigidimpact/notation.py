@@ -41,6 +41,7 @@ _ASSUMPTIONS: dict[str, dict[str, bool]] = {
     # results named by the paper
     "f": {"positive": True},
     "h": {"positive": True},
+    "J": {"real": True},
     "v_fx": {"real": True},
     "v_fy": {"real": True},
     "V_x": {"real": True},

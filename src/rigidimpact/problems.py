@@ -283,7 +283,7 @@ def discs() -> Derivation:
     Examples
     --------
     >>> discs().results["V_1fx"]
-    -(V_1ix*e - V_1ix - V_2ix*e - V_2ix)/2
+    V_1ix*(1 - e)/2 + V_2ix*(e + 1)/2
     """
     mass, radius = symbol("m"), symbol("r")
     names = ("V_1ix", "V_1iy", "V_2ix", "V_2iy")
@@ -293,7 +293,13 @@ def discs() -> Derivation:
     impact = Impact(first, second, Contact(restitution=e))
     solution = impact.solve()
     res = solution.results()
-    results = {"V_1fx": res["disc1.vx"], "V_2fx": res["disc2.vx"],
+
+    def by_velocity(expr: sp.Expr) -> sp.Expr:
+        # the paper writes (16) as a weighted sum of the two initial velocities
+        numerator, denominator = sp.fraction(expr)
+        return sp.collect(sp.expand(numerator), [v1x, v2x]) / denominator
+
+    results = {"V_1fx": by_velocity(res["disc1.vx"]), "V_2fx": by_velocity(res["disc2.vx"]),
                "V_1fy": res["disc1.vy"], "V_2fy": res["disc2.vy"],
                "omega_1fz": res["disc1.omega"], "omega_2fz": res["disc2.omega"]}
     return Derivation(
@@ -332,6 +338,10 @@ def two_body() -> Derivation:
     impact = two_body_impact()
     solution = impact.solve()
     results = {str(u): solution.values[u] for u in impact.unknowns}
+    # the normal impulse J collects the long common factor of every result
+    J = symbol("J")
+    named = {key: sp.expand(recognise(expr, J, solution.normal_impulse, e))
+             for key, expr in results.items() if expr.has(e)}
     return Derivation(
         "two-body",
         "Two rigid bodies, smooth contact (section 3)",
@@ -341,7 +351,9 @@ def two_body() -> Derivation:
         impact.equations(),
         impact.unknowns,
         results,
-        solution=solution,
+        named,
+        {"J": solution.normal_impulse},
+        solution,
     )
 
 

@@ -33,15 +33,67 @@ def tidy(expr: sp.Expr) -> sp.Expr:
     >>> tidy(x / (x * sp.sin(t)**2 + x * sp.cos(t)**2 + x))
     1/2
     """
-    best = sp.factor(sp.cancel(sp.sympify(expr)))
+    expr = sp.sympify(expr)
+    best = _positive_lead(sp.factor(sp.cancel(expr)))
     angles = {f.args[0] for f in best.atoms(sp.sin, sp.cos)}
     for angle in sorted(angles, key=sp.default_sort_key):
         s, c = sp.sin(angle), sp.cos(angle)
-        for old, new in ((c**2, 1 - s**2), (s**2, 1 - c**2)):
-            candidate = sp.factor(sp.cancel(best.subs(old, new)))
+        for old, new in ((c, s), (s, c)):
+            swapped = _pythagoras(sp.cancel(best), old, new)
+            candidate = _positive_lead(sp.factor(sp.cancel(swapped)))
             if sp.count_ops(candidate) < sp.count_ops(best):
                 best = candidate
     return best
+
+
+def _pythagoras(expr: sp.Expr, old: sp.Expr, other: sp.Expr) -> sp.Expr:
+    """Write every power ``old**n`` with ``|n| >= 2`` as ``(1 - other**2)**(n//2)`` times
+    ``old`` for odd n, so no square root (an absolute value in disguise) ever appears.
+
+    Examples
+    --------
+    >>> t = sp.Symbol("t", real=True)
+    >>> _pythagoras(sp.sin(t)**3, sp.sin(t), sp.cos(t))
+    (1 - cos(t)**2)*sin(t)
+    """
+
+    def is_power(p: sp.Basic) -> bool:
+        return (isinstance(p, sp.Pow) and p.base == old and p.exp.is_Integer
+                and abs(p.exp) >= 2)
+
+    def rewrite(p: sp.Pow) -> sp.Expr:
+        pairs, odd = divmod(abs(int(p.exp)), 2)
+        return ((1 - other**2) ** pairs * old**odd) ** (1 if p.exp > 0 else -1)
+
+    return expr.replace(is_power, rewrite)
+
+
+def _positive_lead(expr: sp.Expr) -> sp.Expr:
+    """Move a leading minus sign into a sum in the numerator: -(a - b) c -> (b - a) c.
+
+    Examples
+    --------
+    >>> a, b, c = sp.symbols("a b c", positive=True)
+    >>> _positive_lead(-(a - b) * c)
+    c*(-a + b)
+    """
+    coeff, rest = expr.as_coeff_Mul()
+    if not (coeff.is_negative and isinstance(rest, sp.Mul)):
+        return expr
+    factors = list(rest.args)
+    sums = [k for k, f in enumerate(factors) if isinstance(f, sp.Add)]
+    if not sums:
+        return expr
+
+    def negativity(k: int) -> tuple[int, bool]:
+        terms = factors[k].args
+        negative = sum(1 for t in terms if t.could_extract_minus_sign())
+        constant = factors[k].as_coeff_Add()[0]
+        return 2 * negative - len(terms), bool(constant.is_negative)
+
+    flip = max(sums, key=negativity)  # the sum that reads best with its sign reversed
+    factors[flip] = -factors[flip]
+    return -coeff * sp.Mul(*factors)
 
 
 def recognise(expr: sp.Expr, name: sp.Symbol, definition: sp.Expr,

@@ -16,7 +16,7 @@ Matrix([[1, 0]])
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -63,6 +63,10 @@ class Solution:
         spin = sp.sympify(after.spin).subs(self.values)
         original = (self.impact.first, self.impact.second)[index]
         back = self.impact.frame.T  # contact frame -> scene frame
+        if self.impact.numeric:  # keep the body's data in the same 50-digit numbers
+            numbers = self.impact.before[index]
+            original = replace(original, mass=numbers.mass, inertia=numbers.inertia,
+                               position=back * numbers.position)
         return original.with_motion((back * velocity).applyfunc(tidy), tidy(spin))
 
     @cached_property
@@ -104,19 +108,35 @@ class Solution:
     @cached_property
     def kinetic_energy_before(self) -> sp.Expr:
         """Total kinetic energy just before the impact."""
-        return tidy(self.impact.first.kinetic_energy + self.impact.second.kinetic_energy)
+        first, second = self.impact.before  # numbers already, in numeric mode
+        return tidy(first.kinetic_energy + second.kinetic_energy)
+
+    @cached_property
+    def energy_lost(self) -> sp.Expr:
+        """Kinetic energy lost, from the work of the impulse (Kelvin's theorem).
+
+        An impulse P at a point changes a body's kinetic energy by P times the mean of
+        that point's velocity before and after. Summed over the pair, with u the
+        velocity of body 2's contact point relative to body 1's, the loss is
+        ``-(P . (u_before + u_after)) / 2``: exact, and linear in the compact impulse,
+        where ``K_i - K_f`` from squared velocities swells.
+        """
+        frame = self.impact.frame
+        first, second = self.impact.before  # already in the contact frame
+        u_before = second.contact_velocity - first.contact_velocity
+        u_after = frame * (self.contact_velocities_after[1] - self.contact_velocities_after[0])
+        impulse = frame * self.impulse
+        return tidy(-impulse.dot(u_before + u_after) / 2)
 
     @cached_property
     def kinetic_energy_after(self) -> sp.Expr:
         """Total kinetic energy just after the impact, the bracket of eq. (6)."""
-        return tidy(self.first_after.kinetic_energy + self.second_after.kinetic_energy)
+        return tidy(self.kinetic_energy_before - self.energy_lost)
 
     @cached_property
     def energy_loss_fraction(self) -> sp.Expr:
         """``(K_i - K_f) / K_i``, the paper's eq. (7) for the barbell."""
-        before = self.impact.first.kinetic_energy + self.impact.second.kinetic_energy
-        after = self.first_after.kinetic_energy + self.second_after.kinetic_energy
-        return tidy((before - after) / before)
+        return tidy(self.energy_lost / self.kinetic_energy_before)
 
     @cached_property
     def contact_velocities_after(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:

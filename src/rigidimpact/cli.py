@@ -1,0 +1,197 @@
+"""The command line: a thin face over the layers, and the only place that prints.
+
+Bad input gets one line on standard error naming what is wrong, and exit status 2.
+
+Examples
+--------
+>>> main(["derive", "discs", "--json"])  # doctest: +ELLIPSIS
+{
+  "problem": "discs",
+...
+0
+>>> main(["derive", "nonsense"])
+2
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, NoReturn
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+
+__all__ = ["main"]
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports a usage error in one line, with exit status 2."""
+
+    def error(self, message: str) -> NoReturn:
+        print(f"{self.prog}: error: {message} (see --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def _derivation(target: str):
+    """A built-in problem by name, or a scene file by path."""
+    from rigidimpact.problems import PROBLEMS, derive
+    from rigidimpact.scene import load_scene
+
+    if target in PROBLEMS:
+        return derive(target)
+    if target.endswith(".toml") or Path(target).exists():
+        return load_scene(target).derivation()
+    raise InputError("problem", f"unknown problem {target!r}; use one of "
+                     f"{', '.join(PROBLEMS)} or a scene file (.toml)")
+
+
+def _expr_json(expr: sp.Expr) -> dict[str, str]:
+    from rigidimpact.latex import to_latex
+
+    return {"sympy": str(expr), "latex": to_latex(expr)}
+
+
+def _print_json(data: Any) -> None:
+    print(json.dumps(data, indent=2))
+
+
+def _cmd_derive(args: argparse.Namespace) -> int:
+    from rigidimpact.latex import equation_latex, fragment, to_latex
+
+    d = _derivation(args.target)
+    if args.json:
+        _print_json({
+            "problem": d.problem,
+            "title": d.title,
+            "equations": [{"label": eq.label, "paper": eq.paper,
+                           "sympy": str(eq.as_sympy()), "latex": equation_latex(eq)}
+                          for eq in d.equations],
+            "unknowns": [str(u) for u in d.unknowns],
+            "results": {k: _expr_json(v) for k, v in d.results.items()},
+            "named": {k: _expr_json(v) for k, v in d.named.items()},
+            "definitions": {k: _expr_json(v) for k, v in d.definitions.items()},
+            "seconds": round(d.seconds, 4),
+        })
+        return 0
+    if args.format == "latex":
+        for eq in d.equations:
+            print(f"% {eq.label}\n\\begin{{equation}}\n  {equation_latex(eq)}\n"
+                  "\\end{equation}")
+        for key in d.results:
+            print(fragment(d, key), end="")
+        for key, value in d.definitions.items():
+            print(f"% named group\n\\begin{{equation}}\n  {key} = {to_latex(value)}\n"
+                  "\\end{equation}")
+        return 0
+    print(f"{d.title}  [{d.problem}]")
+    for line in d.setup:
+        print(f"  {line}")
+    print("\nLaws (paper's equation numbers):")
+    for eq in d.equations:
+        print(f"  {eq.paper:<14} {eq.label}:\n      {eq.lhs} = {eq.rhs}")
+    print(f"\nSolved for {', '.join(map(str, d.unknowns))}:")
+    for key, value in d.results.items():
+        print(f"  {key} = {value}")
+    for key, value in d.definitions.items():
+        print(f"\nWith {key} = {value}:")
+        for name, named in d.named.items():
+            print(f"  {name} = {named}")
+    print(f"\n({d.seconds:.2f} s)")
+    return 0
+
+
+def _cmd_verify(args: argparse.Namespace) -> int:
+    from rigidimpact.verify import run_checks
+
+    rows = run_checks()
+    failed = sum(row.status != "pass" for row in rows)
+    if args.json:
+        _print_json({
+            "checks": [{"id": r.id, "paper": r.paper, "status": r.status,
+                        "description": r.description, "detail": r.detail,
+                        "seconds": round(r.seconds, 4)} for r in rows],
+            "passed": len(rows) - failed,
+            "failed": failed,
+        })
+    else:
+        width = max(len(r.id) for r in rows)
+        for r in rows:
+            print(f"{r.status.upper():<5} {r.id:<{width}}  {r.paper:<22} {r.description}")
+            if r.status != "pass":
+                print(f"      {r.detail}")
+        print(f"{len(rows) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from rigidimpact.latex import write_export
+    from rigidimpact.problems import PROBLEMS
+    from rigidimpact.verify import run_checks
+
+    targets = args.targets or list(PROBLEMS)
+    derivations = [_derivation(t) for t in targets]
+    checks = run_checks() if not args.targets else []
+    try:
+        written = write_export(Path(args.out), derivations, checks, pdf=args.pdf)
+    except RuntimeError as exc:
+        raise InputError("--pdf", str(exc)) from None
+    except OSError as exc:
+        raise InputError("--out", f"cannot write there: {exc.strerror or exc}") from None
+    if args.json:
+        _print_json([str(p) for p in written])
+    else:
+        for path in written:
+            print(path)
+    return 0
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="rigidimpact",
+                     description="Derive, verify and simulate impulsive planar collisions "
+                                 "of rigid bodies (after Mungan, Eur. J. Phys. 28, 2007).")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    p = sub.add_parser("derive", help="derive a collision symbolically")
+    p.add_argument("target", metavar="NAME-OR-SCENE",
+                   help="barbell, sticking, discs, two-body, or a scene file")
+    p.add_argument("--format", choices=("text", "latex"), default="text")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_derive)
+
+    p = sub.add_parser("verify", help="check every result of the paper")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_verify)
+
+    p = sub.add_parser("export", help="write LaTeX fragments and a whole document")
+    p.add_argument("targets", nargs="*", metavar="NAME-OR-SCENE",
+                   help="what to export (default: every built-in problem)")
+    p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--pdf", action="store_true", help="also compile with pdflatex")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_export)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+    """
+    parser = _build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:
+        return int(exc.code or 0)
+    try:
+        return args.run(args)
+    except InputError as exc:
+        print(f"rigidimpact: error: {exc}", file=sys.stderr)
+        return 2

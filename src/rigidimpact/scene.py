@@ -1,0 +1,511 @@
+"""Scene files: a collision stated once in TOML, read safely.
+
+Expressions in a scene are parsed by a small recursive-descent parser that knows
+numbers, declared symbols, ``+ - * / **`` (and ``^``), parentheses, ``sin cos tan sqrt``
+and ``pi``, with an optional trailing ``deg``. It builds SymPy objects directly: text
+from a file never reaches ``eval``, ``sympify`` or ``parse_expr``. Every problem is
+reported as an :class:`~rigidimpact.errors.InputError` naming the field.
+
+Examples
+--------
+>>> parse_expression("2*M + m*(1 + sin(theta)^2)", "demo")
+2*M + m*(sin(theta)**2 + 1)
+>>> parse_expression("30 deg", "demo")
+pi/6
+>>> parse_expression("__import__('os')", "demo")
+Traceback (most recent call last):
+...
+rigidimpact.errors.InputError: demo: unknown symbol '__import__'; declare it under [symbols]
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.bodies import SHAPES, Body
+from rigidimpact.contact import Contact
+from rigidimpact.errors import InputError
+from rigidimpact.impact import Impact
+from rigidimpact.notation import SYMBOLS, make_symbol
+from rigidimpact.problems import Derivation
+
+__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
+
+MAX_EXPRESSION = 400
+MAX_DEPTH = 40
+FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt}
+CONSTANTS = {"pi": sp.pi}
+ASSUMPTIONS = ("positive", "nonnegative", "negative", "nonpositive", "real", "nonzero")
+
+_TOKEN = re.compile(r"""
+    (?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)
+  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
+  | (?P<op>\*\*|[-+*/^()])
+  | (?P<space>\s+)
+""", re.VERBOSE)
+
+
+class _Parser:
+    """Recursive descent over the tokens of one expression."""
+
+    def __init__(self, text: str, where: str, symbols: Mapping[str, sp.Symbol]) -> None:
+        self.where, self.symbols = where, symbols
+        self.tokens: list[tuple[str, str]] = []
+        pos = 0
+        while pos < len(text):
+            match = _TOKEN.match(text, pos)
+            if match is None:
+                raise InputError(where, f"unexpected character {text[pos]!r} in {text!r}")
+            if match.lastgroup != "space":
+                self.tokens.append((match.lastgroup, match.group()))
+            pos = match.end()
+        self.pos = 0
+        self.depth = 0
+
+    def fail(self, message: str) -> InputError:
+        return InputError(self.where, message)
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.pos] if self.pos < len(self.tokens) else None
+
+    def take(self, value: str | None = None) -> tuple[str, str]:
+        token = self.peek()
+        if token is None:
+            raise self.fail("the expression ends too early")
+        if value is not None and token[1] != value:
+            raise self.fail(f"expected {value!r}, found {token[1]!r}")
+        self.pos += 1
+        return token
+
+    def parse(self) -> sp.Expr:
+        if not self.tokens:
+            raise self.fail("empty expression")
+        expr = self.sum()
+        if self.peek() is not None:
+            raise self.fail(f"unexpected {self.peek()[1]!r}")
+        return expr
+
+    def sum(self) -> sp.Expr:
+        expr = self.product()
+        while (token := self.peek()) and token[1] in "+-" and token[0] == "op":
+            self.take()
+            rhs = self.product()
+            expr = expr + rhs if token[1] == "+" else expr - rhs
+        return expr
+
+    def product(self) -> sp.Expr:
+        expr = self.unary()
+        while (token := self.peek()) and token[1] in ("*", "/"):
+            self.take()
+            rhs = self.unary()
+            if token[1] == "/":
+                if rhs.is_zero:
+                    raise self.fail("division by zero")
+                expr = expr / rhs
+            else:
+                expr = expr * rhs
+        return expr
+
+    def unary(self) -> sp.Expr:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise self.fail("expression nested too deeply")
+        try:
+            token = self.peek()
+            if token and token[1] in ("+", "-") and token[0] == "op":
+                self.take()
+                operand = self.unary()
+                return operand if token[1] == "+" else -operand
+            return self.power()
+        finally:
+            self.depth -= 1
+
+    def power(self) -> sp.Expr:
+        base = self.atom()
+        if (token := self.peek()) and token[1] in ("**", "^"):
+            self.take()
+            exponent = self.unary()
+            if exponent.free_symbols or not exponent.is_number or abs(exponent) > 16:
+                raise self.fail("powers must be numbers of size at most 16")
+            return base**exponent
+        return base
+
+    def atom(self) -> sp.Expr:
+        kind, text = self.take()
+        if kind == "number":
+            return sp.Rational(text)
+        if kind == "name":
+            if text in FUNCTIONS:
+                self.take("(")
+                argument = self.sum()
+                self.take(")")
+                return FUNCTIONS[text](argument)
+            if text in CONSTANTS:
+                return CONSTANTS[text]
+            if text in self.symbols:
+                return self.symbols[text]
+            raise self.fail(f"unknown symbol {text!r}; declare it under [symbols]")
+        if text == "(":
+            self.depth += 1
+            if self.depth > MAX_DEPTH:
+                raise self.fail("expression nested too deeply")
+            inner = self.sum()
+            self.take(")")
+            self.depth -= 1
+            return inner
+        raise self.fail(f"unexpected {text!r}")
+
+
+def parse_expression(value: Any, where: str,
+                     symbols: Mapping[str, sp.Symbol] = SYMBOLS) -> sp.Expr:
+    """An exact SymPy expression from a scene value (a TOML number or string).
+
+    Parameters
+    ----------
+    value : str, int or float
+        The value as read from TOML.
+    where : str
+        The field, for messages.
+    symbols : mapping
+        The names that may appear.
+
+    Examples
+    --------
+    >>> parse_expression(0.25, "x")
+    1/4
+    >>> parse_expression("1e7", "x")
+    10000000
+    """
+    if isinstance(value, bool):
+        raise InputError(where, "expected a number or expression, not true/false")
+    if isinstance(value, int):
+        return sp.Integer(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise InputError(where, f"must be finite, got {value}")
+        return sp.Rational(repr(value))
+    if not isinstance(value, str):
+        raise InputError(where, f"expected a number or expression, got {type(value).__name__}")
+    if len(value) > MAX_EXPRESSION:
+        raise InputError(where, f"expression longer than {MAX_EXPRESSION} characters")
+    text = value.strip()
+    degrees = re.fullmatch(r"(.*?)\s*deg", text, re.DOTALL)
+    if degrees:
+        text = degrees.group(1)
+    if text.lower() in ("nan", "inf", "infinity", "-inf", "+inf"):
+        raise InputError(where, f"must be finite, got {value!r}")
+    expr = _Parser(text, where, symbols).parse()
+    return expr * sp.pi / 180 if degrees else expr
+
+
+def _vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
+    if not isinstance(value, list) or len(value) != 2:
+        raise InputError(where, "expected a list of two components [x, y]")
+    return tuple(parse_expression(c, f"{where}[{i}]", symbols) for i, c in enumerate(value))
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A collision read from a scene file.
+
+    Parameters
+    ----------
+    title : str
+    symbols : mapping of name to Symbol
+        Every name the scene may use.
+    values : mapping of Symbol to number
+        Numbers for evaluate and simulate.
+    bodies : tuple of Body
+        In the order of ``contact.bodies`` (first on the -x side of O).
+    contact : Contact
+    simulate : mapping
+        The ``[simulate]`` table as read (checked by the simulation planner).
+    name : str
+        The file's stem.
+    """
+
+    title: str
+    symbols: Mapping[str, sp.Symbol]
+    values: Mapping[sp.Symbol, sp.Expr]
+    bodies: tuple[Body, Body]
+    contact: Contact
+    simulate: Mapping[str, Any] = field(default_factory=dict)
+    name: str = "scene"
+
+    def impact(self) -> Impact:
+        """The scene's impact."""
+        return Impact(self.bodies[0], self.bodies[1], self.contact)
+
+    def derivation(self) -> Derivation:
+        """Solve the scene's impact symbolically.
+
+        Examples
+        --------
+        >>> scene = parse_scene('''
+        ... [[bodies]]
+        ... name = "a"
+        ... shape = "particle"
+        ... mass = "m"
+        ... velocity = ["v_ix", "0"]
+        ... [[bodies]]
+        ... name = "b"
+        ... shape = "particle"
+        ... mass = "m"
+        ... [contact]
+        ... bodies = ["a", "b"]
+        ... restitution = "e"
+        ... ''')
+        >>> scene.derivation().results["b.vx"]
+        v_ix*(e + 1)/2
+        """
+        start = time.perf_counter()
+        impact = self.impact()
+        solution = impact.solve()
+        first, second = self.bodies
+        setup = tuple(f"{b.name}: {b.shape}, mass {b.mass}, centre ({b.position[0]}, "
+                      f"{b.position[1]}) from O, velocity ({b.velocity[0]}, "
+                      f"{b.velocity[1]}), spin {b.spin}" for b in (first, second))
+        setup += (f"contact: {self.contact.tangential}, normal ({self.contact.normal[0]}, "
+                  f"{self.contact.normal[1]}), restitution {self.contact.restitution}",)
+        return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
+                          solution.results(), solution=solution,
+                          seconds=time.perf_counter() - start)
+
+
+def _symbols_table(table: Any) -> dict[str, sp.Symbol]:
+    symbols = dict(SYMBOLS)
+    if table is None:
+        return symbols
+    if not isinstance(table, dict):
+        raise InputError("symbols", "must be a table of name = { assumption = true }")
+    for name, spec in table.items():
+        where = f"symbols.{name}"
+        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9]*(_[A-Za-z0-9]+)?", name):
+            raise InputError(where, "a symbol name is letters and digits, with at most one _")
+        if name in FUNCTIONS or name in CONSTANTS or name == "deg":
+            raise InputError(where, f"{name!r} is reserved")
+        if not isinstance(spec, dict):
+            raise InputError(where, "expected a table such as { positive = true }")
+        for key, flag in spec.items():
+            if key not in ASSUMPTIONS:
+                raise InputError(f"{where}.{key}", f"unknown assumption; use one of "
+                                 f"{', '.join(ASSUMPTIONS)}")
+            if not isinstance(flag, bool):
+                raise InputError(f"{where}.{key}", "must be true or false")
+        try:
+            symbols[name] = make_symbol(name, **spec)
+        except ValueError as exc:
+            raise InputError(where, str(exc)) from None
+    return symbols
+
+
+def _values_table(table: Any, symbols: Mapping[str, sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
+    values: dict[sp.Symbol, sp.Expr] = {}
+    if table is None:
+        return values
+    if not isinstance(table, dict):
+        raise InputError("values", "must be a table of name = number")
+    for name, raw in table.items():
+        where = f"values.{name}"
+        if name not in symbols:
+            raise InputError(where, "unknown symbol; declare it under [symbols]")
+        value = parse_expression(raw, where, {})  # numbers only: a value names no symbol
+        values[symbols[name]] = check_value(symbols[name], value, where)
+    return values
+
+
+def check_value(sym: sp.Symbol, value: sp.Expr, where: str) -> sp.Expr:
+    """Refuse a number that contradicts the symbol's assumptions (or e outside [0, 1]).
+
+    Examples
+    --------
+    >>> check_value(SYMBOLS["m"], sp.Integer(-1), "values.m")
+    Traceback (most recent call last):
+    ...
+    rigidimpact.errors.InputError: values.m: must be positive (m is positive), got -1
+    """
+    if not value.is_finite:
+        raise InputError(where, f"must be finite, got {value}")
+    for assumption, ok in (("positive", value > 0), ("nonnegative", value >= 0),
+                           ("negative", value < 0), ("nonpositive", value <= 0),
+                           ("nonzero", value != 0)):
+        if getattr(sym, f"is_{assumption}") and not ok:
+            raise InputError(where, f"must be {assumption} ({sym} is {assumption}), got {value}")
+    if sym.name == "e" and not 0 <= value <= 1:
+        raise InputError(where, f"the restitution coefficient must lie in [0, 1], got {value}")
+    return value
+
+
+_BODY_KEYS = {
+    "particle": {"mass"},
+    "barbell": {"mass", "half_length", "angle", "struck"},
+    "rod": {"mass", "length", "angle", "struck_at"},
+    "disc": {"mass", "radius", "position"},
+    "ring": {"mass", "radius", "position"},
+    "sphere": {"mass", "radius", "position"},
+    "rigid": {"mass", "inertia", "position"},
+}
+_REQUIRED = {
+    "particle": ("mass",),
+    "barbell": ("mass", "half_length", "angle"),
+    "rod": ("mass", "length", "angle", "struck_at"),
+    "disc": ("mass", "radius"),
+    "ring": ("mass", "radius"),
+    "sphere": ("mass", "radius"),
+    "rigid": ("mass", "inertia", "position"),
+}
+
+
+def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
+          symbols: Mapping[str, sp.Symbol]) -> Body:
+    where = f"bodies[{index}]"
+    if not isinstance(table, dict):
+        raise InputError(where, "each [[bodies]] entry must be a table")
+    name = table.get("name")
+    if not isinstance(name, str) or not name.isidentifier():
+        raise InputError(f"{where}.name", "required: an identifier such as \"ball\"")
+    shape = table.get("shape")
+    if shape not in SHAPES:
+        raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
+                         f"{', '.join(SHAPES)}")
+    allowed = _BODY_KEYS[shape] | {"name", "shape", "velocity", "spin"}
+    for key in table:
+        if key not in allowed:
+            raise InputError(f"{where}.{key}", f"not a field of a {shape}; allowed: "
+                             f"{', '.join(sorted(allowed))}")
+    for key in _REQUIRED[shape]:
+        if key not in table:
+            raise InputError(f"{where}.{key}", f"required for a {shape}")
+
+    def expr(key: str) -> sp.Expr:
+        return parse_expression(table[key], f"{where}.{key}", symbols)
+
+    velocity = _vector(table.get("velocity", [0, 0]), f"{where}.velocity", symbols)
+    spin = expr("spin") if "spin" in table else 0
+    try:
+        if shape == "particle":
+            return Body.particle(expr("mass"), velocity, name)
+        if shape == "barbell":
+            struck = table.get("struck", "A")
+            return Body.barbell(expr("mass"), expr("half_length"), expr("angle"), velocity,
+                                spin, name, struck)
+        if shape == "rod":
+            return Body.rod(expr("mass"), expr("length"), expr("angle"), expr("struck_at"),
+                            velocity, spin, name)
+        if shape == "rigid":
+            return Body.rigid(expr("mass"), expr("inertia"),
+                              _vector(table["position"], f"{where}.position", symbols),
+                              velocity, spin, name)
+        radius = expr("radius")
+        position = (_vector(table["position"], f"{where}.position", symbols)
+                    if "position" in table else tuple(side * radius * normal))
+        maker = {"disc": Body.disc, "ring": Body.ring, "sphere": Body.sphere}[shape]
+        return maker(expr("mass"), radius, position, side, velocity, spin, name)
+    except InputError as exc:
+        # name the entry in the file, not only the body
+        field_name = exc.field.split(".", 1)[-1] if "." in exc.field else exc.field
+        raise InputError(f"{where}.{field_name}", exc.message) from None
+
+
+def parse_scene(text: str, name: str = "scene") -> Scene:
+    """Read a scene from TOML text.
+
+    Raises
+    ------
+    InputError
+        For malformed TOML or any bad field, naming the field.
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError("scene", f"malformed TOML: {exc}") from None
+    allowed = {"title", "symbols", "values", "bodies", "contact", "simulate"}
+    for key in data:
+        if key not in allowed:
+            raise InputError(key, f"unknown section; expected {', '.join(sorted(allowed))}")
+    title = data.get("title", name)
+    if not isinstance(title, str):
+        raise InputError("title", "must be text")
+    symbols = _symbols_table(data.get("symbols"))
+    values = _values_table(data.get("values"), symbols)
+
+    contact_table = data.get("contact")
+    if not isinstance(contact_table, dict):
+        raise InputError("contact", "a [contact] table is required")
+    for key in contact_table:
+        if key not in ("bodies", "normal", "restitution", "tangential", "law"):
+            raise InputError(f"contact.{key}", "unknown field; expected bodies, normal, "
+                             "restitution, tangential")
+    normal = _vector(contact_table.get("normal", [1, 0]), "contact.normal", symbols)
+    if "restitution" not in contact_table:
+        raise InputError("contact.restitution", "required: Newton's coefficient e in [0, 1]")
+    restitution = parse_expression(contact_table["restitution"], "contact.restitution",
+                                   symbols)
+    contact = Contact(normal, restitution, contact_table.get("tangential", "smooth"),
+                      contact_table.get("law", "newton"))
+    unit = contact.frame.row(0).T
+
+    tables = data.get("bodies")
+    if not isinstance(tables, list) or len(tables) != 2:
+        raise InputError("bodies", "exactly two [[bodies]] entries are required")
+    order = contact_table.get("bodies", [t.get("name") for t in tables
+                                         if isinstance(t, dict)])
+    if (not isinstance(order, list) or len(order) != 2 or len(set(map(str, order))) != 2):
+        raise InputError("contact.bodies", "must name the two bodies, e.g. [\"ball\", \"bar\"]")
+    by_name = {t.get("name"): (k, t) for k, t in enumerate(tables) if isinstance(t, dict)}
+    bodies = []
+    for side, body_name in zip((-1, 1), order, strict=True):
+        if body_name not in by_name:
+            raise InputError("contact.bodies", f"no body named {body_name!r}")
+        index, table = by_name[body_name]
+        bodies.append(_body(table, index, side, unit, symbols))
+
+    simulate = data.get("simulate", {})
+    if not isinstance(simulate, dict):
+        raise InputError("simulate", "must be a table")
+    scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)
+    _check_scene(scene)
+    return scene
+
+
+def _check_scene(scene: Scene) -> None:
+    """Checks that need the whole scene: e and approach with the given values."""
+    impact = scene.impact()  # refuses bodies known not to approach
+    if scene.values:
+        e = scene.contact.restitution.subs(scene.values)
+        if e.is_number and not 0 <= e <= 1:
+            raise InputError("contact.restitution", f"must lie in [0, 1], got {e} with "
+                             "[values]")
+        for body in scene.bodies:
+            if body.mass.subs(scene.values).is_nonpositive:
+                raise InputError(f"{body.name}.mass", "must be positive with [values]")
+        approach = impact.approach_speed.subs(scene.values)
+        if approach.is_number and approach <= 0:
+            raise InputError("bodies", f"the bodies are not approaching at O with [values] "
+                             f"(normal approach speed {sp.N(approach, 6)})")
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read a scene file.
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read or any field is bad.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(str(path), f"cannot read the scene file: "
+                         f"{getattr(exc, 'strerror', None) or exc}") from None
+    return parse_scene(text, path.stem)
