@@ -105,8 +105,8 @@ class Part:
 
     Examples
     --------
-    >>> Part("A", 1, sp.ImmutableMatrix([0, 0]))
-    Part(label='A', mass=1, position=Matrix([[0], [0]]))
+    >>> Part("A", 1, sp.ImmutableMatrix([0, 0])).label
+    'A'
     """
 
     label: str

@@ -102,7 +102,7 @@ def fragment(derivation: Derivation, key: str) -> str:
     >>> print(fragment(derive("discs"), "V_1fx"))  # doctest: +NORMALIZE_WHITESPACE
     % rigidimpact: discs, result V_1fx
     \\begin{equation}
-      V_{1fx} = - \\frac{V_{1ix} e - V_{1ix} - V_{2ix} e - V_{2ix}}{2}
+      V_{1fx} = \\frac{V_{1ix} \\left(1 - e\\right)}{2} + \\frac{V_{2ix} \\left(e + 1\\right)}{2}
     \\end{equation}
     <BLANKLINE>
     """

@@ -50,6 +50,10 @@ class Equation:
     lhs: sp.Expr
     rhs: sp.Expr
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "lhs", sp.sympify(self.lhs, strict=True))
+        object.__setattr__(self, "rhs", sp.sympify(self.rhs, strict=True))
+
     @property
     def residual(self) -> sp.Expr:
         """``lhs - rhs``, zero when the equation holds."""

@@ -1,4 +1,4 @@
-"""The paper's symbols, made once with their assumptions, and their LaTeX names.
+r"""The paper's symbols, made once with their assumptions, and their LaTeX names.
 
 Every other module takes its symbols from here: a SymPy symbol with assumptions is
 not equal to a bare one of the same name, so making them in one place keeps the
@@ -144,7 +144,7 @@ def make_symbol(name: str, **assumptions: bool) -> sp.Symbol:
 
 
 def latex_name(sym: sp.Symbol) -> str:
-    """LaTeX for a symbol name in the paper's style: ``V_1ix`` -> ``V_{1ix}``.
+    r"""LaTeX for a symbol name in the paper's style: ``V_1ix`` -> ``V_{1ix}``.
 
     Examples
     --------

@@ -92,6 +92,8 @@ def _positive_lead(expr: sp.Expr) -> sp.Expr:
         return 2 * negative - len(terms), bool(constant.is_negative)
 
     flip = max(sums, key=negativity)  # the sum that reads best with its sign reversed
+    if negativity(flip)[0] < 0:  # reversing it would add minus signs
+        return expr
     factors[flip] = -factors[flip]
     return -coeff * sp.Mul(*factors)
 

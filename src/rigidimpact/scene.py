@@ -12,7 +12,7 @@ Examples
 2*M + m*(sin(theta)**2 + 1)
 >>> parse_expression("30 deg", "demo")
 pi/6
->>> parse_expression("__import__('os')", "demo")
+>>> parse_expression("__import__(1)", "demo")
 Traceback (most recent call last):
 ...
 rigidimpact.errors.InputError: demo: unknown symbol '__import__'; declare it under [symbols]

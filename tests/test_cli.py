@@ -1,0 +1,89 @@
+"""The command line, in process through main(argv)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from rigidimpact.cli import main
+
+DERIVATIONS = Path(__file__).resolve().parent.parent / "derivations"
+KEYS = {
+    "barbell": {"v_fx", "V_x", "omega_z", "f", "energy_loss_fraction"},
+    "sticking": {"u_x", "omega_z", "h"},
+    "discs": {"V_1fx", "V_2fx"},
+    "two-body": {"V_1fx", "V_1fy", "omega_1fz", "V_2fx", "V_2fy", "omega_2fz"},
+}
+SYMBOLS = {
+    "barbell": {"m", "M", "L", "theta", "e", "v_ix"},
+    "sticking": {"m", "M", "L", "theta", "v_ix"},
+    "discs": {"V_1ix", "V_2ix", "e"},
+    "two-body": {"m_1", "m_2", "I_1", "I_2", "R_1x", "R_1y", "R_2x", "R_2y", "V_1ix",
+                 "V_1iy", "omega_1iz", "V_2ix", "V_2iy", "omega_2iz", "e"},
+}
+
+
+def _json(capsys, argv):
+    assert main(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("name", sorted(KEYS))
+def test_derive_json_follows_the_contract(capsys, name):
+    import sympy as sp
+
+    data = _json(capsys, ["derive", name, "--json"])
+    assert data["problem"] == name
+    assert all({"label", "paper", "sympy", "latex"} <= set(eq) for eq in data["equations"])
+    assert KEYS[name] <= set(data["results"])
+    for key in KEYS[name]:
+        entry = data["results"][key]
+        # the sympy string is over the problem's own symbol names (parsed by the test,
+        # never by the tool)
+        names = {s.name for s in sp.sympify(entry["sympy"]).free_symbols}
+        assert names <= SYMBOLS[name], (key, names)
+        assert entry["latex"]
+
+
+def test_verify_json(capsys):
+    data = _json(capsys, ["verify", "--json"])
+    assert data["failed"] == 0 and data["passed"] == len(data["checks"])
+    assert all({"id", "paper", "status"} <= set(c) for c in data["checks"])
+
+
+def test_derive_a_scene_file(capsys):
+    data = _json(capsys, ["derive", str(DERIVATIONS / "disc-rod.toml"), "--json"])
+    assert {"disc.vx", "disc.vy", "disc.omega", "rod.vx", "rod.omega", "impulse",
+            "energy_loss_fraction"} <= set(data["results"])
+
+
+def test_derive_latex_format(capsys):
+    assert main(["derive", "barbell", "--format", "latex"]) == 0
+    assert r"\begin{equation}" in capsys.readouterr().out
+
+
+def test_export_json_lists_the_files(tmp_path, capsys):
+    files = _json(capsys, ["export", "discs", "--out", str(tmp_path), "--json"])
+    assert all(Path(f).exists() for f in files)
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["derive", "nonsense"], "unknown problem"),
+    (["derive", "missing.toml"], "cannot read"),
+    (["frobnicate"], "invalid choice"),
+])
+def test_bad_input_is_one_line_and_status_2(capsys, argv, needle):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_bad_scene_is_one_line_and_status_2(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((DERIVATIONS / "barbell.toml").read_text().replace(
+        'mass = "m"', 'mass = "__import__(\'os\')"'))
+    assert main(["derive", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("rigidimpact: error: bodies[0].mass:") and err.count("\n") == 1
