@@ -87,3 +87,38 @@ def test_bad_scene_is_one_line_and_status_2(tmp_path, capsys):
     assert main(["derive", str(bad)]) == 2
     err = capsys.readouterr().err
     assert err.startswith("rigidimpact: error: bodies[0].mass:") and err.count("\n") == 1
+
+
+def test_evaluate_json_matches_hand_computed_values(capsys):
+    # theta = 30 deg, m = 1, M = 2, e = 1/2: f = 1.5/5.25 = 2/7, v_fx = -1/7 (by hand)
+    data = _json(capsys, ["evaluate", "barbell", "--set", "m=1", "--set", "M=2", "--set",
+                          "L=1", "--set", "theta=30 deg", "--set", "e=0.5", "--set",
+                          "v_ix=1", "--json"])
+    assert abs(data["f"] - 2 / 7) < 1e-15 and abs(data["v_fx"] + 1 / 7) < 1e-15
+
+
+def test_evaluate_uses_a_scene_values(capsys):
+    data = _json(capsys, ["evaluate", str(DERIVATIONS / "discs.toml"), "--json"])
+    assert abs(data["disc1.vx"]) < 1e-15  # elastic, equal discs: the striker stops along x
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["evaluate", "barbell", "--set", "m=1"], "needs values for"),
+    (["evaluate", "barbell", "--set", "m=inf"], "must be finite"),
+    (["evaluate", "barbell", "--set", "q=1"], "not a symbol"),
+    (["evaluate", "barbell", "--set", "e=1.5"], "[0, 1]"),
+    (["evaluate", "barbell", "--set", "m"], "NAME=VALUE"),
+    (["evaluate", "discs", "--set", "V_1ix=0", "--set", "V_2ix=1", "--set", "e=1",
+      "--set", "V_1iy=0", "--set", "V_2iy=0"], "not approaching"),
+])
+def test_evaluate_refuses_bad_values(capsys, argv, needle):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1
+
+
+def test_stability_json(capsys):
+    data = _json(capsys, ["stability", "--json"])
+    assert {"cases", "worst", "rows"} <= set(data)
+    assert {"quantity", "rel_error"} <= set(data["worst"])
+    assert data["worst"]["rel_error"] <= 1e-13

@@ -150,6 +150,81 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _numbers(target: str, settings: Sequence[str]) -> tuple[Any, dict[str, Any]]:
+    """The derivation and its values: a scene's [values], then each --set NAME=VALUE."""
+    from rigidimpact.problems import PROBLEMS
+    from rigidimpact.scene import check_value, load_scene, parse_expression
+
+    if target in PROBLEMS:
+        derivation, values = _derivation(target), {}
+    else:
+        scene = load_scene(target)
+        derivation = scene.derivation()
+        values = {s.name: v for s, v in scene.values.items()}
+    needed = set().union(*(x.free_symbols for x in derivation.results.values()))
+    by_name = {s.name: s for s in needed}
+    for setting in settings:
+        name, eq, text = setting.partition("=")
+        name = name.strip()
+        if not eq or not name:
+            raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
+        if name not in by_name:
+            raise InputError(f"--set {name}", f"not a symbol of {derivation.problem}; it "
+                             f"uses {', '.join(sorted(by_name)) or 'none'}")
+        value = parse_expression(text, f"--set {name}", {})
+        values[name] = check_value(by_name[name], value, f"--set {name}")
+    missing = sorted(set(by_name) - set(values))
+    if missing:
+        raise InputError("--set", f"{derivation.problem} needs values for: {', '.join(missing)}")
+    solution = derivation.solution
+    if solution is not None:
+        approach = solution.impact.approach_speed.subs({by_name[n]: values[n] for n in by_name
+                                                        if n in values})
+        if approach.is_number and approach <= 0:
+            raise InputError("--set", "with these values the bodies are not approaching at O")
+    return derivation, values
+
+
+def _cmd_evaluate(args: argparse.Namespace) -> int:
+    import mpmath
+
+    from rigidimpact.numeric import evaluate
+
+    if args.dps is not None and not 5 <= args.dps <= 10000:
+        raise InputError("--dps", f"must lie between 5 and 10000, got {args.dps}")
+    derivation, values = _numbers(args.target, args.set)
+    numbers = evaluate(derivation.results, values, args.dps)
+
+    def literal(x: Any) -> str:
+        return mpmath.nstr(x, args.dps, min_fixed=-3, max_fixed=3) if args.dps else repr(x)
+
+    if args.json:  # full-precision JSON number literals (mpmath values are not floats)
+        body = ",\n".join(f"  {json.dumps(k)}: {literal(v)}" for k, v in numbers.items())
+        print("{\n" + body + "\n}")
+    else:
+        for key, value in numbers.items():
+            print(f"{key} = {literal(value)}")
+    return 0
+
+
+def _cmd_stability(args: argparse.Namespace) -> int:
+    from rigidimpact.stability import run_suite
+
+    report = run_suite()
+    if args.json:
+        _print_json(report)
+    else:
+        print(f"{report['cases']} cases; errors relative to each quantity's magnitude "
+              f"(bound {report['bound']:.0e})")
+        for row in report["rows"]:
+            print(f"  {row['problem']:>10} {row['quantity']:<22} cases {row['cases']:>5}  "
+                  f"scaled {row['scaled_error']:.1e}  relative {row['rel_error']:.1e}  "
+                  f"condition {row['condition']:.1e}  {'ok' if row['passed'] else 'FAIL'}")
+        worst = report["worst"]
+        print(f"worst: {worst['quantity']} {worst['rel_error']:.2e}")
+    return 0 if all(row["passed"] for row in report["rows"]) else 1
+
+
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
                      description="Derive, verify and simulate impulsive planar collisions "
@@ -174,6 +249,18 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--pdf", action="store_true", help="also compile with pdflatex")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_export)
+
+    p = sub.add_parser("evaluate", help="evaluate the results numerically")
+    p.add_argument("target", metavar="NAME-OR-SCENE")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a value for a symbol (repeat); a scene's [values] are defaults")
+    p.add_argument("--dps", type=int, help="mpmath with this many significant digits")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_evaluate)
+
+    p = sub.add_parser("stability", help="the hard-case suite against mpmath references")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_stability)
     return parser
 
 

@@ -1,0 +1,172 @@
+"""The hard-case suite: float64 kernels against 50-digit references at extreme inputs.
+
+Every case evaluates each result with the vectorised float64 kernel and compares it with
+the *exact* expression evaluated by mpmath at 50 digits from the same float inputs (taken
+exactly, so the reference answers the question the float code was asked). Two errors are
+reported per quantity:
+
+* ``rel_error``: ``|float - exact| / |exact|``;
+* ``scaled_error``: ``|float - exact| / magnitude``, where the magnitude is the exact
+  expression with every sum's terms in absolute value (:func:`numeric.magnitude`). Their
+  ratio ``magnitude / |exact|`` is the condition number: 1 where nothing cancels, large
+  where a result changes sign (v_fx). Float64 can promise a few ulps of the magnitude,
+  and ``worst`` reports the largest scaled error, which equals the relative error for
+  every quantity without cancellation.
+
+Examples
+--------
+>>> report = run_suite(problems=("discs",))
+>>> report["worst"]["rel_error"] < 1e-13
+True
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import mpmath
+import numpy as np
+
+from rigidimpact.numeric import Kernel, kernels
+from rigidimpact.problems import derive
+
+__all__ = ["Case", "CASES", "run_suite", "BOUND"]
+
+BOUND = 1e-13  # a few units in the last place of float64, relative to the magnitude
+DIGITS = 50
+
+RATIOS = (1e-12, 1e-6, 1.0, 1e6, 1e12)
+NEAR = 1e-9
+ANGLES = (NEAR, 0.3, math.pi / 2 - NEAR, math.pi / 2, math.pi / 2 + NEAR, 2.5,
+          math.pi - NEAR)
+RESTITUTIONS = (0.0, 1e-12, 0.5, 1.0 - 1e-12, 1.0)
+LENGTHS = (1e-6, 1.0, 1e6)
+
+
+@dataclass(frozen=True)
+class Case:
+    """A problem and the grid of inputs it is checked on."""
+
+    problem: str
+    grid: Mapping[str, Sequence[float]]
+    note: str
+
+
+def _two_body_grid() -> dict[str, Sequence[float]]:
+    return {"m_1": (1.0,), "m_2": RATIOS, "I_1": (1e-6, 1.0, 1e6), "I_2": (1e-12, 1.0, 1e12),
+            "R_1x": (-1.0,), "R_1y": (0.0, 1e-9, 0.7), "R_2x": (1.0,), "R_2y": (-2.0, 1e-9),
+            "V_1ix": (1.0,), "V_1iy": (0.3,), "omega_1iz": (0.0, 1e-3),
+            "V_2ix": (-1.0, 0.0), "V_2iy": (-0.5,), "omega_2iz": (0.0,), "e": RESTITUTIONS}
+
+
+CASES: tuple[Case, ...] = (
+    Case("barbell", {"m": (1.0,), "M": RATIOS, "L": LENGTHS, "theta": ANGLES,
+                     "e": RESTITUTIONS, "v_ix": (1.0, 1e-3)},
+         "mass ratios 1e-12..1e12, theta within 1e-9 of 0, 90, 180 degrees, e within 1e-12 "
+         "of 0 and 1, L from 1e-6 to 1e6"),
+    Case("sticking", {"m": (1.0,), "M": RATIOS, "L": LENGTHS, "theta": ANGLES,
+                      "v_ix": (1.0,)},
+         "the clay ball over the same ratios, angles and lengths"),
+    Case("discs", {"V_1ix": (1.0, 1e6), "V_2ix": (-1.0, 0.0, 0.999999999999, 1e-12),
+                   "V_1iy": (0.5,), "V_2iy": (-0.25,), "e": RESTITUTIONS},
+         "equal discs, nearly equal speeds and e near 0 and 1"),
+    Case("two-body", _two_body_grid(),
+         "general bodies: mass ratios 1e-12..1e12, inertias over 24 decades, nearly central"),
+)
+
+
+def _scene_cases() -> tuple[Case, ...]:
+    """A scene from derivations/ when it is there (source checkouts)."""
+    path = Path(__file__).resolve().parents[2] / "derivations" / "disc-rod.toml"
+    if not path.exists():
+        return ()
+    return (Case(str(path), {"m_d": (1.0,), "m_r": RATIOS, "r": (1e-6, 0.05),
+                             "l": LENGTHS, "k": (1e-9, 0.25, 0.5), "v": (3.0,),
+                             "omega": (0.0, 40.0), "e": RESTITUTIONS},
+                 "scene disc-rod.toml: a spinning disc on a rod, rod-to-disc mass "
+                 "ratios 1e-12..1e12, contact near the rod's centre and end"),)
+
+
+def _results(problem: str) -> Mapping:
+    if problem.endswith(".toml"):
+        from rigidimpact.scene import load_scene
+
+        return load_scene(problem).derivation().results
+    return derive(problem).results
+
+
+def _approaching(problem: str, point: Mapping[str, float]) -> bool:
+    """Keep only inputs that describe an impact (contact points closing along x)."""
+    if problem == "discs":
+        return point["V_1ix"] > point["V_2ix"]
+    if problem == "two-body":
+        v1 = point["V_1ix"] + point["omega_1iz"] * point["R_1y"]
+        v2 = point["V_2ix"] + point["omega_2iz"] * point["R_2y"]
+        return v1 > v2
+    return True
+
+
+def _evaluate(kernel: Kernel, points: list[dict[str, float]]) -> tuple[list, list]:
+    arrays = {n: np.array([p[n] for p in points]) for n in kernel.arguments}
+    floats = np.broadcast_to(kernel(**arrays), (len(points),))
+    rows = []
+    for p, value in zip(points, floats, strict=True):
+        args = {n: p[n] for n in kernel.arguments}
+        exact = kernel.reference(DIGITS, **args)
+        scale = kernel.scale(DIGITS, **args)
+        rows.append((float(value), exact, scale))
+    return rows, points
+
+
+def _errors(value: float, exact: mpmath.mpf, scale: mpmath.mpf) -> tuple[float, float]:
+    with mpmath.workdps(DIGITS):
+        diff = abs(mpmath.mpf(value) - exact)
+        if not math.isfinite(value):
+            return math.inf, math.inf
+        rel = 0.0 if diff == 0 else (math.inf if exact == 0 else float(diff / abs(exact)))
+        scaled = 0.0 if diff == 0 else (math.inf if scale == 0 else float(diff / scale))
+    return rel, scaled
+
+
+def run_suite(problems: Iterable[str] | None = None) -> dict:
+    """Run the hard cases; return ``{"cases", "worst", "rows", "bound"}``.
+
+    Each row is one quantity of one problem: the number of cases, the worst relative and
+    scaled errors, the largest condition number met, and the inputs of the worst case.
+    """
+    chosen = set(problems) if problems is not None else None
+    cases = [c for c in CASES + _scene_cases()
+             if chosen is None or c.problem in chosen or Path(c.problem).stem in chosen]
+    rows, total = [], 0
+    for case in cases:
+        names = list(case.grid)
+        points = [dict(zip(names, combo, strict=True))
+                  for combo in itertools.product(*case.grid.values())]
+        points = [p for p in points if _approaching(case.problem, p)]
+        total += len(points)
+        for quantity, kernel in kernels(_results(case.problem)).items():
+            if not kernel.arguments:
+                continue  # a constant (a spin that cannot change): nothing to round
+            evaluated, _ = _evaluate(kernel, points)
+            worst_rel, worst_scaled, worst_condition, worst_at = 0.0, 0.0, 1.0, points[0]
+            for (value, exact, scale), point in zip(evaluated, points, strict=True):
+                rel, scaled = _errors(value, exact, scale)
+                worst_rel = max(worst_rel, rel)
+                if exact != 0:
+                    worst_condition = max(worst_condition, float(scale / abs(exact)))
+                if scaled >= worst_scaled:
+                    worst_scaled, worst_at = scaled, point
+            rows.append({"problem": Path(case.problem).stem if case.problem.endswith(".toml")
+                         else case.problem, "quantity": quantity, "cases": len(points),
+                         "rel_error": worst_rel, "scaled_error": worst_scaled,
+                         "condition": worst_condition, "worst_at": worst_at,
+                         "passed": worst_scaled <= BOUND})
+    worst = max(rows, key=lambda r: r["scaled_error"])
+    return {"cases": total,
+            "worst": {"quantity": f"{worst['problem']}.{worst['quantity']}",
+                      "rel_error": worst["scaled_error"]},
+            "bound": BOUND, "rows": rows}

@@ -1,0 +1,56 @@
+"""The hard-case suite: float64 within a few ulps of 50-digit references."""
+
+from __future__ import annotations
+
+import pytest
+
+from rigidimpact.stability import BOUND, run_suite
+
+# quantities whose exact value has no cancellation: bounded relative to their own value
+WELL_CONDITIONED = {("barbell", "V_x"), ("barbell", "omega_z"), ("barbell", "f"),
+                    ("barbell", "energy_loss_fraction"), ("sticking", "u_x"),
+                    ("sticking", "omega_z"), ("sticking", "h"), ("disc-rod", "rod.vx"),
+                    ("disc-rod", "rod.omega"), ("disc-rod", "impulse"),
+                    ("disc-rod", "energy_loss_fraction"), ("two-body", "omega_2fz")}
+
+
+@pytest.fixture(scope="module")
+def report():
+    return run_suite()
+
+
+def test_every_quantity_is_within_the_bound_of_its_magnitude(report):
+    failing = [(r["problem"], r["quantity"], r["scaled_error"]) for r in report["rows"]
+               if r["scaled_error"] > BOUND]
+    assert failing == []
+    assert report["worst"]["rel_error"] <= BOUND
+
+
+def test_quantities_without_cancellation_are_relatively_accurate(report):
+    rows = {(r["problem"], r["quantity"]): r for r in report["rows"]}
+    assert WELL_CONDITIONED <= set(rows)
+    for key in WELL_CONDITIONED:
+        assert rows[key]["rel_error"] <= BOUND, key
+
+
+def test_v_fx_at_e_zero_is_relatively_accurate():
+    import itertools
+
+    import mpmath
+
+    from rigidimpact.numeric import Kernel
+    from rigidimpact.problems import derive
+    from rigidimpact.stability import ANGLES, LENGTHS, RATIOS
+
+    kernel = Kernel.from_expr(derive("barbell").results["v_fx"])
+    for M, L, theta in itertools.product(RATIOS, LENGTHS, ANGLES):
+        values = {"m": 1.0, "M": M, "L": L, "theta": theta, "e": 0.0, "v_ix": 1.0}
+        exact = kernel.reference(50, **values)
+        with mpmath.workdps(50):
+            assert abs(mpmath.mpf(float(kernel(**values))) - exact) / abs(exact) <= BOUND
+
+
+def test_the_suite_covers_the_extremes(report):
+    assert report["cases"] > 5000
+    barbell = next(r for r in report["rows"] if r["problem"] == "barbell")
+    assert barbell["cases"] >= 1000
