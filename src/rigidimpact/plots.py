@@ -36,25 +36,34 @@ def _curve(key: str):
     return sp.lambdify((m, M, L, theta, e, v_ix), expr, "numpy")
 
 
+def _against_theta(key: str, e_values: Sequence[float], mass_ratios: Sequence[float],
+                   ylabel: str, title: str) -> tuple[Figure, plt.Axes]:
+    """One line of a barbell result against the initial angle per (e, M/m); m = L = v_ix = 1."""
+    curve = _curve(key)
+    degrees = np.linspace(0.0, 180.0, 361)
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    for ratio in mass_ratios:
+        for ev in e_values:
+            ax.plot(degrees, curve(1.0, ratio, 1.0, np.radians(degrees), ev, 1.0),
+                    label=f"e = {ev:g}, M/m = {ratio:g}")
+    ax.set_xlabel(r"initial angle $\theta$ (degrees)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.set_xticks(range(0, 181, 30))
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.grid(alpha=0.3)
+    return fig, ax
+
+
 def omega_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 1.0),
                    mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
     """Barbell spin after the impact, omega_z L / v_ix, against the initial angle.
 
     One line per restitution e and barbell-to-ball mass ratio M/m (eq. 5).
     """
-    omega = _curve("omega_z")
-    degrees = np.linspace(0.0, 180.0, 361)
-    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
-    for ratio in mass_ratios:
-        for ev in e_values:
-            ax.plot(degrees, omega(1.0, ratio, 1.0, np.radians(degrees), ev, 1.0),
-                    label=f"e = {ev:g}, M/m = {ratio:g}")
-    ax.set_xlabel(r"initial angle $\theta$ (degrees)")
-    ax.set_ylabel(r"$\omega_z L / v_{ix}$ (dimensionless)")
-    ax.set_title("Barbell spin after the impact (Mungan eq. 5)")
-    ax.set_xticks(range(0, 181, 30))
-    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.grid(alpha=0.3)
+    fig, _ = _against_theta("omega_z", e_values, mass_ratios,
+                            r"$\omega_z L / v_{ix}$ (dimensionless)",
+                            "Barbell spin after the impact (Mungan eq. 5)")
     fig.tight_layout()
     return fig
 
@@ -62,20 +71,10 @@ def omega_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 1.0),
 def energy_loss_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 0.9),
                          mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
     """Fraction of kinetic energy lost (eq. 7) against the initial angle; least at 90."""
-    loss = _curve("energy_loss_fraction")
-    degrees = np.linspace(0.0, 180.0, 361)
-    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
-    for ratio in mass_ratios:
-        for ev in e_values:
-            ax.plot(degrees, loss(1.0, ratio, 1.0, np.radians(degrees), ev, 1.0),
-                    label=f"e = {ev:g}, M/m = {ratio:g}")
+    fig, ax = _against_theta("energy_loss_fraction", e_values, mass_ratios,
+                             r"$\Delta K_{\mathrm{lost}} / K_i$ (fraction)",
+                             "Kinetic energy lost (Mungan eq. 7): least at 90 degrees")
     ax.axvline(90.0, color="grey", lw=0.8, ls=":")
-    ax.set_xlabel(r"initial angle $\theta$ (degrees)")
-    ax.set_ylabel(r"$\Delta K_{\mathrm{lost}} / K_i$ (fraction)")
-    ax.set_title("Kinetic energy lost (Mungan eq. 7): least at 90 degrees")
-    ax.set_xticks(range(0, 181, 30))
     ax.set_ylim(bottom=0.0)
-    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
