@@ -80,15 +80,20 @@ CASES: tuple[Case, ...] = (
 
 
 def _scene_cases() -> tuple[Case, ...]:
-    """A scene from derivations/ when it is there (source checkouts)."""
-    path = Path(__file__).resolve().parents[2] / "derivations" / "disc-rod.toml"
-    if not path.exists():
-        return ()
-    return (Case(str(path), {"m_d": (1.0,), "m_r": RATIOS, "r": (1e-6, 0.05),
-                             "l": LENGTHS, "k": (1e-9, 0.25, 0.5), "v": (3.0,),
-                             "omega": (0.0, 40.0), "e": RESTITUTIONS},
-                 "scene disc-rod.toml: a spinning disc on a rod, rod-to-disc mass "
-                 "ratios 1e-12..1e12, contact near the rod's centre and end"),)
+    """Scenes from derivations/ when they are there (source checkouts)."""
+    folder = Path(__file__).resolve().parents[2] / "derivations"
+    cases = (
+        Case(str(folder / "disc-rod.toml"),
+             {"m_d": (1.0,), "m_r": RATIOS, "r": (1e-6, 0.05), "l": LENGTHS,
+              "k": (1e-9, 0.25, 0.5), "v": (3.0,), "omega": (0.0, 40.0), "e": RESTITUTIONS},
+             "scene disc-rod.toml: a spinning disc on a rod, rod-to-disc mass ratios "
+             "1e-12..1e12, contact near the rod's centre and end"),
+        Case(str(folder / "sticking.toml"),
+             {"m": (1.0,), "M": RATIOS, "L": LENGTHS, "theta": ANGLES, "v_ix": (1.0,)},
+             "scene sticking.toml: the clay ball through the sticking contact law, "
+             "tangential impulse included"),
+    )
+    return tuple(c for c in cases if Path(c.problem).exists())
 
 
 def _results(problem: str) -> Mapping:
@@ -140,7 +145,7 @@ def run_suite(problems: Iterable[str] | None = None) -> dict:
     """
     chosen = set(problems) if problems is not None else None
     cases = [c for c in CASES + _scene_cases()
-             if chosen is None or c.problem in chosen or Path(c.problem).stem in chosen]
+             if chosen is None or c.problem in chosen or Path(c.problem).name in chosen]
     rows, total = [], 0
     for case in cases:
         names = list(case.grid)
@@ -160,7 +165,7 @@ def run_suite(problems: Iterable[str] | None = None) -> dict:
                     worst_condition = max(worst_condition, float(scale / abs(exact)))
                 if scaled >= worst_scaled:
                     worst_scaled, worst_at = scaled, point
-            rows.append({"problem": Path(case.problem).stem if case.problem.endswith(".toml")
+            rows.append({"problem": Path(case.problem).name if case.problem.endswith(".toml")
                          else case.problem, "quantity": quantity, "cases": len(points),
                          "rel_error": worst_rel, "scaled_error": worst_scaled,
                          "condition": worst_condition, "worst_at": worst_at,
