@@ -6,7 +6,7 @@ and ``factor`` only: no blanket ``simplify``.
 
 Examples
 --------
->>> from rigidimpact.bodies import Body, cross
+>>> from rigidimpact.bodies import Body
 >>> from rigidimpact.contact import Contact
 >>> a = Body.particle(1, velocity=(2, 0), name="a")
 >>> b = Body.particle(1, name="b")
@@ -64,7 +64,7 @@ class Impact:
 
     Examples
     --------
-    >>> from rigidimpact.bodies import Body, cross
+    >>> from rigidimpact.bodies import Body
     >>> imp = Impact(Body.particle(1, (1, 0), "p"), Body.disc(1, 1, name="d"), Contact())
     >>> [str(u) for u in imp.unknowns]
     ['V_1fx', 'V_1fy', 'V_2fx', 'V_2fy', 'omega_2fz']
@@ -121,7 +121,7 @@ class Impact:
 
         Examples
         --------
-        >>> from rigidimpact.bodies import Body, cross
+        >>> from rigidimpact.bodies import Body
         >>> Impact(Body.particle(1, (3, 0), "a"), Body.particle(1, (1, 0), "b"),
         ...        Contact()).approach_speed
         2
@@ -154,7 +154,7 @@ class Impact:
 
         Examples
         --------
-        >>> from rigidimpact.bodies import Body, cross
+        >>> from rigidimpact.bodies import Body
         >>> imp = Impact(Body.particle(1, (1, 0), "p"), Body.rod(1, 2, 1, 1, name="r"),
         ...              Contact())
         >>> [eq.paper for eq in imp.equations()]
@@ -194,7 +194,7 @@ class Impact:
 
         Examples
         --------
-        >>> from rigidimpact.bodies import Body, cross
+        >>> from rigidimpact.bodies import Body
         >>> sol = Impact(Body.particle(1, (2, 0), "a"), Body.particle(3, name="b"),
         ...              Contact(restitution=0)).solve()
         >>> sol.results()["b.vx"]

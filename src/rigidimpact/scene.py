@@ -281,12 +281,16 @@ class Scene:
                           seconds=time.perf_counter() - start)
 
 
-def _symbols_table(table: Any) -> dict[str, sp.Symbol]:
-    symbols = dict(SYMBOLS)
-    if table is None:
-        return symbols
+def _table(data: Mapping[str, Any], key: str, form: str) -> dict[str, Any]:
+    """An optional top-level table of the scene (empty when absent)."""
+    table = data.get(key, {})
     if not isinstance(table, dict):
-        raise InputError("symbols", "must be a table of name = { assumption = true }")
+        raise InputError(key, f"must be a table of {form}")
+    return table
+
+
+def _symbols_table(table: Mapping[str, Any]) -> dict[str, sp.Symbol]:
+    symbols = dict(SYMBOLS)
     for name, spec in table.items():
         where = f"symbols.{name}"
         if not re.fullmatch(r"[A-Za-z][A-Za-z0-9]*(_[A-Za-z0-9]+)?", name):
@@ -308,12 +312,9 @@ def _symbols_table(table: Any) -> dict[str, sp.Symbol]:
     return symbols
 
 
-def _values_table(table: Any, symbols: Mapping[str, sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
+def _values_table(table: Mapping[str, Any],
+                  symbols: Mapping[str, sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
     values: dict[sp.Symbol, sp.Expr] = {}
-    if table is None:
-        return values
-    if not isinstance(table, dict):
-        raise InputError("values", "must be a table of name = number")
     for name, raw in table.items():
         where = f"values.{name}"
         if name not in symbols:
@@ -435,8 +436,8 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", "must be text")
-    symbols = _symbols_table(data.get("symbols"))
-    values = _values_table(data.get("values"), symbols)
+    symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
+    values = _values_table(_table(data, "values", "name = number"), symbols)
 
     contact_table = data.get("contact")
     if not isinstance(contact_table, dict):
@@ -469,9 +470,7 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
         index, table = by_name[body_name]
         bodies.append(_body(table, index, side, unit, symbols))
 
-    simulate = data.get("simulate", {})
-    if not isinstance(simulate, dict):
-        raise InputError("simulate", "must be a table")
+    simulate = _table(data, "simulate", "settings")
     scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)
     _check_scene(scene)
     return scene

@@ -115,7 +115,8 @@ def _approaching(problem: str, point: Mapping[str, float]) -> bool:
     return True
 
 
-def _evaluate(kernel: Kernel, points: list[dict[str, float]]) -> tuple[list, list]:
+def _evaluate(kernel: Kernel, points: list[dict[str, float]]) -> list[tuple]:
+    """(float64 value, exact value, magnitude) at each point."""
     arrays = {n: np.array([p[n] for p in points]) for n in kernel.arguments}
     floats = np.broadcast_to(kernel(**arrays), (len(points),))
     rows = []
@@ -124,7 +125,7 @@ def _evaluate(kernel: Kernel, points: list[dict[str, float]]) -> tuple[list, lis
         exact = kernel.reference(DIGITS, **args)
         scale = kernel.scale(DIGITS, **args)
         rows.append((float(value), exact, scale))
-    return rows, points
+    return rows
 
 
 def _errors(value: float, exact: mpmath.mpf, scale: mpmath.mpf) -> tuple[float, float]:
@@ -156,7 +157,7 @@ def run_suite(problems: Iterable[str] | None = None) -> dict:
         for quantity, kernel in kernels(_results(case.problem)).items():
             if not kernel.arguments:
                 continue  # a constant (a spin that cannot change): nothing to round
-            evaluated, _ = _evaluate(kernel, points)
+            evaluated = _evaluate(kernel, points)
             worst_rel, worst_scaled, worst_condition, worst_at = 0.0, 0.0, 1.0, points[0]
             for (value, exact, scale), point in zip(evaluated, points, strict=True):
                 rel, scaled = _errors(value, exact, scale)
