@@ -49,6 +49,10 @@ _ASSUMPTIONS: dict[str, dict[str, bool]] = {
     "omega_z": {"real": True},
     "u_x": {"real": True},
     "u_y": {"real": True},
+    # after the impact (section 2): time, the barbell's turn, the ball's drift rate
+    "t": {"nonnegative": True},
+    "tau": {"nonnegative": True},
+    "k": {"real": True},
     # section 3: two extended bodies
     "m_1": {"positive": True},
     "m_2": {"positive": True},

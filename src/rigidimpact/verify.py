@@ -38,7 +38,7 @@ from rigidimpact.paper import REFERENCES
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Verdict", "Check", "agree", "same_equation", "symbolic_zero", "run_checks",
-           "CHECKS"]
+           "CHECKS", "register"]
 
 DIGITS = 50
 TOLERANCE = mpmath.mpf(10) ** -40
@@ -178,12 +178,29 @@ def _ref(key: str) -> sp.Expr:
 CHECKS: list[tuple[str, str, str, Callable[[], Verdict]]] = []
 
 
-def _check(check_id: str, paper: str, description: str):
-    def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
+def register(check_id: str, paper: str, description: str):
+    """Add a check to ``rigidimpact verify`` (a decorator; higher layers use it too).
+
+    Examples
+    --------
+    >>> @register("demo.zero", "-", "zero is zero")
+    ... def _demo() -> Verdict:
+    ...     return Verdict(True, "trivially")
+    >>> [c.status for c in run_checks(lambda i: i == "demo.zero")]
+    ['pass']
+    >>> del CHECKS[-1]
+    """
+
+    def add(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
+        if any(row[0] == check_id for row in CHECKS):
+            raise ValueError(f"check {check_id!r} is registered twice")
         CHECKS.append((check_id, paper, description, fn))
         return fn
 
-    return register
+    return add
+
+
+_check = register
 
 
 def _barbell() -> problems.Derivation:

@@ -1,0 +1,1 @@
+"""Simulation after the impact: only the effects a scene asks for."""
