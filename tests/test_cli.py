@@ -122,3 +122,61 @@ def test_stability_json(capsys):
     assert {"cases", "worst", "rows"} <= set(data)
     assert {"quantity", "rel_error"} <= set(data["worst"])
     assert data["worst"]["rel_error"] <= 1e-13
+
+
+def test_critical_angle_json_prints_theta_c_to_30_digits(capsys):
+    import mpmath
+
+    assert main(["critical-angle", "--json"]) == 0
+    text = capsys.readouterr().out
+    data = json.loads(text)
+    assert {"theta_c_deg", "theta_c_rad", "equation", "windows_deg"} <= set(data)
+    assert data["equation"]["sympy"] == "Eq(tan(theta), 1/(pi - theta))"
+    # every printed digit is right: compare the literal with the paper's equation solved here
+    literal = text.split('"theta_c_deg": ')[1].split(",")[0]
+    with mpmath.workdps(60):
+        root = mpmath.findroot(lambda x: mpmath.tan(x) - 1 / (mpmath.pi - x), 0.3)
+        assert len(literal.replace(".", "")) >= 30
+        assert literal == mpmath.nstr(root * 180 / mpmath.pi, 30)
+    assert data["windows_deg"][0][0] == 0 and len(data["windows_deg"]) == 1
+
+
+def test_critical_angle_with_e_and_mass_ratio(capsys):
+    data = _json(capsys, ["critical-angle", "--e", "0.3", "--mass-ratio", "1", "--json"])
+    assert len(data["windows_deg"]) == 2
+    assert data["edges"][0][0]["kind"] == "at rest"
+    assert "asin" in data["edges"][0][0]["equation"]["sympy"]
+
+
+@pytest.mark.parametrize("argv, field", [(["--e", "1.2"], "e"), (["--mass-ratio", "0"], "mass"),
+                                         (["--e", "x"], "--e")])
+def test_critical_angle_rejects_bad_parameters(capsys, argv, field):
+    assert main(["critical-angle", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and field in err
+
+
+def test_simulate_restrike_scene_reports_the_event(capsys):
+    data = _json(capsys, ["simulate", str(DERIVATIONS / "restrike.toml"), "--json"])
+    assert {"effects", "not_simulated", "final", "events", "cost"} <= set(data)
+    kinds = [event["kind"] for event in data["events"]]
+    assert kinds == ["impact", "restrike"]
+    assert data["events"][1]["part"] == "rod"
+    assert data["cost"]["ode_steps"] == 0
+    assert data["final"]["t"] == data["events"][1]["t"]
+
+
+def test_simulate_explain_prints_the_plan(capsys):
+    assert main(["simulate", str(DERIVATIONS / "restrike.toml"), "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "free-flight" in out and "left out: rod-compliance" in out
+
+
+def test_simulate_bad_table_is_one_line(tmp_path, capsys):
+    scene = (DERIVATIONS / "restrike.toml").read_text().replace('until = "restrike"',
+                                                              'until = "never"')
+    path = tmp_path / "bad.toml"
+    path.write_text(scene)
+    assert main(["simulate", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "simulate.until" in err

@@ -28,9 +28,14 @@ from rigidimpact.scene import Scene, load_scene, parse_scene
 from rigidimpact.solution import Solution
 from rigidimpact.verify import run_checks
 
+# after the impact (importing restrike also adds its checks to `run_checks`)
+from rigidimpact.restrike import critical_angle
+from rigidimpact.simulate import make_plan, run
+
 __all__ = [
     "Body", "join", "Contact", "InputError",
     "Impact", "Equation", "Solution", "symbol", "PROBLEMS", "Derivation", "derive",
     "Scene", "load_scene", "parse_scene", "run_checks",
+    "critical_angle", "make_plan", "run",
 ]
 __version__ = "0.1.0"

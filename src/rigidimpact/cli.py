@@ -225,6 +225,82 @@ def _cmd_stability(args: argparse.Namespace) -> int:
     return 0 if all(row["passed"] for row in report["rows"]) else 1
 
 
+def _raw_json(data: Any, numbers: dict[str, str]) -> str:
+    """JSON text in which the values under `numbers`' keys are written as given literals."""
+    marked = {key: f"@@{key}@@" for key in numbers}
+    text = json.dumps({k: marked.get(k, v) for k, v in data.items()}, indent=2)
+    for key, literal in numbers.items():
+        text = text.replace(json.dumps(marked[key]), literal)
+    return text
+
+
+def _cmd_critical_angle(args: argparse.Namespace) -> int:
+    import mpmath
+
+    from rigidimpact.latex import to_latex
+    from rigidimpact.restrike import critical_angle
+
+    result = critical_angle(args.e, args.mass_ratio)
+    digits = args.digits
+    if not 5 <= digits <= 35:
+        raise InputError("--digits", f"must lie between 5 and 35, got {digits}")
+
+    def literal(x: Any) -> str:
+        return "null" if x is None else mpmath.nstr(x, digits, min_fixed=-3, max_fixed=4)
+
+    equation = result.equation
+    if args.json:
+        windows = "[" + ", ".join(f"[{literal(lo)}, {literal(hi)}]"
+                                  for lo, hi in result.windows_deg) + "]"
+        edges = [[{"deg": f"@{id(x)}", "kind": x.kind,
+                   "equation": None if x.equation is None else _expr_json(x.equation)}
+                  for x in pair] for pair in result.windows]
+        text = _raw_json({"e": str(result.restitution), "mass_ratio": str(result.mass_ratio),
+                          "theta_c_deg": None, "theta_c_rad": None,
+                          "equation": {"sympy": str(equation), "latex": to_latex(equation)},
+                          "windows_deg": None, "edges": edges},
+                         {"theta_c_deg": literal(result.theta_c_deg),
+                          "theta_c_rad": literal(result.theta_c), "windows_deg": windows})
+        for pair in result.windows:  # each edge's degrees, as a number literal too
+            for x in pair:
+                text = text.replace(json.dumps(f"@{id(x)}"), literal(x.deg))
+        print(text)
+        return 0
+    print(f"e = {result.restitution}, m/M = {result.mass_ratio}")
+    print(f"critical angle: {literal(result.theta_c_deg)} deg "
+          f"({literal(result.theta_c)} rad)" if result.theta_c is not None
+          else "critical angle: none (no window starts below 90 deg with an outrace edge)")
+    print(f"equation: {equation}")
+    if not result.windows:
+        print("no re-strike at any initial angle in (0, 180) deg")
+    for lo, hi in result.windows:
+        print(f"re-strike for theta in [{literal(lo.deg)}, {literal(hi.deg)}] deg "
+              f"({lo.kind} .. {hi.kind})")
+    return 0
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from rigidimpact.scene import load_scene
+    from rigidimpact.simulate import make_plan, run
+
+    scene = load_scene(args.scene)
+    if args.explain:
+        print(make_plan(scene.simulate).explain())
+        if not args.json:
+            return 0
+    outcome = run(scene)
+    if args.json:
+        _print_json(outcome.as_json())
+        return 0
+    for event in outcome.events:
+        extra = ", ".join(f"{k} {v}" for k, v in event.items() if k not in ("kind", "t"))
+        print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else ""))
+    for key, value in outcome.final.items():
+        print(f"{key} = {value!r}")
+    print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
+    return 0
+
+
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
                      description="Derive, verify and simulate impulsive planar collisions "
@@ -257,6 +333,19 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dps", type=int, help="mpmath with this many significant digits")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_evaluate)
+
+    p = sub.add_parser("critical-angle", help="the re-strike analysis of section 2")
+    p.add_argument("--e", default="0", metavar="E", help="restitution in [0, 1] (default 0)")
+    p.add_argument("--mass-ratio", default="1", metavar="R", help="m/M (default 1)")
+    p.add_argument("--digits", type=int, default=30, help="significant digits printed")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_critical_angle)
+
+    p = sub.add_parser("simulate", help="run the model a scene's [simulate] table asks for")
+    p.add_argument("scene", metavar="SCENE")
+    p.add_argument("--explain", action="store_true", help="print the plan")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_simulate)
 
     p = sub.add_parser("stability", help="the hard-case suite against mpmath references")
     p.add_argument("--json", action="store_true")

@@ -49,10 +49,8 @@ _ASSUMPTIONS: dict[str, dict[str, bool]] = {
     "omega_z": {"real": True},
     "u_x": {"real": True},
     "u_y": {"real": True},
-    # after the impact (section 2): time, the barbell's turn, the ball's drift rate
-    "t": {"nonnegative": True},
+    # after the impact (section 2): the angle the barbell has turned through
     "tau": {"nonnegative": True},
-    "k": {"real": True},
     # section 3: two extended bodies
     "m_1": {"positive": True},
     "m_2": {"positive": True},

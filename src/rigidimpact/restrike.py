@@ -30,7 +30,7 @@ Examples
 --------
 >>> result = critical_angle()
 >>> mpmath.nstr(result.theta_c_deg, 20)
-'19.66429012836565296'
+'19.664290128280113773'
 >>> [[round(float(x), 6) for x in w] for w in result.windows_deg]
 [[0.0, 19.66429]]
 """
@@ -111,7 +111,7 @@ def derive() -> Restrike:
     Examples
     --------
     >>> derive().drift
-    (-2*M*e - e*m + m*sin(theta)**2)/(m*(e + 1)*sin(theta)**2)
+    -(2*M*e + e*m - m*sin(theta)**2)/(m*(e + 1)*sin(theta)**2)
     >>> derive().critical
     2*(theta*sin(theta) - pi*sin(theta) + cos(theta))/sin(theta)
     """
@@ -280,7 +280,7 @@ def _analysis(restitution: Fraction, mass_ratio: Fraction) -> CriticalAngle:
     with mpmath.workdps(DIGITS + 10):
         lo, hi = mpmath.mpf(0), mpmath.pi
         at_rest = _at_rest_edges(factors[0])
-        edges = [(mpmath.mpf(sp.N(x, DIGITS + 10)), "at rest") for x in at_rest]
+        edges = [(_mp_value(x), "at rest") for x in at_rest]
         if factors[1].free_symbols:
             edges += [(r, "outrace") for r in _roots(factors[1], lo, hi)
                       if all(abs(r - x) > ENDS for x, _ in edges)]
@@ -295,7 +295,7 @@ def _analysis(restitution: Fraction, mass_ratio: Fraction) -> CriticalAngle:
                 windows[-1][1] = (b, kind_b)
             else:
                 windows.append([(a, kind_a), (b, kind_b)])
-        closed = {mpmath.mpf(sp.N(x, DIGITS + 10)): sp.Eq(theta, x) for x in at_rest}
+        closed = {_mp_value(x): sp.Eq(theta, x) for x in at_rest}
 
         def edge(x: mpmath.mpf, kind: str) -> Edge:
             if kind == "at rest":
@@ -344,9 +344,13 @@ def critical_angle(restitution=0, mass_ratio=1) -> CriticalAngle:
     --------
     >>> r = critical_angle("0.3", 1)
     >>> r.equation
-    Eq(13*sin(theta)*cos(theta)/10, (pi - theta)*(sin(theta)**2 - 9/10))
+    Eq(13*sin(theta)*cos(theta)/10, (pi - theta)*(10*sin(theta)**2 - 9)/10)
     >>> [[round(float(x), 4) for x in w] for w in r.windows_deg]
-    [[71.5651, 108.4349]]
+    [[71.5651, 83.4771], [108.4349, 180.0]]
+    >>> [(lo.kind, hi.kind) for lo, hi in r.windows]
+    [('at rest', 'outrace'), ('at rest', 'limit')]
+    >>> r.windows[0][0].equation
+    Eq(theta, asin(3*sqrt(10)/10))
     """
     return _analysis(*_checked(restitution, mass_ratio))
 
@@ -357,7 +361,7 @@ def windows(restitution=0, mass_ratio=1) -> list[list[mpmath.mpf]]:
     Examples
     --------
     >>> [[round(float(x), 3) for x in w] for w in windows("0.1", 4)]
-    [[13.646, 30.339], [162.417, 180.0]]
+    [[22.786, 36.973], [157.214, 180.0]]
     """
     return critical_angle(restitution, mass_ratio).windows_deg
 
@@ -448,6 +452,11 @@ def restrike_turn(theta_value, restitution=0, mass_ratio=1, dps: int = DIGITS):
         return +mpmath.findroot(gap, (a, b), solver="anderson")
 
 
+def _mp_value(x: sp.Expr) -> mpmath.mpf:
+    """An exact number as an mpf at the current working precision (not through float)."""
+    return mpmath.mpf(str(sp.N(x, mpmath.mp.dps + 5)))
+
+
 def _mp(x: Fraction) -> mpmath.mpf:
     return mpmath.mpf(x.numerator) / x.denominator
 
@@ -483,9 +492,11 @@ def _check_critical() -> Verdict:
     critical = derive().critical
     if critical.free_symbols != {theta}:
         return Verdict(False, f"depends on {critical.free_symbols}")
-    ratio = tidy(critical / CRITICAL_ANGLE_EQUATION)
+    reference = CRITICAL_ANGLE_EQUATION.xreplace({sp.tan(theta): sp.sin(theta) / sp.cos(theta)})
+    ratio = sp.factor(sp.cancel(sp.together(critical / reference)))
     # the ratio may vanish or blow up only where cos, sin or (pi - theta) do
-    zeros = [f for f, _ in sp.factor_list(sp.together(ratio))[1]]
+    top, bottom = sp.fraction(ratio)
+    zeros = [f for part in (top, bottom) for f, _ in sp.factor_list(part)[1]]
     allowed = {sp.cos(theta), sp.sin(theta), theta - sp.pi, sp.pi - theta}
     ok = all(f in allowed or f.is_number for f in zeros)
     return Verdict(ok, f"condition = ({ratio}) * (tan(theta) - 1/(pi - theta)); "

@@ -1,1 +1,10 @@
-"""Simulation after the impact: only the effects a scene asks for."""
+"""Simulation after the impact: only the effects a scene asks for.
+
+:func:`make_plan` turns a scene's ``[simulate]`` table into the smallest model that
+answers it; :func:`run` carries it out.
+"""
+
+from rigidimpact.simulate.planner import EFFECTS, Plan, make_plan
+from rigidimpact.simulate.runner import Outcome, run
+
+__all__ = ["EFFECTS", "Plan", "make_plan", "Outcome", "run"]

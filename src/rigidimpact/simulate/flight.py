@@ -17,13 +17,13 @@ finds it). Otherwise it is halved. Round bodies reduce to a quadratic.
 
 Examples
 --------
->>> import numpy as np
->>> ball = Flyer("ball", "particle", (0.0, 0.0), (1.0, 0.0), 0.0)
->>> bar = Flyer("bar", "barbell", (0.0, 0.5), (0.0, 0.0), 2.0, ends=((0.0, -0.5), (0.0, 0.5)),
-...             labels=("A", "B"))
->>> hit = first_contact(ball, bar)
->>> hit.part, round(hit.t, 12)
-('rod', 0.0)
+A rod along x turning at a quarter turn a second, and a ball resting above its centre:
+the rod is upright, and meets the ball, after one second.
+
+>>> rod = Flyer("rod", "rod", (0.0, 0.0), (0.0, 0.0), math.pi / 2, ends=((-1.0, 0.0), (1.0, 0.0)))
+>>> hit = first_contact(Flyer("ball", "particle", (0.0, 0.5), (0.0, 0.0), 0.0), rod)
+>>> hit.part, round(hit.t, 12), round(hit.s, 12)
+('rod', 1.0, 0.5)
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ __all__ = ["Flyer", "Contact", "first_contact", "reach_interval", "segment_gap"]
 SEGMENTS = ("barbell", "rod")
 ROUND = ("disc", "ring", "sphere")
 END_TOLERANCE = 1e-9  # relative distance from a rod end at which the end sphere is named
+REACH_TOLERANCE = 1e-12  # a ball this close outside the rod's circle (relative) is at its end
 
 
 @dataclass(frozen=True)
@@ -218,7 +219,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     if body.shape not in SEGMENTS or body.ends is None:
         raise ValueError(f"no contact search for a point against a {body.shape}")
     g, dg, p0, u, n0, half = segment_gap(ball, body)
-    window = reach_interval(p0, u, half)
+    window = reach_interval(p0, u, half * (1 + REACH_TOLERANCE))
     if window is None:
         return None
     start, stop = window[0], min(window[1], horizon)
@@ -249,7 +250,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     n = np.array([math.cos(math.atan2(n0[1], n0[0]) + turn),
                   math.sin(math.atan2(n0[1], n0[0]) + turn)])
     s = float(n @ (where - body.at(t)[0]))
-    return Contact(t, _part(s, half, body.labels), tuple(where), s)
+    return Contact(t, _part(s, half, body.labels), (float(where[0]), float(where[1])), s)
 
 
 def _part(s: float, half: float, labels: tuple[str, str]) -> str:

@@ -1,0 +1,140 @@
+"""The planner: from a scene's ``[simulate]`` table to the smallest model that answers it.
+
+A scene asks a question (``until``: the state at separation, the next contact, or a
+time) and may ask for extra physics (``effects``). The planner picks the runners in
+order — the impulse (algebraic) always, free flight in closed form when the question
+reaches past the impact, an integrated compliant model only when an effect needs one —
+and lists what it leaves out, so ``--explain`` can say why the answer costs what it does.
+
+Examples
+--------
+>>> plan = make_plan({"until": "restrike"})
+>>> [step.model for step in plan.steps]
+['impulse', 'free-flight']
+>>> plan.not_simulated
+('rod-compliance', 'contact-compliance', 'gravity')
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from rigidimpact.errors import InputError
+
+__all__ = ["Plan", "Step", "make_plan", "EFFECTS", "SETTINGS"]
+
+# every effect a scene may ask for, and what leaving it out means
+EFFECTS = {
+    "rod-compliance": "the barbell's rod is rigid: the impact is instantaneous",
+    "contact-compliance": "the contact is rigid: Newton's e acts in an instant",
+    "gravity": "no gravity: the table is horizontal (it would not change the relative "
+               "motion, since every body falls alike)",
+}
+SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance"}
+UNTIL = ("separation", "restrike")
+DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6}
+
+
+@dataclass(frozen=True)
+class Step:
+    """One runner of a plan and why it is there."""
+
+    model: str
+    why: str
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What `simulate` will run.
+
+    Parameters
+    ----------
+    until : str or float
+        ``"separation"``, ``"restrike"`` or a time after the impact.
+    effects : tuple of str
+        The extra physics asked for, in the catalogue's order.
+    not_simulated : tuple of str
+        The catalogue's effects left out.
+    steps : tuple of Step
+    settings : mapping
+        Stiffnesses and tolerance, with defaults filled in.
+    """
+
+    until: str | float
+    effects: tuple[str, ...]
+    not_simulated: tuple[str, ...]
+    steps: tuple[Step, ...]
+    settings: Mapping[str, float]
+
+    def explain(self) -> str:
+        """The plan in words, one line a step.
+
+        Examples
+        --------
+        >>> print(make_plan({}).explain())
+        until: separation
+        1. impulse: the impact as an instant: momentum laws and restitution, solved exactly
+        left out: rod-compliance (the barbell's rod is rigid: the impact is instantaneous)
+        left out: contact-compliance (the contact is rigid: Newton's e acts in an instant)
+        left out: gravity (no gravity: the table is horizontal (it would not change the relative motion, since every body falls alike))
+        """  # noqa: E501
+        lines = [f"until: {self.until}"]
+        lines += [f"{k}. {s.model}: {s.why}" for k, s in enumerate(self.steps, 1)]
+        lines += [f"left out: {name} ({EFFECTS[name]})" for name in self.not_simulated]
+        return "\n".join(lines)
+
+
+def _number(table: Mapping[str, Any], key: str) -> float:
+    value = table.get(key, DEFAULTS.get(key))
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"simulate.{key}", f"must be a number, got {value!r}")
+    if not math.isfinite(value) or value <= 0:
+        raise InputError(f"simulate.{key}", f"must be positive and finite, got {value!r}")
+    return float(value)
+
+
+def make_plan(table: Mapping[str, Any]) -> Plan:
+    """Check a ``[simulate]`` table and plan the run.
+
+    Examples
+    --------
+    >>> make_plan({"until": 0.5, "effects": ["gravity"]}).effects
+    ('gravity',)
+    >>> make_plan({"until": "later"})
+    Traceback (most recent call last):
+    ...
+    rigidimpact.errors.InputError: simulate.until: must be 'separation', 'restrike' or a time after the impact, got 'later'
+    """  # noqa: E501
+    unknown = sorted(set(table) - SETTINGS)
+    if unknown:
+        raise InputError(f"simulate.{unknown[0]}", f"unknown setting; expected one of "
+                         f"{', '.join(sorted(SETTINGS))}")
+    until = table.get("until", "separation")
+    if isinstance(until, bool) or not (until in UNTIL or isinstance(until, (int, float))
+                                       and math.isfinite(until) and until > 0):
+        raise InputError("simulate.until", f"must be 'separation', 'restrike' or a time "
+                         f"after the impact, got {until!r}")
+    effects = table.get("effects", [])
+    if not isinstance(effects, list) or not all(isinstance(x, str) for x in effects):
+        raise InputError("simulate.effects", "must be a list of names")
+    for name in effects:
+        if name not in EFFECTS:
+            raise InputError("simulate.effects", f"unknown effect {name!r}; expected "
+                             f"some of {', '.join(EFFECTS)}")
+    asked = tuple(name for name in EFFECTS if name in effects)
+    settings = {key: _number(table, key) for key in DEFAULTS}
+    steps = [Step("impulse", "the impact as an instant: momentum laws and restitution, "
+                             "solved exactly")]
+    compliant = [x for x in asked if x.endswith("-compliance")]
+    if compliant:
+        steps = [Step("compliant", f"{' and '.join(compliant)} asked for: the impact "
+                                   "takes time, integrated with scipy (LSODA/Radau)")]
+    if until != "separation":
+        steps.append(Step("free-flight", "no force between impacts: straight lines and "
+                                         "steady spin in closed form, with an exact "
+                                         "search for the next contact"))
+    return Plan(until, asked, tuple(x for x in EFFECTS if x not in asked), tuple(steps),
+                settings)

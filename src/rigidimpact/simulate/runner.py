@@ -1,0 +1,160 @@
+"""Carry out a plan: the impulse, then free flight to the event the scene asks for.
+
+Examples
+--------
+>>> from rigidimpact.scene import load_scene
+>>> outcome = run(load_scene("derivations/barbell.toml"))
+>>> [event["kind"] for event in outcome.events]
+['impact']
+>>> round(outcome.final["barbell.vx"], 12)
+0.285714285714
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.bodies import Body
+from rigidimpact.errors import InputError
+from rigidimpact.scene import Scene
+from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
+from rigidimpact.simulate.planner import Plan, make_plan
+
+__all__ = ["Outcome", "run", "flyer"]
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What a simulation found, in the keys of DESIGN.md.
+
+    ``final`` holds each body's ``vx, vy, omega`` and its place ``x, y`` and the angle
+    ``turn`` it has turned through since the impact, at the end time ``t``.
+    """
+
+    plan: Plan
+    final: Mapping[str, float]
+    events: list[dict[str, Any]]
+    wall_s: float
+    ode_steps: int = 0
+    details: Mapping[str, Any] = field(default_factory=dict)
+
+    def as_json(self) -> dict[str, Any]:
+        return {"effects": list(self.plan.effects), "not_simulated": list(self.plan.not_simulated),
+                "final": dict(self.final), "events": self.events,
+                "cost": {"wall_s": self.wall_s, "ode_steps": self.ode_steps},
+                "until": self.plan.until, **self.details}
+
+
+def _numbers(scene: Scene) -> dict[sp.Symbol, sp.Expr]:
+    needed = set()
+    for body in scene.bodies:
+        for x in (body.mass, body.inertia, *body.position, *body.velocity, body.spin,
+                  *(v for _, v in body.dimensions)):
+            needed |= x.free_symbols
+    needed |= sp.sympify(scene.contact.restitution).free_symbols
+    for x in scene.contact.normal:
+        needed |= sp.sympify(x).free_symbols
+    missing = sorted(s.name for s in needed if s not in scene.values)
+    if missing:
+        raise InputError("values", f"simulate needs numbers for: {', '.join(missing)}")
+    return dict(scene.values)
+
+
+def _float(x: sp.Expr, values: Mapping[sp.Symbol, sp.Expr]) -> float:
+    return float(sp.sympify(x).subs(values).evalf(30))
+
+
+def flyer(body: Body, values: Mapping[sp.Symbol, sp.Expr]) -> Flyer:
+    """A body just after the impact, as numbers for free flight.
+
+    Examples
+    --------
+    >>> flyer(Body.rod(1, 2, 0, 1, velocity=(0, 1)), {}).ends[1]
+    (1.0, 0.0)
+    """
+    position = tuple(_float(c, values) for c in body.position)
+    velocity = tuple(_float(c, values) for c in body.velocity)
+    spin = _float(body.spin, values)
+    dims = dict(body.dimensions)
+    if body.shape == "barbell":
+        first, second = body.parts
+        ends = tuple(tuple(_float(c, values) for c in part.position - body.position)
+                     for part in (first, second))
+        return Flyer(body.name, body.shape, position, velocity, spin, ends,
+                     (first.label, second.label))
+    if body.shape == "rod":
+        half, angle = _float(dims["length"] / 2, values), _float(dims["angle"], values)
+        end = (half * math.cos(angle), half * math.sin(angle))
+        return Flyer(body.name, body.shape, position, velocity, spin,
+                     ((-end[0], -end[1]), end), ("end 1", "end 2"))
+    radius = _float(dims["radius"], values) if "radius" in dims else 0.0
+    return Flyer(body.name, body.shape, position, velocity, spin, radius=radius)
+
+
+def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], float]:
+    """The next contact (if any) and the time the run ends."""
+    hit = first_contact(ball, other, horizon)
+    if hit is not None:
+        event = {"kind": "restrike", "t": hit.t, "part": hit.part,
+                 "point": [float(c) for c in hit.point]}
+        if other.shape in SEGMENTS:
+            event["s"] = hit.s
+        return [event], hit.t
+    p0, u = ball.at(0)[0] - other.at(0)[0], ball.at(1)[0] - other.at(1)[0] - (
+        ball.at(0)[0] - other.at(0)[0])
+    reach = max((math.hypot(*q) for q in other.ends), default=other.radius) if (
+        other.ends) else other.radius
+    window = reach_interval(p0, u, reach)
+    leaves = window[1] if window is not None and math.isfinite(window[1]) else 0.0
+    if math.isfinite(horizon):
+        return [], horizon
+    return [{"kind": "out-of-reach", "t": leaves}], leaves
+
+
+def run(scene: Scene) -> Outcome:
+    """Simulate a scene as its plan says.
+
+    Raises
+    ------
+    InputError
+        A bad ``[simulate]`` table, a missing value, or a question the runners cannot
+        answer (a re-strike search needs one particle).
+    """
+    start = time.perf_counter()
+    plan = make_plan(scene.simulate)
+    values = _numbers(scene)
+    if any(step.model == "compliant" for step in plan.steps):
+        from rigidimpact.simulate.compliant import run_compliant
+
+        return run_compliant(scene, plan, values, start)
+    solution = scene.impact().solve()
+    after = (solution.first_after, solution.second_after)
+    flyers = [flyer(b, values) for b in after]
+    events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
+    t_end = 0.0
+    if plan.until != "separation":
+        horizon = math.inf if plan.until == "restrike" else float(plan.until)
+        points = [f for f in flyers if f.shape == "particle"]
+        if len(points) != 1:
+            raise InputError("simulate.until", "a search for the next contact needs one "
+                             "particle (the ball) and one barbell, rod, disc, ring or sphere")
+        ball = points[0]
+        other = flyers[1 - flyers.index(ball)]
+        more, t_end = _restrike(ball, other, horizon)
+        events += more
+    final: dict[str, float] = {}
+    for body in flyers:
+        place, turn = body.at(t_end)
+        final |= {f"{body.name}.vx": float(body.velocity[0]),
+                  f"{body.name}.vy": float(body.velocity[1]),
+                  f"{body.name}.omega": float(body.spin),
+                  f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
+                  f"{body.name}.turn": turn}
+    final["t"] = t_end
+    return Outcome(plan, final, events, time.perf_counter() - start)
