@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import shutil
 import sys
 from pathlib import Path
@@ -20,7 +21,7 @@ import section2_implications  # noqa: E402
 import section3_two_bodies  # noqa: E402
 
 import rigidimpact as ri  # noqa: E402
-from rigidimpact import latex, plots  # noqa: E402
+from rigidimpact import latex, plots, restrike  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -53,8 +54,17 @@ def main(argv: list[str] | None = None) -> int:
 
     figures = out / "figures"
     figures.mkdir(exist_ok=True)
-    for name, make in (("omega-vs-theta.png", plots.omega_vs_theta),
-                       ("energy-loss-vs-theta.png", plots.energy_loss_vs_theta)):
+    theta_c = float(restrike.critical_angle().theta_c)
+    ten = math.radians(10.0)
+    for name, make in (
+        ("omega-vs-theta.png", plots.omega_vs_theta),
+        ("energy-loss-vs-theta.png", plots.energy_loss_vs_theta),
+        ("critical-angle.png", lambda: plots.critical_angle_graphical(theta_c)),
+        ("restrike-map.png", lambda: plots.restrike_map(*restrike.restrike_map())),
+        ("restrike-strobe.png", lambda: plots.strobe(
+            restrike.strobe_frames(ten, 0.0, 1.0, 14),
+            "e = 0, m = M, theta = 10 deg: from the impact to the re-strike by the B half")),
+    ):
         make().savefig(figures / name)
         print(f"figure -> {figures / name}")
     return 1 if failed else 0

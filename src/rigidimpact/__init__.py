@@ -23,14 +23,14 @@ from rigidimpact.laws import Equation
 from rigidimpact.notation import symbol
 from rigidimpact.problems import PROBLEMS, Derivation, derive
 
-# scenes and checks
-from rigidimpact.scene import Scene, load_scene, parse_scene
-from rigidimpact.solution import Solution
-from rigidimpact.verify import run_checks
-
 # after the impact (importing restrike also adds its checks to `run_checks`)
 from rigidimpact.restrike import critical_angle
+
+# scenes and checks
+from rigidimpact.scene import Scene, load_scene, parse_scene
 from rigidimpact.simulate import make_plan, run
+from rigidimpact.solution import Solution
+from rigidimpact.verify import run_checks
 
 __all__ = [
     "Body", "join", "Contact", "InputError",

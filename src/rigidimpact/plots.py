@@ -23,7 +23,8 @@ from matplotlib.figure import Figure  # noqa: E402
 from rigidimpact.notation import symbol  # noqa: E402
 from rigidimpact.problems import derive  # noqa: E402
 
-__all__ = ["omega_vs_theta", "energy_loss_vs_theta", "FIGSIZE", "DPI"]
+__all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
+           "restrike_map", "strobe", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -76,5 +77,86 @@ def energy_loss_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 0.9),
                              "Kinetic energy lost (Mungan eq. 7): least at 90 degrees")
     ax.axvline(90.0, color="grey", lw=0.8, ls=":")
     ax.set_ylim(bottom=0.0)
+    fig.tight_layout()
+    return fig
+
+
+# ---- section 2: the re-strike --------------------------------------------------------
+
+def critical_angle_graphical(theta_c: float) -> Figure:
+    """The paper's "graphical solution": tan(theta) and 1/(pi - theta) cross at theta_c.
+
+    Examples
+    --------
+    >>> fig = critical_angle_graphical(0.3432)
+    >>> len(fig.axes[0].lines)  # two curves, the crossing, the vertical marker
+    4
+    """
+    x = np.linspace(0.0, np.radians(45.0), 400)
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    ax.plot(np.degrees(x), np.tan(x), label=r"$\tan\theta$")
+    ax.plot(np.degrees(x), 1.0 / (np.pi - x), label=r"$1/(\pi - \theta)$")
+    ax.plot([np.degrees(theta_c)], [np.tan(theta_c)], "ko",
+            label=rf"$\theta_c = {np.degrees(theta_c):.4f}^\circ$")
+    ax.axvline(np.degrees(theta_c), color="grey", lw=0.8, ls=":")
+    ax.set_xlabel(r"initial angle $\theta$ (degrees)")
+    ax.set_ylabel("value")
+    ax.set_title(r"Critical angle of section 2: $\tan\theta_c = 1/(\pi - \theta_c)$ "
+                 "(perfectly inelastic, any m/M)")
+    ax.legend(loc="upper left")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def restrike_map(degrees: np.ndarray, e_values: np.ndarray,
+                 hits: dict[float, np.ndarray]) -> Figure:
+    """Where the barbell strikes the ball again, over (theta, e), one panel per m/M.
+
+    `hits[ratio]` is a boolean array of shape ``(len(e_values), len(degrees))``.
+
+    Examples
+    --------
+    >>> d, ev = np.linspace(0, 180, 5), np.linspace(0, 1, 3)
+    >>> len(restrike_map(d, ev, {1.0: np.zeros((3, 5), bool)}).axes)
+    1
+    """
+    fig, axes = plt.subplots(1, len(hits), figsize=FIGSIZE, dpi=DPI, sharey=True,
+                             squeeze=False)
+    for ax, (ratio, hit) in zip(axes[0], hits.items(), strict=True):
+        ax.pcolormesh(degrees, e_values, hit.astype(float), cmap="Blues", vmin=0.0,
+                      vmax=1.4, shading="nearest", rasterized=True)
+        ax.set_title(f"m/M = {ratio:g}", fontsize="medium")
+        ax.set_xlabel(r"$\theta$ (degrees)")
+        ax.set_xticks(range(0, 181, 45))
+    axes[0][0].set_ylabel("restitution e")
+    fig.suptitle("Shaded: the barbell strikes the ball again after the impact")
+    fig.tight_layout()
+    return fig
+
+
+def strobe(frames: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], title: str) -> Figure:
+    """Snapshots of the ball and barbell in the lab frame, from the impact onward.
+
+    Each frame is ``(ball, sphere_a, sphere_b)`` positions; later frames are darker.
+
+    Examples
+    --------
+    >>> f = [(np.zeros(2), np.zeros(2), np.ones(2))] * 3
+    >>> strobe(f, "demo").axes[0].get_aspect()
+    1.0
+    """
+    fig, ax = plt.subplots(figsize=(FIGSIZE[0], 0.6 * FIGSIZE[1]), dpi=DPI)
+    shades = plt.cm.viridis(np.linspace(0.0, 0.9, len(frames)))
+    for (ball, a, b), colour in zip(frames, shades, strict=True):
+        ax.plot([a[0], b[0]], [a[1], b[1]], "-", color=colour, lw=1.0)
+        ax.plot([a[0]], [a[1]], "o", color=colour, ms=5, mfc="white")
+        ax.plot([b[0]], [b[1]], "o", color=colour, ms=5)
+        ax.plot([ball[0]], [ball[1]], "s", color=colour, ms=4)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x / L")
+    ax.set_ylabel("y / L")
+    ax.set_title(title, fontsize="medium")
+    ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig

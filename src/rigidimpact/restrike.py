@@ -56,7 +56,7 @@ from rigidimpact.rewrite import tidy
 from rigidimpact.verify import Verdict, agree, symbolic_zero
 
 __all__ = ["Restrike", "derive", "Edge", "CriticalAngle", "critical_angle", "windows",
-           "restrike_turn", "sweep", "Sweep", "DIGITS"]
+           "restrike_turn", "sweep", "Sweep", "restrike_map", "strobe_frames", "DIGITS"]
 
 DIGITS = 40  # working precision of the window edges; 30 are promised, 10 are guard digits
 ENDS = mpmath.mpf(10) ** -12  # edges closer than this to 0 or pi (radians) are not resolved
@@ -153,9 +153,10 @@ def _require_positive(expr: sp.Expr) -> None:
 def _split_critical(factor: sp.Expr) -> sp.Equality:
     """Write the transcendental factor as ``A(theta) = (pi - theta) B(theta)``."""
     s, c, x = sp.Dummy("s"), sp.Dummy("c"), sp.Dummy("x")
-    plain = factor.xreplace({sp.sin(theta): s, sp.cos(theta): c}).subs(theta, x)
-    a, b = sp.Poly(plain, x).all_coeffs()[::-1] if sp.Poly(plain, x).degree() == 1 else (
-        plain, sp.Integer(0))
+    plain = sp.Poly(factor.xreplace({sp.sin(theta): s, sp.cos(theta): c}).subs(theta, x), x)
+    if plain.degree() != 1:
+        raise ArithmeticError(f"expected a factor linear in the bare angle: {factor}")
+    b, a = plain.all_coeffs()
     back = {s: sp.sin(theta), c: sp.cos(theta)}
     lhs = sp.factor((a + b * sp.pi).xreplace(back))
     rhs = sp.factor(b.xreplace(back))
@@ -288,7 +289,7 @@ def _analysis(restitution: Fraction, mass_ratio: Fraction) -> CriticalAngle:
         cuts = [(lo, "limit")] + edges + [(hi, "limit")]
         product = sp.lambdify(theta, d.sign * sp.Mul(*factors), modules="mpmath")
         windows: list[list] = []
-        for (a, kind_a), (b, kind_b) in zip(cuts, cuts[1:]):
+        for (a, kind_a), (b, kind_b) in zip(cuts, cuts[1:], strict=False):
             if b - a <= 0 or product((a + b) / 2) <= 0:
                 continue
             if windows and windows[-1][1][0] == a:  # the edge between was a touching root
@@ -459,6 +460,54 @@ def _mp_value(x: sp.Expr) -> mpmath.mpf:
 
 def _mp(x: Fraction) -> mpmath.mpf:
     return mpmath.mpf(x.numerator) / x.denominator
+
+
+def restrike_map(ratios: Sequence[float] = (0.5, 1.0, 4.0), e_count: int = 101,
+                 theta_count: int = 361) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Hit / no hit over a grid of (e, theta in degrees), per mass ratio, from :func:`sweep`.
+
+    Examples
+    --------
+    >>> degrees, e_values, hits = restrike_map((1.0,), 3, 7)
+    >>> hits[1.0].astype(int).tolist()[0]
+    [1, 0, 0, 0, 0, 0, 0]
+    """
+    degrees = np.linspace(0.0, 180.0, theta_count)
+    inner = np.radians(np.clip(degrees, 1e-6, 180 - 1e-6))  # the ends themselves are limits
+    e_values = np.linspace(0.0, 1.0, e_count)
+    hits = {ratio: np.array([sweep(inner, ev, ratio).hit for ev in e_values])
+            for ratio in ratios}
+    return degrees, e_values, hits
+
+
+@functools.cache
+def _after_impact():
+    r = problems.barbell().results
+    return sp.lambdify((theta, e, m, M, L, v_ix), [r["v_fx"], r["V_x"], r["omega_z"]],
+                       modules="math")
+
+
+def strobe_frames(theta_value: float, restitution: float = 0.0, mass_ratio: float = 1.0,
+                  count: int = 12) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Ball, sphere A and sphere B (units of L, v_ix = 1) from the impact to the re-strike.
+
+    Without a re-strike the frames run for one turn of the barbell.
+
+    Examples
+    --------
+    >>> frames = strobe_frames(np.radians(10.0), count=3)
+    >>> [np.round(x, 6).tolist() for x in frames[0]]
+    [[0.0, 0.0], [0.0, 0.0], [1.969616, 0.347296]]
+    """
+    v_fx, v_x, omega = _after_impact()(theta_value, restitution, mass_ratio, 1.0, 1.0, 1.0)
+    found = sweep([theta_value], restitution, mass_ratio)
+    turn = float(found.turn[0]) if found.hit[0] else 2 * math.pi
+    frames = []
+    for t in np.linspace(0.0, turn / omega, count):
+        centre = np.array([math.cos(theta_value) + v_x * t, math.sin(theta_value)])
+        rod = np.array([math.cos(theta_value + omega * t), math.sin(theta_value + omega * t)])
+        frames.append((np.array([v_fx * t, 0.0]), centre - rod, centre + rod))
+    return frames
 
 
 # ---- checks for `rigidimpact verify` --------------------------------------------------

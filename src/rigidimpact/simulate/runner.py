@@ -106,11 +106,13 @@ def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], fl
         if other.shape in SEGMENTS:
             event["s"] = hit.s
         return [event], hit.t
-    p0, u = ball.at(0)[0] - other.at(0)[0], ball.at(1)[0] - other.at(1)[0] - (
-        ball.at(0)[0] - other.at(0)[0])
-    reach = max((math.hypot(*q) for q in other.ends), default=other.radius) if (
-        other.ends) else other.radius
-    window = reach_interval(p0, u, reach)
+    if other.ends is not None:
+        reach = max(math.hypot(*q) for q in other.ends)
+    else:
+        reach = other.radius
+    window = reach_interval(ball.at(0)[0] - other.at(0)[0],
+                            ball.at(1)[0] - other.at(1)[0] - (ball.at(0)[0] - other.at(0)[0]),
+                            reach)
     leaves = window[1] if window is not None and math.isfinite(window[1]) else 0.0
     if math.isfinite(horizon):
         return [], horizon
