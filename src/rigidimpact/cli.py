@@ -281,14 +281,16 @@ def _cmd_critical_angle(args: argparse.Namespace) -> int:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from rigidimpact.scene import load_scene
-    from rigidimpact.simulate import make_plan, run
+    from rigidimpact.simulate import explain, run
 
     scene = load_scene(args.scene)
     if args.explain:
-        print(make_plan(scene.simulate).explain())
-        if not args.json:
+        print(explain(scene))
+        if not args.json and not args.plot:
             return 0
     outcome = run(scene)
+    if args.plot:
+        _plot_outcome(scene, outcome, Path(args.plot))
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -299,6 +301,33 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         print(f"{key} = {value!r}")
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
     return 0
+
+
+def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
+    """Draw a run's trajectories to a PNG, written whole or not at all."""
+    import os
+    import tempfile
+
+    from rigidimpact.plots import trajectories
+
+    if path.suffix.lower() != ".png":
+        raise InputError("--plot", f"expected a .png file name, got {str(path)!r}")
+    if not path.parent.is_dir():
+        raise InputError("--plot", f"no such folder: {str(path.parent)!r}")
+    track = outcome.trajectory
+    velocity = None
+    if hasattr(track, "contact_velocity"):
+        name = scene.bodies[1].name
+        velocity = (f"{name} at O", track.contact_velocity(name))
+    figure = trajectories(track.t, track.points(), scene.title, velocity)
+    handle, temporary = tempfile.mkstemp(suffix=".png", dir=path.parent)
+    os.close(handle)
+    try:
+        figure.savefig(temporary)
+        os.replace(temporary, path)
+    finally:
+        if os.path.exists(temporary):
+            os.remove(temporary)
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -344,6 +373,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("simulate", help="run the model a scene's [simulate] table asks for")
     p.add_argument("scene", metavar="SCENE")
     p.add_argument("--explain", action="store_true", help="print the plan")
+    p.add_argument("--plot", metavar="FILE", help="draw the trajectories to a PNG file")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_simulate)
 

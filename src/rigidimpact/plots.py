@@ -24,7 +24,7 @@ from rigidimpact.notation import symbol  # noqa: E402
 from rigidimpact.problems import derive  # noqa: E402
 
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
-           "restrike_map", "strobe", "FIGSIZE", "DPI"]
+           "restrike_map", "strobe", "trajectories", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -158,5 +158,41 @@ def strobe(frames: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], title: s
     ax.set_ylabel("y / L")
     ax.set_title(title, fontsize="medium")
     ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
+                 velocity: tuple[str, np.ndarray] | None = None) -> Figure:
+    """Paths of the tracked points in the plane; optionally one point's velocity in time.
+
+    Examples
+    --------
+    >>> t = np.linspace(0, 1, 5)
+    >>> fig = trajectories(t, {"ball": np.c_[t, 0 * t]}, "demo", ("ball", np.c_[1 + 0 * t, 0 * t]))
+    >>> len(fig.axes)
+    2
+    """
+    panels = 2 if velocity is not None else 1
+    fig, axes = plt.subplots(1, panels, figsize=FIGSIZE, dpi=DPI, squeeze=False)
+    ax = axes[0][0]
+    for name, xy in points.items():
+        ax.plot(xy[:, 0], xy[:, 1], "-", lw=1.2, label=name)
+        ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    if velocity is not None:
+        name, v = velocity
+        bx = axes[0][1]
+        bx.plot(times, v[:, 0], label=f"{name}: $v_x$")
+        bx.plot(times, v[:, 1], label=f"{name}: $v_y$")
+        bx.set_xlabel("time t")
+        bx.set_ylabel("velocity")
+        bx.legend(fontsize="small")
+        bx.grid(alpha=0.3)
+    fig.suptitle(title, fontsize="medium")
     fig.tight_layout()
     return fig

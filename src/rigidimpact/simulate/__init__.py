@@ -5,6 +5,6 @@ answers it; :func:`run` carries it out.
 """
 
 from rigidimpact.simulate.planner import EFFECTS, Plan, make_plan
-from rigidimpact.simulate.runner import Outcome, run
+from rigidimpact.simulate.runner import Outcome, explain, run
 
-__all__ = ["EFFECTS", "Plan", "make_plan", "Outcome", "run"]
+__all__ = ["EFFECTS", "Plan", "make_plan", "Outcome", "run", "explain"]

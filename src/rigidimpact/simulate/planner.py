@@ -131,7 +131,8 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
     compliant = [x for x in asked if x.endswith("-compliance")]
     if compliant:
         steps = [Step("compliant", f"{' and '.join(compliant)} asked for: the impact "
-                                   "takes time, integrated with scipy (LSODA/Radau)")]
+                                   "takes time, integrated with scipy (DOP853, or LSODA "
+                                   "when stiff)")]
     if until != "separation":
         steps.append(Step("free-flight", "no force between impacts: straight lines and "
                                          "steady spin in closed form, with an exact "

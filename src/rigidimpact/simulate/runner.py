@@ -18,6 +18,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 import sympy as sp
 
 from rigidimpact.bodies import Body
@@ -26,7 +27,7 @@ from rigidimpact.scene import Scene
 from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
 from rigidimpact.simulate.planner import Plan, make_plan
 
-__all__ = ["Outcome", "run", "flyer"]
+__all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack"]
 
 
 @dataclass(frozen=True)
@@ -43,12 +44,65 @@ class Outcome:
     wall_s: float
     ode_steps: int = 0
     details: Mapping[str, Any] = field(default_factory=dict)
+    trajectory: Any = field(default=None, repr=False)
 
     def as_json(self) -> dict[str, Any]:
-        return {"effects": list(self.plan.effects), "not_simulated": list(self.plan.not_simulated),
+        return {"effects": list(self.plan.effects),
+                "not_simulated": list(self.plan.not_simulated),
                 "final": dict(self.final), "events": self.events,
                 "cost": {"wall_s": self.wall_s, "ode_steps": self.ode_steps},
                 "until": self.plan.until, **self.details}
+
+
+@dataclass(frozen=True)
+class FlightTrack:
+    """Closed-form free flight from the impact to ``t_end``, sampled on demand for plots."""
+
+    flyers: tuple[Flyer, ...]
+    t_end: float
+
+    @property
+    def t(self) -> np.ndarray:
+        return np.linspace(0.0, self.t_end, 200) if self.t_end > 0 else np.zeros(1)
+
+    def points(self) -> dict[str, np.ndarray]:
+        """Tracked points over time: a segment body's two ends, else its centre."""
+        out = {}
+        for f in self.flyers:
+            if f.ends is not None:
+                ends = [f.ends_at(t) for t in self.t]
+                for k, label in enumerate(f.labels):
+                    out[f"{f.name}.{label}"] = np.array([pair[k] for pair in ends])
+            else:
+                out[f.name] = np.array([f.at(t)[0] for t in self.t])
+        return out
+
+
+def explain(scene: Scene) -> str:
+    """The plan in words; for a compliant model also the integrator and contact it picks.
+
+    Examples
+    --------
+    >>> from rigidimpact.scene import load_scene
+    >>> print(explain(load_scene("derivations/restrike.toml")).splitlines()[2])
+    2. free-flight: no force between impacts: straight lines and steady spin in closed form, with an exact search for the next contact
+    """  # noqa: E501
+    plan = make_plan(scene.simulate)
+    lines = [plan.explain()]
+    if any(step.model == "compliant" for step in plan.steps):
+        from rigidimpact.simulate.compliant import prepare
+
+        model = prepare(scene, plan, _numbers(scene))
+        chosen = model.integrator
+        lines.append(f"integrator: {chosen['method']}, rtol {chosen['rtol']:.1e} "
+                     f"(tolerance {plan.settings['tolerance']:.1e}); {chosen['why']}")
+        contact = model.contact
+        lines.append(f"contact: {contact['model']}"
+                     + (f", damping ratio {contact['damping_ratio']:.6g} returns e = "
+                        f"{contact['reached_e']:.6g}" if "damping_ratio" in contact else ""))
+        if "note" in contact:
+            lines.append(f"note: {contact['note']}")
+    return "\n".join(lines)
 
 
 def _numbers(scene: Scene) -> dict[sp.Symbol, sp.Expr]:
@@ -159,4 +213,5 @@ def run(scene: Scene) -> Outcome:
                   f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
                   f"{body.name}.turn": turn}
     final["t"] = t_end
-    return Outcome(plan, final, events, time.perf_counter() - start)
+    return Outcome(plan, final, events, time.perf_counter() - start,
+                   trajectory=FlightTrack(tuple(flyers), t_end))

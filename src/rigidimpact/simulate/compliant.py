@@ -1,0 +1,542 @@
+"""Compliant models, integrated with scipy only when a scene asks for them.
+
+Two effects, each optional:
+
+``rod-compliance``
+    A barbell's rod becomes a spring of stiffness ``rod_stiffness`` between its two point
+    masses (rest length 2L). This is the paper's thought experiment of section 2: the ball
+    pushes sphere A along +x only; A gains its -y velocity afterwards, from the rod.
+``contact-compliance``
+    The contact becomes a spring-dashpot along the line of impact between the two material
+    points that touch at O: force ``max(0, k d + c d')`` for penetration d > 0. It can push
+    but never pull, so it lets go when ``k d + c d'`` reaches zero, before d does; the
+    textbook formula ``e = exp(-pi z / sqrt(1 - z^2))`` does not hold for it.
+    :func:`restitution_of` gives e of the isolated contact from the damping ratio z in
+    closed form, and :func:`damping_ratio_for` inverts it. e falls like 1/(4 z^2): e = 0
+    would need infinite damping, so z is capped at ``MAX_DAMPING_RATIO`` and the e reached
+    is reported.
+
+Without ``contact-compliance`` the contact stays rigid: each time the touching points
+approach, Newton's e acts in an instant (which can happen again as a springy rod rings).
+Without ``rod-compliance`` every body moves rigidly.
+
+Examples
+--------
+>>> round(restitution_of(0.0), 12), round(restitution_of(1.0), 12)
+(1.0, 0.135335283237)
+>>> round(damping_ratio_for(restitution_of(0.3)), 12)
+0.3
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from rigidimpact.bodies import Body
+from rigidimpact.errors import InputError
+from rigidimpact.scene import Scene
+from rigidimpact.simulate.planner import Plan
+
+__all__ = ["restitution_of", "damping_ratio_for", "run_compliant", "prepare", "Model",
+           "Trajectory", "MAX_DAMPING_RATIO", "choose_integrator"]
+
+MAX_DAMPING_RATIO = 1e3  # e = 2.5e-7 here; e -> 0 needs an unbounded dashpot
+SETTLE_PERIODS = 3  # after the last contact, watch this many of the slowest periods
+MAX_SEGMENTS = 2000  # contact changes (or instant impacts) before giving up
+
+
+def _gap(z: float, t: np.ndarray | float):
+    """Penetration and its rate for the isolated contact (omega_0 = 1, d(0) = 0, d'(0) = 1)."""
+    if z < 1.0:
+        wd = math.sqrt(1.0 - z * z)
+        decay = np.exp(-z * t)
+        return decay * np.sin(wd * t) / wd, decay * (np.cos(wd * t) - z / wd * np.sin(wd * t))
+    if z == 1.0:
+        return t * np.exp(-t), (1.0 - t) * np.exp(-t)
+    root = math.sqrt(z * z - 1.0)
+    r1, r2 = -z + root, -z - root  # r1 is the slow root
+    return ((np.exp(r1 * t) - np.exp(r2 * t)) / (r1 - r2),
+            (r1 * np.exp(r1 * t) - r2 * np.exp(r2 * t)) / (r1 - r2))
+
+
+def restitution_of(z: float) -> float:
+    """e of a push-only linear spring-dashpot with damping ratio `z`, in closed form.
+
+    The contact ends at the first t > 0 where ``d + 2 z d' = 0`` (the force vanishes);
+    e is the rate of separation then over the rate of approach.
+
+    Examples
+    --------
+    >>> round(restitution_of(0.1), 10)
+    0.7440793977
+    """
+    if z < 0:
+        raise ValueError("the damping ratio must be non-negative")
+    if z == 0.0:
+        return 1.0
+
+    def force(t: float) -> float:
+        d, rate = _gap(z, t)
+        return float(d + 2 * z * rate)
+
+    if z < 1.0:  # the closed form of the force's first zero
+        wd = math.sqrt(1.0 - z * z)
+        end = (math.pi - math.atan2(2 * z * wd, 1.0 - 2 * z * z)) / wd
+    else:  # the force starts at 2z > 0 and falls through zero within a few slow times
+        hi = 1.0
+        while force(hi) > 0:
+            hi *= 2.0
+        end = brentq(force, 0.0 if force(0.0) <= 0 else 1e-300, hi, xtol=1e-15 * hi,
+                     rtol=8.9e-16)
+    return float(-_gap(z, end)[1])
+
+
+def damping_ratio_for(e: float) -> float:
+    """The damping ratio whose push-only contact returns `e` (capped for e -> 0).
+
+    Examples
+    --------
+    >>> damping_ratio_for(1.0)
+    0.0
+    >>> damping_ratio_for(0.0) == MAX_DAMPING_RATIO
+    True
+    """
+    if not 0.0 <= e <= 1.0:
+        raise ValueError("e must lie in [0, 1]")
+    if e == 1.0:
+        return 0.0
+    if e <= restitution_of(MAX_DAMPING_RATIO):
+        return MAX_DAMPING_RATIO
+    return brentq(lambda z: restitution_of(z) - e, 0.0, MAX_DAMPING_RATIO, xtol=1e-15,
+                  rtol=8.9e-16)
+
+
+# ---- the model ------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Sampled states of a run, for plots: ``points(name)`` gives (t, positions)."""
+
+    t: np.ndarray
+    y: np.ndarray
+    parts: tuple
+
+    def points(self) -> dict[str, np.ndarray]:
+        """Each body's tracked points over time: name -> array (samples, 2)."""
+        out = {}
+        for p in self.parts:
+            s = p.slot
+            if p.kind == "spring":
+                out[f"{p.name}.A"] = self.y[:, s:s + 2]
+                out[f"{p.name}.B"] = self.y[:, s + 2:s + 4]
+            else:
+                out[p.name] = self.y[:, s:s + 2]
+        return out
+
+    def contact_velocity(self, name: str) -> np.ndarray:
+        """Velocity of a body's touching point (sphere A for a sprung barbell)."""
+        for p in self.parts:
+            if p.name == name:
+                return np.array([_contact_point(p, row)[1] for row in self.y])
+        raise KeyError(name)
+
+
+@dataclass
+class _Part:
+    """One body in the state vector: a point, a rigid body, or a sprung barbell."""
+
+    name: str
+    kind: str  # "point" | "rigid" | "spring"
+    slot: int  # first index in the state vector
+    mass: float
+    inertia: float = 0.0
+    contact: np.ndarray | None = None  # rigid: the touching point relative to the centre
+    rest: float = 0.0  # spring: rest length
+    stiffness: float = 0.0
+
+    @property
+    def size(self) -> int:
+        return {"point": 4, "rigid": 6, "spring": 8}[self.kind]
+
+
+def _num(x: Any, values: Mapping) -> float:
+    return float(sp.sympify(x).subs(values).evalf(30))
+
+
+def _vec(v: Any, values: Mapping) -> np.ndarray:
+    return np.array([_num(c, values) for c in v], dtype=float)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+def _build(body: Body, slot: int, values: Mapping, plan: Plan) -> tuple[_Part, list[float]]:
+    mass, position = _num(body.mass, values), _vec(body.position, values)
+    velocity, spin = _vec(body.velocity, values), _num(body.spin, values)
+    if body.shape == "barbell" and "rod-compliance" in plan.effects:
+        a, b = (_vec(p.position, values) for p in body.parts)
+        va, vb = (velocity + spin * np.array([-(r - position)[1], (r - position)[0]])
+                  for r in (a, b))
+        part = _Part(body.name, "spring", slot, mass, _num(body.inertia, values),
+                     rest=float(np.linalg.norm(b - a)),
+                     stiffness=plan.settings["rod_stiffness"])
+        return part, [*a, *b, *va, *vb]
+    inertia = _num(body.inertia, values)
+    if inertia == 0.0:
+        return _Part(body.name, "point", slot, mass), [*position, *velocity]
+    return (_Part(body.name, "rigid", slot, mass, inertia, contact=-position),
+            [*position, 0.0, *velocity, spin])
+
+
+def _contact_point(part: _Part, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity of the part's material point that touched at O."""
+    s = part.slot
+    if part.kind == "point":
+        return y[s:s + 2], y[s + 2:s + 4]
+    if part.kind == "spring":  # the struck sphere comes first
+        return y[s:s + 2], y[s + 4:s + 6]
+    c, phi, v, w = y[s:s + 2], y[s + 2], y[s + 3:s + 5], y[s + 5]
+    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+    r = rot @ part.contact
+    return c + r, v + w * np.array([-r[1], r[0]])
+
+
+def _apply(part: _Part, dy: np.ndarray, y: np.ndarray, force: np.ndarray) -> None:
+    """Add a force at the contact point to the part's accelerations."""
+    s = part.slot
+    if part.kind == "point":
+        dy[s + 2:s + 4] += force / part.mass
+    elif part.kind == "spring":
+        dy[s + 4:s + 6] += force / (part.mass / 2)
+    else:
+        point, _ = _contact_point(part, y)
+        dy[s + 3:s + 5] += force / part.mass
+        dy[s + 5] += _cross(point - y[s:s + 2], force) / part.inertia
+
+
+def _free(part: _Part, y: np.ndarray, dy: np.ndarray) -> None:
+    """Kinematics, and the rod spring's forces."""
+    s = part.slot
+    if part.kind == "point":
+        dy[s:s + 2] = y[s + 2:s + 4]
+    elif part.kind == "rigid":
+        dy[s:s + 3] = y[s + 3:s + 6]
+    else:
+        dy[s:s + 4] = y[s + 4:s + 8]
+        d = y[s + 2:s + 4] - y[s:s + 2]
+        length = math.hypot(*d)
+        pull = part.stiffness * (length - part.rest) * d / length  # on A toward B
+        each = part.mass / 2
+        dy[s + 4:s + 6] += pull / each
+        dy[s + 6:s + 8] -= pull / each
+
+
+def _effective_mass(part: _Part, y: np.ndarray, normal: np.ndarray) -> float:
+    if part.kind == "point":
+        return part.mass
+    if part.kind == "spring":
+        return part.mass / 2
+    point, _ = _contact_point(part, y)
+    arm = _cross(point - y[part.slot:part.slot + 2], normal)
+    return 1.0 / (1.0 / part.mass + arm * arm / part.inertia)
+
+
+def _rigid_effective_mass(part: _Part, y: np.ndarray, normal: np.ndarray) -> float:
+    """Effective mass at the touching point with the body held rigid (a sprung rod too)."""
+    if part.kind != "spring":
+        return _effective_mass(part, y, normal)
+    s = part.slot
+    centre = (y[s:s + 2] + y[s + 2:s + 4]) / 2
+    arm = _cross(y[s:s + 2] - centre, normal)
+    return 1.0 / (1.0 / part.mass + arm * arm / part.inertia)
+
+
+def _energy(parts: list[_Part], y: np.ndarray) -> tuple[float, float]:
+    """Kinetic energy, and the energy stored in rod springs."""
+    kinetic = stored = 0.0
+    for p in parts:
+        s = p.slot
+        if p.kind == "point":
+            kinetic += 0.5 * p.mass * float(y[s + 2:s + 4] @ y[s + 2:s + 4])
+        elif p.kind == "rigid":
+            kinetic += 0.5 * p.mass * float(y[s + 3:s + 5] @ y[s + 3:s + 5])
+            kinetic += 0.5 * p.inertia * y[s + 5] ** 2
+        else:
+            kinetic += 0.25 * p.mass * float(y[s + 4:s + 8] @ y[s + 4:s + 8])
+            stretch = math.hypot(*(y[s + 2:s + 4] - y[s:s + 2])) - p.rest
+            stored += 0.5 * p.stiffness * stretch**2
+    return kinetic, stored
+
+
+def _final(part: _Part, y: np.ndarray) -> dict[str, float]:
+    """Centre velocity and spin (angular momentum about the centre over rigid inertia)."""
+    s = part.slot
+    if part.kind == "point":
+        v, w, c = y[s + 2:s + 4], 0.0, y[s:s + 2]
+    elif part.kind == "rigid":
+        v, w, c = y[s + 3:s + 5], y[s + 5], y[s:s + 2]
+    else:
+        a, b, va, vb = y[s:s + 2], y[s + 2:s + 4], y[s + 4:s + 6], y[s + 6:s + 8]
+        c, v = (a + b) / 2, (va + vb) / 2
+        each = part.mass / 2
+        w = each * (_cross(a - c, va - v) + _cross(b - c, vb - v)) / part.inertia
+    return {f"{part.name}.vx": float(v[0]), f"{part.name}.vy": float(v[1]),
+            f"{part.name}.omega": float(w), f"{part.name}.x": float(c[0]),
+            f"{part.name}.y": float(c[1])}
+
+
+def choose_integrator(fast: float, slow: float, tolerance: float) -> dict[str, Any]:
+    """An integrator and tolerances for time scales `fast` < `slow` (seconds).
+
+    Examples
+    --------
+    >>> choose_integrator(1e-6, 1e-2, 1e-6)["method"]
+    'LSODA'
+    >>> choose_integrator(1e-3, 1e-2, 1e-6)["method"]
+    'DOP853'
+    """
+    ratio = (slow / fast) ** 2  # the stiffness ratio: squared ratio of natural frequencies
+    rtol = max(tolerance * 1e-2, 1e-12)
+    if ratio > 1e4:
+        return {"method": "LSODA", "rtol": rtol, "stiffness_ratio": ratio,
+                "why": f"stiffness ratio {ratio:.1e} > 1e4: LSODA switches to BDF when the "
+                       "stiff mode dominates and back to Adams when it does not"}
+    return {"method": "DOP853", "rtol": rtol, "stiffness_ratio": ratio,
+            "why": f"stiffness ratio {ratio:.1e} <= 1e4: an explicit 8th-order method is "
+                   "cheapest"}
+
+
+@dataclass(frozen=True)
+class Model:
+    """A compliant model ready to integrate: its parts, initial state and time scales."""
+
+    parts: tuple
+    y0: np.ndarray
+    normal: np.ndarray
+    e: float
+    k_c: float
+    c_c: float
+    fast: float
+    slow: float
+    integrator: dict
+    contact: dict
+
+
+def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
+    """Build the compliant model of a scene and pick its integrator (nothing is run).
+
+    Raises
+    ------
+    InputError
+        For a question the compliant models cannot answer.
+    """
+    if plan.until == "restrike":
+        raise InputError("simulate.until", "the re-strike search runs on rigid bodies; "
+                         "drop the compliance effects or ask for a time")
+    if "rod-compliance" in plan.effects and not any(b.shape == "barbell"
+                                                    for b in scene.bodies):
+        raise InputError("simulate.effects", "rod-compliance needs a barbell in the scene")
+    if scene.contact.tangential != "smooth":
+        raise InputError("contact.tangential", "the compliant models have a smooth contact")
+    parts, state, slot = [], [], 0
+    for body in scene.bodies:
+        part, initial = _build(body, slot, values, plan)
+        parts.append(part)
+        state += initial
+        slot += part.size
+    state.append(0.0)  # work done by the contact force on the bodies
+    normal = _vec(scene.contact.frame[0, :], values)
+    normal /= np.linalg.norm(normal)
+    first, second = parts
+    e = _num(scene.contact.restitution, values)
+    y0 = np.array(state)
+    # the isolated contact: the two bodies as rigid, meeting at O (a stiff rod is rigid
+    # on the contact's time scale); its damping returns the requested e
+    mu = 1.0 / (1.0 / _rigid_effective_mass(first, y0, normal)
+                + 1.0 / _rigid_effective_mass(second, y0, normal))
+    periods = []
+    contact_info: dict[str, Any] = {"requested_e": e}
+    k_c = c_c = 0.0
+    if "contact-compliance" in plan.effects:
+        k_c = plan.settings["contact_stiffness"]
+        z = damping_ratio_for(e)
+        c_c = 2 * z * math.sqrt(k_c * mu)
+        contact_info |= {"model": "push-only spring-dashpot", "stiffness": k_c,
+                         "damping_ratio": z, "damping": c_c,
+                         "reached_e": restitution_of(z)}
+        if z == MAX_DAMPING_RATIO and e < contact_info["reached_e"]:
+            contact_info["note"] = (f"e = {e:g} needs unbounded damping; capped at "
+                                    f"z = {MAX_DAMPING_RATIO:g}, giving e = "
+                                    f"{contact_info['reached_e']:.2g}")
+        periods.append(2 * math.pi * math.sqrt(mu / k_c))
+        if z > 0:
+            periods.append(mu / c_c)  # the dashpot's own time
+    else:
+        contact_info |= {"model": "rigid: Newton's e in an instant", "reached_e": e}
+    for p in parts:
+        if p.kind == "spring":
+            periods.append(2 * math.pi * math.sqrt(p.mass / 4 / p.stiffness))
+    approach = float(normal @ (_contact_point(first, y0)[1] - _contact_point(second, y0)[1]))
+    if approach <= 0:
+        raise InputError("bodies", "the bodies are not approaching at O")
+    fast, slow = min(periods), max(periods)
+    integrator = choose_integrator(fast, slow, plan.settings["tolerance"])
+    return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
+
+
+def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
+    """Integrate the compliant model until the bodies have separated (or the set time)."""
+    from rigidimpact.simulate.runner import Outcome
+
+    model = prepare(scene, plan, values)
+    parts, y0, normal, e = list(model.parts), model.y0, model.normal, model.e
+    first, second = parts
+    k_c, c_c, fast, slow = model.k_c, model.c_c, model.fast, model.slow
+    integrator, contact_info = model.integrator, model.contact
+    compliant_contact = "contact-compliance" in plan.effects
+    scale = float(np.max(np.abs(y0[:-1]))) or 1.0
+    atol = integrator["rtol"] * scale * np.ones_like(y0)
+
+    def penetration(y: np.ndarray) -> tuple[float, float]:
+        (p1, v1), (p2, v2) = _contact_point(first, y), _contact_point(second, y)
+        return float(normal @ (p1 - p2)), float(normal @ (v1 - v2))
+
+    def rhs(_t: float, y: np.ndarray) -> np.ndarray:
+        dy = np.zeros_like(y)
+        for p in parts:
+            _free(p, y, dy)
+        if compliant_contact:
+            d, rate = penetration(y)
+            push = k_c * d + c_c * rate if d > 0 else 0.0
+            if push > 0:
+                _apply(second, dy, y, push * normal)
+                _apply(first, dy, y, -push * normal)
+                dy[-1] = -push * rate
+        return dy
+
+    def touches(_t: float, y: np.ndarray) -> float:
+        return penetration(y)[0]
+
+    def lets_go(_t: float, y: np.ndarray) -> float:
+        d, rate = penetration(y)
+        return k_c * d + c_c * rate if d > 0 else -1.0
+
+    touches.terminal = True
+    lets_go.terminal = True
+    touches.direction = 1.0
+    lets_go.direction = -1.0
+
+    def impulse(y: np.ndarray) -> np.ndarray:
+        """Newton's e in an instant between the touching points (rigid contact)."""
+        d, rate = penetration(y)
+        if rate <= 0:
+            return y
+        m1, m2 = _effective_mass(first, y, normal), _effective_mass(second, y, normal)
+        j = (1 + e) * rate / (1 / m1 + 1 / m2)
+        before = _energy(parts, y)[0]
+        y = y.copy()
+        for part, sign in ((first, -1.0), (second, 1.0)):
+            dy = np.zeros_like(y)
+            _apply(part, dy, y, sign * j * normal)
+            s, n = part.slot, part.size
+            vel = slice(s + n // 2, s + n)
+            y[vel] += dy[vel]
+        y[-1] += _energy(parts, y)[0] - before
+        return y
+
+    horizon = math.inf if plan.until == "separation" else float(plan.until)
+    touching = compliant_contact  # at t = 0 the points meet, approaching
+    t, y = 0.0, y0 if compliant_contact else impulse(y0)
+    events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
+    steps, quiet_since = 0, 0.0
+    times, states = [0.0], [y.copy()]
+    max_step = fast / 4 if integrator["method"] == "DOP853" else np.inf
+    for _ in range(MAX_SEGMENTS):
+        stop = min(horizon, (t if touching else quiet_since) + SETTLE_PERIODS * slow)
+        if t >= stop:
+            break
+        sol = solve_ivp(rhs, (t, stop), y, method=integrator["method"],
+                        rtol=integrator["rtol"], atol=atol,
+                        events=[lets_go] if touching else [touches], max_step=max_step)
+        if sol.status == -1:
+            raise InputError("simulate", f"the integrator failed: {sol.message}")
+        steps += len(sol.t) - 1
+        times += list(sol.t[1:])
+        states += list(sol.y.T[1:])
+        t, y = float(sol.t[-1]), sol.y[:, -1].copy()
+        if sol.status != 1:
+            if touching and t < horizon:
+                raise InputError("simulate", "the contact did not let go within "
+                                 f"{SETTLE_PERIODS} of its periods")
+            continue
+        if touching:
+            events.append({"kind": "contact-ends", "t": t})
+            touching, quiet_since = False, t
+        elif compliant_contact:
+            events.append({"kind": "contact-begins", "t": t})
+            touching = True
+        else:
+            events.append({"kind": "impact", "t": t})
+            y, quiet_since = impulse(y), t
+    else:
+        raise InputError("simulate", f"more than {MAX_SEGMENTS} contacts: the bodies chatter"
+                         " (a rigid contact with e near 0 sticks; ask for contact-compliance)")
+    final: dict[str, float] = {}
+    for p in parts:
+        final |= _final(p, y)
+    final["t"] = t
+    kinetic0, stored0 = _energy(parts, y0)
+    kinetic, stored = _energy(parts, y)
+    energy = {"initial": kinetic0 + stored0, "kinetic": kinetic, "rod": stored,
+              "contact_work": float(y[-1]),
+              "balance_error": kinetic + stored - (kinetic0 + stored0) - float(y[-1])}
+    details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
+    track = Trajectory(np.array(times), np.array(states), tuple(parts))
+    return Outcome(plan, final, events, time.perf_counter() - start, steps, details, track)
+
+
+def rigid_limit(scene: Scene, contact_stiffnesses: list[float], rod_exponent: float = 1.5,
+                rod_scale: float = 100.0) -> list[dict[str, float]]:
+    """Compliant runs against the rigid closed form as the contact stiffens.
+
+    The rod stiffens faster: ``k_rod = rod_scale * k_contact ** rod_exponent``. Each row
+    gives both stiffnesses, the largest difference of any final velocity or spin from
+    the rigid solution, and the run's cost. ``order`` is the slope of log(error) against
+    log(k_contact) between neighbouring rows.
+    """
+    from dataclasses import replace
+
+    from rigidimpact.simulate.runner import _numbers, run
+
+    values = _numbers(scene)
+    solution = scene.impact().solve()
+    rigid = {}
+    for body in (solution.first_after, solution.second_after):
+        for key, x in ((f"{body.name}.vx", body.velocity[0]),
+                       (f"{body.name}.vy", body.velocity[1]),
+                       (f"{body.name}.omega", body.spin)):
+            rigid[key] = _num(x, values)
+    rows: list[dict[str, float]] = []
+    for k_c in contact_stiffnesses:
+        table = {**scene.simulate, "effects": ["rod-compliance", "contact-compliance"],
+                 "contact_stiffness": k_c, "rod_stiffness": rod_scale * k_c**rod_exponent,
+                 "until": "separation"}
+        outcome = run(replace(scene, simulate=table))
+        error = max(abs(outcome.final[k] - v) for k, v in rigid.items())
+        row = {"contact_stiffness": k_c, "rod_stiffness": table["rod_stiffness"],
+               "error": error, "ode_steps": outcome.ode_steps, "wall_s": outcome.wall_s}
+        if rows:
+            row["order"] = -math.log(error / rows[-1]["error"]) / math.log(
+                k_c / rows[-1]["contact_stiffness"])
+        rows.append(row)
+    return rows
