@@ -104,7 +104,7 @@ def test_energy_bookkeeping_creates_nothing():
     outcome = run(load_scene(DERIVATIONS / "compliant.toml"))
     energy = outcome.details["energy"]
     assert energy["contact_work"] <= 0
-    assert energy["kinetic"] + energy["rod"] <= energy["initial"] + 1e-9
+    assert energy["kinetic"] + energy["stored"] <= energy["initial"] + 1e-9
     assert abs(energy["balance_error"]) < 1e-6 * energy["initial"]
 
 
@@ -205,3 +205,25 @@ def test_hostile_or_broken_scenes_are_refused_in_one_line(tmp_path, capsys, chan
     captured = capsys.readouterr()
     assert captured.out == "" and captured.err.count("\n") == 1
     assert field.lower() in captured.err.lower()
+
+
+def test_gravity_only_when_asked_and_it_leaves_the_restrike_alone():
+    text = (DERIVATIONS / "restrike.toml").read_text()
+    plain = run(parse_scene(text, "plain"))
+    falling = run(parse_scene(text.replace('until = "restrike"',
+                                           'until = "restrike"\neffects = ["gravity"]'), "g"))
+    assert "gravity" in plain.plan.not_simulated and falling.plan.effects == ("gravity",)
+    t = plain.events[-1]["t"]
+    assert falling.events[-1]["t"] == t  # every body falls alike
+    assert math.isclose(falling.final["ball.y"], -0.5 * 9.81 * t * t, rel_tol=1e-12)
+    assert math.isclose(falling.final["ball.vy"], -9.81 * t, rel_tol=1e-12)
+
+
+def test_gravity_in_a_compliant_run_keeps_the_energy_balance():
+    text = (DERIVATIONS / "compliant.toml").read_text().replace(
+        'effects = ["rod-compliance", "contact-compliance"]',
+        'effects = ["rod-compliance", "contact-compliance", "gravity"]')
+    outcome = run(parse_scene(text, "g"))
+    energy = outcome.details["energy"]
+    assert abs(energy["balance_error"]) < 1e-6 * energy["initial"]
+    assert outcome.final["barbell.vy"] < 0

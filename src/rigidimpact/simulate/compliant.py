@@ -224,15 +224,19 @@ def _apply(part: _Part, dy: np.ndarray, y: np.ndarray, force: np.ndarray) -> Non
         dy[s + 5] += _cross(point - y[s:s + 2], force) / part.inertia
 
 
-def _free(part: _Part, y: np.ndarray, dy: np.ndarray) -> None:
-    """Kinematics, and the rod spring's forces."""
+def _free(part: _Part, y: np.ndarray, dy: np.ndarray, g: float = 0.0) -> None:
+    """Kinematics, gravity (along -y) and the rod spring's forces."""
     s = part.slot
     if part.kind == "point":
         dy[s:s + 2] = y[s + 2:s + 4]
+        dy[s + 3] -= g
     elif part.kind == "rigid":
         dy[s:s + 3] = y[s + 3:s + 6]
+        dy[s + 4] -= g
     else:
         dy[s:s + 4] = y[s + 4:s + 8]
+        dy[s + 5] -= g
+        dy[s + 7] -= g
         d = y[s + 2:s + 4] - y[s:s + 2]
         length = math.hypot(*d)
         pull = part.stiffness * (length - part.rest) * d / length  # on A toward B
@@ -261,20 +265,23 @@ def _rigid_effective_mass(part: _Part, y: np.ndarray, normal: np.ndarray) -> flo
     return 1.0 / (1.0 / part.mass + arm * arm / part.inertia)
 
 
-def _energy(parts: list[_Part], y: np.ndarray) -> tuple[float, float]:
-    """Kinetic energy, and the energy stored in rod springs."""
+def _energy(parts: list[_Part], y: np.ndarray, g: float = 0.0) -> tuple[float, float]:
+    """Kinetic energy, and the energy stored in rod springs and in height (gravity)."""
     kinetic = stored = 0.0
     for p in parts:
         s = p.slot
         if p.kind == "point":
             kinetic += 0.5 * p.mass * float(y[s + 2:s + 4] @ y[s + 2:s + 4])
+            stored += p.mass * g * y[s + 1]
         elif p.kind == "rigid":
             kinetic += 0.5 * p.mass * float(y[s + 3:s + 5] @ y[s + 3:s + 5])
             kinetic += 0.5 * p.inertia * y[s + 5] ** 2
+            stored += p.mass * g * y[s + 1]
         else:
             kinetic += 0.25 * p.mass * float(y[s + 4:s + 8] @ y[s + 4:s + 8])
             stretch = math.hypot(*(y[s + 2:s + 4] - y[s:s + 2])) - p.rest
             stored += 0.5 * p.stiffness * stretch**2
+            stored += 0.5 * p.mass * g * (y[s + 1] + y[s + 3])
     return kinetic, stored
 
 
@@ -411,10 +418,12 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         (p1, v1), (p2, v2) = _contact_point(first, y), _contact_point(second, y)
         return float(normal @ (p1 - p2)), float(normal @ (v1 - v2))
 
+    g = plan.settings["g"] if "gravity" in plan.effects else 0.0
+
     def rhs(_t: float, y: np.ndarray) -> np.ndarray:
         dy = np.zeros_like(y)
         for p in parts:
-            _free(p, y, dy)
+            _free(p, y, dy, g)
         if compliant_contact:
             d, rate = penetration(y)
             push = k_c * d + c_c * rate if d > 0 else 0.0
@@ -495,9 +504,9 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     for p in parts:
         final |= _final(p, y)
     final["t"] = t
-    kinetic0, stored0 = _energy(parts, y0)
-    kinetic, stored = _energy(parts, y)
-    energy = {"initial": kinetic0 + stored0, "kinetic": kinetic, "rod": stored,
+    kinetic0, stored0 = _energy(parts, y0, g)
+    kinetic, stored = _energy(parts, y, g)
+    energy = {"initial": kinetic0 + stored0, "kinetic": kinetic, "stored": stored,
               "contact_work": float(y[-1]),
               "balance_error": kinetic + stored - (kinetic0 + stored0) - float(y[-1])}
     details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}

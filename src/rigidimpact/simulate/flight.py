@@ -75,6 +75,7 @@ class Flyer:
     ends: tuple[tuple[float, float], tuple[float, float]] | None = None
     labels: tuple[str, str] = ("end 1", "end 2")
     radius: float = 0.0
+    gravity: float = 0.0  # downward (-y) acceleration; every body falls alike
     _p: np.ndarray = field(init=False, repr=False, compare=False)
     _v: np.ndarray = field(init=False, repr=False, compare=False)
 
@@ -84,7 +85,12 @@ class Flyer:
 
     def at(self, t: float) -> tuple[np.ndarray, float]:
         """Centre position and the angle turned through since the impact, at time `t`."""
-        return self._p + self._v * t, float(self.spin) * t
+        fall = np.array([0.0, -0.5 * self.gravity * t * t])
+        return self._p + self._v * t + fall, float(self.spin) * t
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """Centre velocity at time `t`."""
+        return self._v + np.array([0.0, -self.gravity * t])
 
     def ends_at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """The two ends of a segment body at time `t` (lab frame).
@@ -179,7 +185,9 @@ def segment_gap(ball: Flyer, body: Flyer):
         raise ValueError("the segment must be centred on the body's centre of mass")
     half = float(np.linalg.norm(second))
     n0 = second / half
-    p0 = ball._p - body._p
+    if ball.gravity != body.gravity:
+        raise ValueError("both bodies must fall alike")
+    p0 = ball._p - body._p  # uniform gravity drops out of the relative motion
     u = ball._v - body._v
     w = float(body.spin)
     phi0 = math.atan2(n0[1], n0[0])

@@ -30,12 +30,12 @@ __all__ = ["Plan", "Step", "make_plan", "EFFECTS", "SETTINGS"]
 EFFECTS = {
     "rod-compliance": "the barbell's rod is rigid: the impact is instantaneous",
     "contact-compliance": "the contact is rigid: Newton's e acts in an instant",
-    "gravity": "no gravity: the table is horizontal (it would not change the relative "
-               "motion, since every body falls alike)",
+    "gravity": "a horizontal table; asked for (g = 9.81 unless set) it would not change "
+               "the relative motion, since every body falls alike",
 }
-SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance"}
+SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g"}
 UNTIL = ("separation", "restrike")
-DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6}
+DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81}
 
 
 @dataclass(frozen=True)
@@ -79,7 +79,7 @@ class Plan:
         1. impulse: the impact as an instant: momentum laws and restitution, solved exactly
         left out: rod-compliance (the barbell's rod is rigid: the impact is instantaneous)
         left out: contact-compliance (the contact is rigid: Newton's e acts in an instant)
-        left out: gravity (no gravity: the table is horizontal (it would not change the relative motion, since every body falls alike))
+        left out: gravity (a horizontal table; asked for (g = 9.81 unless set) it would not change the relative motion, since every body falls alike)
         """  # noqa: E501
         lines = [f"until: {self.until}"]
         lines += [f"{k}. {s.model}: {s.why}" for k, s in enumerate(self.steps, 1)]
@@ -133,6 +133,10 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
         steps = [Step("compliant", f"{' and '.join(compliant)} asked for: the impact "
                                    "takes time, integrated with scipy (DOP853, or LSODA "
                                    "when stiff)")]
+    if "gravity" in asked:
+        steps.append(Step("gravity", f"uniform gravity g = {settings['g']:g} along -y in "
+                                     "every phase after the instant of impact (an "
+                                     "impulse is too brief for it to matter)"))
     if until != "separation":
         steps.append(Step("free-flight", "no force between impacts: straight lines and "
                                          "steady spin in closed form, with an exact "

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -191,7 +191,8 @@ def run(scene: Scene) -> Outcome:
         return run_compliant(scene, plan, values, start)
     solution = scene.impact().solve()
     after = (solution.first_after, solution.second_after)
-    flyers = [flyer(b, values) for b in after]
+    g = plan.settings["g"] if "gravity" in plan.effects else 0.0
+    flyers = [replace(flyer(b, values), gravity=g) for b in after]
     events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
     t_end = 0.0
     if plan.until != "separation":
@@ -207,8 +208,9 @@ def run(scene: Scene) -> Outcome:
     final: dict[str, float] = {}
     for body in flyers:
         place, turn = body.at(t_end)
-        final |= {f"{body.name}.vx": float(body.velocity[0]),
-                  f"{body.name}.vy": float(body.velocity[1]),
+        velocity = body.velocity_at(t_end)
+        final |= {f"{body.name}.vx": float(velocity[0]),
+                  f"{body.name}.vy": float(velocity[1]),
                   f"{body.name}.omega": float(body.spin),
                   f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
                   f"{body.name}.turn": turn}
