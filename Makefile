@@ -20,12 +20,16 @@ test: $(STAMP)  ## unit tests, doctests and notebooks (nbval)
 	$(PY) -m pytest
 
 lint: $(STAMP)
-	$(PY) -m ruff check src tests derivations
+	$(PY) -m ruff check src tests derivations notebooks
 
 notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before committing
-	$(PY) -m jupyter nbconvert --to notebook --execute --inplace notebooks/*.ipynb
+	$(PY) notebooks/refresh.py notebooks/*.ipynb
 
-bench: $(STAMP)  ## accuracy against time; slow checks
+$(VENV)/.peers-stamp: $(STAMP)
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
+	touch $@
+
+bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench
 	$(PY) -m pytest -m slow
 

@@ -16,12 +16,93 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import numpy as np  # noqa: E402
 import section1_barbell  # noqa: E402
 import section2_implications  # noqa: E402
 import section3_two_bodies  # noqa: E402
+import sympy as sp  # noqa: E402
 
 import rigidimpact as ri  # noqa: E402
 from rigidimpact import latex, plots, restrike  # noqa: E402
+from rigidimpact.bench import FLOOR, pareto  # noqa: E402
+from rigidimpact.numeric import Kernel  # noqa: E402
+from rigidimpact.simulate.compliant import rigid_limit  # noqa: E402
+
+
+def _figures():
+    """Every figure the notebooks show, made by the same library functions."""
+    theta_c = float(restrike.critical_angle().theta_c)
+    ten = math.radians(10.0)
+    return (
+        ("omega-vs-theta.png", plots.omega_vs_theta),
+        ("energy-loss-vs-theta.png", plots.energy_loss_vs_theta),
+        ("critical-angle.png", lambda: plots.critical_angle_graphical(theta_c)),
+        ("restrike-map.png", lambda: plots.restrike_map(*restrike.restrike_map())),
+        ("restrike-strobe.png", lambda: plots.strobe(
+            restrike.strobe_frames(ten, 0.0, 1.0, 14),
+            "e = 0, m = M, theta = 10 deg: from the impact to the re-strike by the B half")),
+        ("sticking-vs-bouncing.png", plots.sticking_vs_bouncing),
+        ("impulse-vs-offset.png", _impulse_vs_offset),
+        ("oblique-discs.png", _oblique_discs),
+        ("spring-rod.png", _spring_rod),
+        ("rigid-limit.png", lambda: plots.convergence(
+            rigid_limit(ri.load_scene(HERE / "barbell.toml"), [1e3, 1e4, 1e5]))),
+        ("accuracy-vs-time.png", _accuracy_vs_time),
+        ("hard-case-v_fx.png", _hard_case),
+    )
+
+
+def _impulse_vs_offset():
+    """A unit disc at speed 1 strikes a disc, a ring or a rod off centre (notebook 5)."""
+    names = ("m_1", "m_2", "I_1", "I_2", "R_1x", "R_1y", "R_2x", "R_2y", "V_1ix", "V_1iy",
+             "omega_1iz", "V_2ix", "V_2iy", "omega_2iz", "e")
+    impulse = sp.lambdify([ri.symbol(n) for n in names],
+                          ri.derive("two-body").definitions["J"], "numpy")
+    offsets = np.linspace(-0.9, 0.9, 181)
+    second = {"disc (I = m/2)": 0.5, "ring (I = m)": 1.0, "rod of length 2 (I = m/3)": 1 / 3}
+    return plots.impulse_vs_offset(offsets, {
+        label: impulse(1, 1, 0.5, inertia, -1, 0, 0.5, offsets, 1, 0, 0, 0, 0, 0, 0.5)
+        for label, inertia in second.items()})
+
+
+def _oblique_discs():
+    """Equal discs, e = 1: disc 1 at (3/5, 4/5) hits disc 2 at rest (notebook 6)."""
+    first = ri.Body.disc(1, 1, side=-1, velocity=(sp.Rational(3, 5), sp.Rational(4, 5)),
+                         name="one")
+    solution = ri.Impact(first, ri.Body.disc(1, 1, name="two"), ri.Contact(restitution=1)).solve()
+    after = [np.array([float(c) for c in b.velocity])
+             for b in (solution.first_after, solution.second_after)]
+    return plots.oblique_discs([np.array([0.6, 0.8]), np.zeros(2)], after)
+
+
+def _spring_rod():
+    scene = ri.load_scene(HERE / "spring-rod.toml")
+    track = ri.run(scene).trajectory
+    return plots.trajectories(track.t, track.points(), scene.title,
+                              ("sphere A", track.contact_velocity("barbell")))
+
+
+def _accuracy_vs_time():
+    """From the committed bench run that notebook 8 reads (no timing here)."""
+    report = json.loads((HERE.parent / "notebooks" / "data" / "bench.json").read_text())
+    rows = report["rows"]
+    fronts = [pareto([r for r in rows if r["problem"] == p]) for p in ("collision", "restrike")]
+    return plots.accuracy_vs_time(rows, fronts, FLOOR)
+
+
+def _hard_case():
+    kernel = Kernel.from_expr(ri.derive("barbell").results["v_fx"])
+    ratios = np.logspace(0, 12, 13)
+    theta = math.radians(30.0)
+    naive, stable = [], []
+    for big in ratios:
+        point = {"M": big, "e": 0.0, "m": 1.0, "theta": theta, "v_ix": 1.0}
+        exact = kernel.reference(50, **point)
+        f = 1.0 / (2 * big + 1 + math.sin(theta) ** 2)  # eq. (5) read literally, m = 1
+        naive.append(float(abs((1 - 2 * big * f - exact) / exact)))
+        stable.append(float(abs((kernel(**point) - exact) / exact)))
+    return plots.naive_vs_stable(ratios, np.array(naive), np.array(stable), "mass ratio M/m",
+                                 "v_fx for a heavy barbell, e = 0, theta = 30 deg")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -54,17 +135,7 @@ def main(argv: list[str] | None = None) -> int:
 
     figures = out / "figures"
     figures.mkdir(exist_ok=True)
-    theta_c = float(restrike.critical_angle().theta_c)
-    ten = math.radians(10.0)
-    for name, make in (
-        ("omega-vs-theta.png", plots.omega_vs_theta),
-        ("energy-loss-vs-theta.png", plots.energy_loss_vs_theta),
-        ("critical-angle.png", lambda: plots.critical_angle_graphical(theta_c)),
-        ("restrike-map.png", lambda: plots.restrike_map(*restrike.restrike_map())),
-        ("restrike-strobe.png", lambda: plots.strobe(
-            restrike.strobe_frames(ten, 0.0, 1.0, 14),
-            "e = 0, m = M, theta = 10 deg: from the impact to the re-strike by the B half")),
-    ):
+    for name, make in _figures():
         make().savefig(figures / name)
         print(f"figure -> {figures / name}")
     return 1 if failed else 0

@@ -228,3 +228,10 @@ def test_bad_parameters_name_the_field():
         restrike.critical_angle(0, "-1")
     with pytest.raises(InputError):
         restrike.critical_angle("nan", 1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("restitution", [0.02, 0.15, 0.25, 0.4, 0.45, 0.7, 0.9])
+@pytest.mark.parametrize("ratio", [0.2, 0.7, 1.5, 3.0, 8.0, 50.0])
+def test_windows_agree_with_brute_force_over_a_wide_grid(restitution, ratio):
+    test_windows_agree_with_a_brute_force_sweep(restitution, ratio)

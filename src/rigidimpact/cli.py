@@ -330,6 +330,34 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
             os.remove(temporary)
 
 
+def _progress_bar(done: int, total: int, label: str) -> None:
+    """A one-line bar on standard error, redrawn in place (plain lines when not a TTY)."""
+    width = 30
+    filled = int(width * done / max(total, 1))
+    line = f"[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label}"
+    if sys.stderr.isatty():
+        print(f"\r{line[:100]:<100}", end="" if done < total else "\n", file=sys.stderr,
+              flush=True)
+    elif done == total or done % 10 == 0:
+        print(line, file=sys.stderr, flush=True)
+
+
+def _cmd_bench(args: argparse.Namespace) -> int:
+    from rigidimpact.bench import run_bench, write_outputs
+
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise InputError("--out", f"not a folder: {str(out)!r}")
+    report = run_bench(quick=args.quick, progress=_progress_bar)
+    paths = write_outputs(report, out)
+    if args.json:
+        _print_json({k: v for k, v in report.items()})
+        return 0
+    print(paths[1].read_text(encoding="utf-8"))
+    print("\n".join(f"wrote {p}" for p in paths))
+    return 0
+
+
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
                      description="Derive, verify and simulate impulsive planar collisions "
@@ -376,6 +404,12 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="FILE", help="draw the trajectories to a PNG file")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_simulate)
+
+    p = sub.add_parser("bench", help="accuracy against time for every method")
+    p.add_argument("--quick", action="store_true", help="a smaller grid (under 2 minutes)")
+    p.add_argument("--out", default="build/bench", metavar="DIR")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_bench)
 
     p = sub.add_parser("stability", help="the hard-case suite against mpmath references")
     p.add_argument("--json", action="store_true")

@@ -24,7 +24,8 @@ from rigidimpact.notation import symbol  # noqa: E402
 from rigidimpact.problems import derive  # noqa: E402
 
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
-           "restrike_map", "strobe", "trajectories", "FIGSIZE", "DPI"]
+           "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
+    "convergence", "naive_vs_stable", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -194,5 +195,169 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         bx.legend(fontsize="small")
         bx.grid(alpha=0.3)
     fig.suptitle(title, fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
+def accuracy_vs_time(rows: Sequence[dict], fronts: Sequence[Sequence[dict]],
+                     floor: float) -> Figure:
+    """Log-log error against wall time, one series per method, each Pareto front joined.
+
+    Examples
+    --------
+    >>> rows = [{"method": "a", "setting": "x", "error": 1e-3, "seconds": 1e-2},
+    ...         {"method": "b", "setting": "y", "error": 0.0, "seconds": 1e-1}]
+    >>> len(accuracy_vs_time(rows, [rows], 1e-18).axes[0].lines)
+    4
+    """
+    fig, ax = plt.subplots(figsize=(FIGSIZE[0], 1.25 * FIGSIZE[1]), dpi=DPI)
+    markers = "osD^v<>ph*"
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    for k, method in enumerate(methods):
+        mine = [r for r in rows if r["method"] == method]
+        ax.loglog([r["seconds"] for r in mine], [max(r["error"], floor) for r in mine],
+                  markers[k % len(markers)], ms=5, alpha=0.8, label=method, ls="none")
+    for k, front in enumerate(fronts):
+        ax.loglog([r["seconds"] for r in front], [max(r["error"], floor) for r in front],
+                  "k--" if k == 0 else "k:", lw=1.0,
+                  label="Pareto front" + (f" ({front[0].get('problem')})" if front and
+                                           front[0].get("problem") else ""))
+    ax.axhline(floor, color="grey", lw=0.6, ls=":")
+    ax.set_xlabel("wall time per answer (s, median)")
+    ax.set_ylabel(f"relative error (below {floor:g}: drawn at {floor:g})")
+    ax.set_title("What accuracy costs: the ball-barbell collision, every method")
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    return fig
+
+
+def oblique_discs(before: Sequence[np.ndarray], after: Sequence[np.ndarray],
+                  radius: float = 1.0) -> Figure:
+    """Two equal discs at the instant of impact, with their velocities before and after.
+
+    Examples
+    --------
+    >>> v = [np.array([1.0, 0.5]), np.zeros(2)]
+    >>> len(oblique_discs(v, v).axes)
+    1
+    """
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    centres = (np.array([-radius, 0.0]), np.array([radius, 0.0]))
+    for k, centre in enumerate(centres):
+        ax.add_patch(plt.Circle(centre, radius, fill=False, color=f"C{k}", lw=1.5))
+        for velocity, style, label in ((before[k], ":", "before"), (after[k], "-", "after")):
+            if np.linalg.norm(velocity) > 0:
+                ax.annotate("", centre + velocity, centre,
+                            arrowprops={"arrowstyle": "->", "ls": style, "color": f"C{k}"})
+                ax.plot([], [], style, color=f"C{k}", label=f"disc {k + 1} {label}")
+    ax.plot([0, 0], [-radius, radius], color="grey", lw=0.8, ls="--", label="tangent at O")
+    ax.set_aspect("equal")
+    ax.set_xlim(-2.6 * radius, 2.6 * radius)
+    ax.set_ylim(-1.4 * radius, 1.4 * radius)
+    ax.set_xlabel("x (units of the radius)")
+    ax.set_ylabel("y (units of the radius)")
+    ax.set_title("Equal smooth discs, elastic oblique impact: they leave at right angles")
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    fig.tight_layout()
+    return fig
+
+
+def convergence(rows: Sequence[dict]) -> Figure:
+    """Error to the rigid limit against contact stiffness (log-log), with the order.
+
+    Examples
+    --------
+    >>> rows = [{"contact_stiffness": 1e3, "error": 1e-3}, {"contact_stiffness": 1e4,
+    ...          "error": 3e-4, "order": 0.5}]
+    >>> convergence(rows).axes[0].get_xscale()
+    'log'
+    """
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    k = np.array([r["contact_stiffness"] for r in rows])
+    err = np.array([r["error"] for r in rows])
+    ax.loglog(k, err, "o-", label="compliant run against eq. (5)")
+    ax.loglog(k, err[0] * (k / k[0]) ** -0.5, "k:", label=r"slope $-1/2$")
+    ax.set_xlabel("contact stiffness (N/m); the rod is stiffer still")
+    ax.set_ylabel("largest error in the final velocities (m/s, rad/s)")
+    ax.set_title("The rigid limit emerges: error against stiffness")
+    ax.legend()
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    return fig
+
+
+def naive_vs_stable(ratios: np.ndarray, naive: np.ndarray, stable: np.ndarray,
+                    xlabel: str, title: str) -> Figure:
+    """Relative errors of a naive float64 formula and of the kernel, against a parameter.
+
+    Examples
+    --------
+    >>> x = np.logspace(0, 3, 4)
+    >>> naive_vs_stable(x, x * 1e-16, 0 * x, "M/m", "demo").axes[0].get_yscale()
+    'log'
+    """
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    floor = 1e-18
+    ax.loglog(ratios, np.maximum(naive, floor), "o-", label="naive float64 formula")
+    ax.loglog(ratios, np.maximum(stable, floor), "s-", label="rigidimpact kernel")
+    ax.axhline(2.2e-16, color="grey", lw=0.8, ls=":", label="float64 epsilon")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"relative error (below {floor:g}: drawn at {floor:g})")
+    ax.set_title(title)
+    ax.legend()
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    return fig
+
+
+def sticking_vs_bouncing(mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
+    """The barbell's spin when the clay ball sticks (eq. 10) and when it bounces with e = 0.
+
+    They agree at 90 degrees, as section 2 of the paper notes; m = L = v_ix = 1.
+
+    Examples
+    --------
+    >>> len(sticking_vs_bouncing((1.0,)).axes[0].lines)
+    3
+    """
+    stick = sp.lambdify((m, M, L, theta, v_ix), derive("sticking").results["omega_z"], "numpy")
+    bounce = _curve("omega_z")
+    degrees = np.linspace(0.0, 180.0, 361)
+    x = np.radians(degrees)
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    for k, ratio in enumerate(mass_ratios):
+        ax.plot(degrees, stick(1.0, ratio, 1.0, x, 1.0), color=f"C{k}",
+                label=f"sticks, M/m = {ratio:g}")
+        ax.plot(degrees, bounce(1.0, ratio, 1.0, x, 0.0, 1.0), color=f"C{k}", ls="--",
+                label=f"bounces with e = 0, M/m = {ratio:g}")
+    ax.axvline(90.0, color="grey", lw=0.8, ls=":")
+    ax.set_xlabel(r"initial angle $\theta$ (degrees)")
+    ax.set_ylabel(r"$\omega_z L / v_{ix}$ (dimensionless)")
+    ax.set_title("Clay ball (eq. 10) against a perfectly inelastic bounce: equal at 90 degrees")
+    ax.set_xticks(range(0, 181, 30))
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def impulse_vs_offset(offsets: np.ndarray, impulses: dict[str, np.ndarray]) -> Figure:
+    """The normal impulse J (eq. 11-14) against the struck body's offset from the normal.
+
+    Examples
+    --------
+    >>> x = np.linspace(-1, 1, 5)
+    >>> len(impulse_vs_offset(x, {"a": x ** 2}).axes[0].lines)
+    1
+    """
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    for label, values in impulses.items():
+        ax.plot(offsets, values, label=label)
+    ax.set_xlabel(r"offset $R_{2y}$ of body 2's centre from the line of impact (m)")
+    ax.set_ylabel(r"normal impulse $J$ (N s)")
+    ax.set_title("General smooth impact: an off-centre hit gives a smaller impulse")
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig

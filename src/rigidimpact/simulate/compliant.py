@@ -398,6 +398,8 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
         raise InputError("bodies", "the bodies are not approaching at O")
     fast, slow = min(periods), max(periods)
     integrator = choose_integrator(fast, slow, plan.settings["tolerance"])
+    if plan.integrator != "auto":
+        integrator |= {"method": plan.integrator, "why": "asked for by the scene"}
     return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
 
 
@@ -469,7 +471,8 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
     steps, quiet_since = 0, 0.0
     times, states = [0.0], [y.copy()]
-    max_step = fast / 4 if integrator["method"] == "DOP853" else np.inf
+    explicit = integrator["method"] in ("RK45", "DOP853")
+    max_step = fast / 4 if explicit else np.inf
     for _ in range(MAX_SEGMENTS):
         stop = min(horizon, (t if touching else quiet_since) + SETTLE_PERIODS * slow)
         if t >= stop:
@@ -486,7 +489,8 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         if sol.status != 1:
             if touching and t < horizon:
                 raise InputError("simulate", "the contact did not let go within "
-                                 f"{SETTLE_PERIODS} of its periods")
+                                 f"{SETTLE_PERIODS} of its periods with {integrator['method']} "
+                                 f"at rtol {integrator['rtol']:.0e}; tighten the tolerance")
             continue
         if touching:
             events.append({"kind": "contact-ends", "t": t})

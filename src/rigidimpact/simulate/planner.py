@@ -33,7 +33,9 @@ EFFECTS = {
     "gravity": "a horizontal table; asked for (g = 9.81 unless set) it would not change "
                "the relative motion, since every body falls alike",
 }
-SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g"}
+SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g",
+            "integrator"}
+INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
 DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81}
 
@@ -61,6 +63,8 @@ class Plan:
     steps : tuple of Step
     settings : mapping
         Stiffnesses and tolerance, with defaults filled in.
+    integrator : str
+        ``auto`` (picked from the model's stiffness) or a SciPy ``solve_ivp`` method.
     """
 
     until: str | float
@@ -68,6 +72,7 @@ class Plan:
     not_simulated: tuple[str, ...]
     steps: tuple[Step, ...]
     settings: Mapping[str, float]
+    integrator: str = "auto"
 
     def explain(self) -> str:
         """The plan in words, one line a step.
@@ -125,6 +130,10 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
             raise InputError("simulate.effects", f"unknown effect {name!r}; expected "
                              f"some of {', '.join(EFFECTS)}")
     asked = tuple(name for name in EFFECTS if name in effects)
+    integrator = table.get("integrator", "auto")
+    if integrator not in INTEGRATORS:
+        raise InputError("simulate.integrator", f"must be one of {', '.join(INTEGRATORS)}, "
+                         f"got {integrator!r}")
     settings = {key: _number(table, key) for key in DEFAULTS}
     steps = [Step("impulse", "the impact as an instant: momentum laws and restitution, "
                              "solved exactly")]
@@ -142,4 +151,4 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
                                          "steady spin in closed form, with an exact "
                                          "search for the next contact"))
     return Plan(until, asked, tuple(x for x in EFFECTS if x not in asked), tuple(steps),
-                settings)
+                settings, integrator)

@@ -1,0 +1,485 @@
+"""What accuracy costs in time: every way the toolkit computes the ball-barbell collision.
+
+All methods run side by side in one process, on one problem (``derivations/barbell.toml``:
+m = 1, M = 2, L = 0.5, theta = 30 deg, e = 0.5, v_ix = 1, and for the re-strike theta = 10
+deg, e = 0, m = M). Each row is a method at one setting, with its error against the exact
+answer and the median of repeated wall-clock timings. The families:
+
+* ``symbolic``: the exact results, substituted and evaluated to 17 digits by SymPy;
+* ``float64``: the vectorised kernel (one point per call);
+* ``mpmath``: the same stable form at several precisions;
+* ``compliant``: the compliant simulation (rod and contact springs) over a grid of
+  contact stiffness (the rod 1e3 times stiffer), integrator and tolerance — its error
+  against the rigid closed form is mostly the model's own (finite stiffness);
+* ``integration``: the compliant scene at fixed stiffness, each integrator and rtol
+  against a tightly converged run of the same model: the error the settings control;
+  the ``auto`` row is what ``simulate`` picks for the scene's tolerance;
+* ``restrike-event`` and ``restrike-fixed-step``: the re-strike time by the certified
+  event search, and by fixed-step time marching with linear interpolation;
+* ``pymunk``: the same collision in a game-physics engine, when it is installed.
+
+Errors are the largest relative error over v_fx, V_x and omega_z (the turn at the
+re-strike for the re-strike rows). An error of 0 is drawn at ``FLOOR``.
+
+Examples
+--------
+>>> rows = [r for r in run_bench(quick=True, families=("float64", "mpmath"))["rows"]]
+>>> sorted({r["method"] for r in rows})
+['float64', 'mpmath']
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from rigidimpact import restrike
+from rigidimpact.errors import InputError
+from rigidimpact.notation import symbol
+from rigidimpact.numeric import kernels
+from rigidimpact.problems import derive
+from rigidimpact.scene import parse_scene
+from rigidimpact.simulate import run
+from rigidimpact.simulate.flight import first_contact
+
+__all__ = ["run_bench", "pareto", "throughput", "write_outputs", "FAMILIES", "FLOOR"]
+
+FLOOR = 1e-18
+FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
+            "restrike-fixed-step", "pymunk")
+KEYS = ("v_fx", "V_x", "omega_z")
+VALUES = {"m": 1, "M": 2, "L": sp.Rational(1, 2), "theta": sp.pi / 6, "e": sp.Rational(1, 2),
+          "v_ix": 1}
+
+SCENE = """
+title = "bench: ball strikes a barbell"
+[values]
+m = 1
+M = 2
+L = 0.5
+theta = "30 deg"
+e = 0.5
+v_ix = 1
+[[bodies]]
+name = "ball"
+shape = "particle"
+mass = "m"
+velocity = ["v_ix", "0"]
+[[bodies]]
+name = "barbell"
+shape = "barbell"
+mass = "M"
+half_length = "L"
+angle = "theta"
+[contact]
+bodies = ["ball", "barbell"]
+restitution = "e"
+[simulate]
+effects = ["rod-compliance", "contact-compliance"]
+"""
+
+
+def _median_time(fn: Callable[[], Any], repeats: int, inner: int = 1) -> float:
+    """Median over `repeats` of the mean time of `inner` calls."""
+    samples = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for _ in range(inner):
+            fn()
+        samples.append((time.perf_counter() - start) / inner)
+    return statistics.median(samples)
+
+
+REFERENCE_DIGITS = 260  # above the highest mpmath precision benchmarked (200)
+
+
+def _exact() -> dict[str, mpmath.mpf]:
+    results = derive("barbell").results
+    subs = {symbol(k): v for k, v in VALUES.items()}
+    with mpmath.workdps(REFERENCE_DIGITS):
+        return {k: mpmath.mpf(str(sp.N(results[k].subs(subs), REFERENCE_DIGITS))) for k in KEYS}
+
+
+def _error(values: dict[str, Any], exact: dict[str, mpmath.mpf]) -> float:
+    with mpmath.workdps(REFERENCE_DIGITS):
+        worst = max(abs(mpmath.mpf(values[k]) - exact[k]) / abs(exact[k]) for k in KEYS)
+    return float(worst)
+
+
+PROBLEM = {"restrike-event": "restrike", "restrike-fixed-step": "restrike",
+           "integration": "integration"}  # the others answer the collision itself
+
+
+def _row(method: str, setting: str, error: float, seconds: float, **extra: Any) -> dict:
+    return {"method": method, "setting": setting, "error": error, "seconds": seconds,
+            "problem": PROBLEM.get(method, "collision"), **extra}
+
+
+def _timed_run(scene, repeats: int):
+    """Run a scene; the median wall time over `repeats` runs, the first included.
+
+    A run the simulation refuses (say, an integrator too loose to see the contact end)
+    gives ``(None, message)``: the bench reports it rather than stopping.
+    """
+    start = time.perf_counter()
+    try:
+        outcome = run(scene)
+    except InputError as exc:
+        return None, str(exc)
+    samples = [time.perf_counter() - start]
+    samples += [_median_time(lambda: run(scene), 1) for _ in range(repeats - 1)]
+    return outcome, statistics.median(samples)
+
+
+def _symbolic(exact, repeats: int) -> list[dict]:
+    results = derive("barbell").results
+    subs = {symbol(k): v for k, v in VALUES.items()}
+
+    def evaluate():
+        return {k: sp.N(results[k].subs(subs), 17) for k in KEYS}
+
+    values = {k: str(v) for k, v in evaluate().items()}
+    return [_row("symbolic", "exact, then 17 digits", _error(values, exact),
+                 _median_time(evaluate, repeats))]
+
+
+def _float_values() -> dict[str, float]:
+    return {k: float(v) for k, v in VALUES.items()}
+
+
+def _float64(exact, repeats: int) -> list[dict]:
+    compiled = kernels(derive("barbell").results)
+    point = _float_values()
+
+    def evaluate():
+        return {k: compiled[k](**{n: point[n] for n in compiled[k].arguments}) for k in KEYS}
+
+    values = {k: repr(float(v)) for k, v in evaluate().items()}
+    return [_row("float64", "stable-form kernel, one point", _error(values, exact),
+                 _median_time(evaluate, repeats, inner=200))]
+
+
+def _mpmath(exact, repeats: int, precisions: Iterable[int]) -> list[dict]:
+    compiled = kernels(derive("barbell").results)
+    rows = []
+    for dps in precisions:
+        with mpmath.workdps(dps + 5):
+            point = {k: mpmath.mpf(str(sp.N(v, dps + 5))) for k, v in VALUES.items()}
+
+        def evaluate(dps=dps, point=point):
+            return {k: compiled[k].mp(dps, **{n: point[n] for n in compiled[k].arguments})
+                    for k in KEYS}
+
+        rows.append(_row("mpmath", f"dps={dps}", _error(evaluate(), exact),
+                         _median_time(evaluate, repeats, inner=20)))
+    return rows
+
+
+def _compliant_values(outcome) -> dict[str, float]:
+    f = outcome.final
+    return {"v_fx": f["ball.vx"], "V_x": f["barbell.vx"], "omega_z": f["barbell.omega"]}
+
+
+def _scene(**table: Any):
+    scene = parse_scene(SCENE, "bench")
+    return replace(scene, simulate={**scene.simulate, **table})
+
+
+def _compliant(exact, repeats: int, stiffnesses, methods, tolerances, progress,
+               failed: list[dict]) -> list[dict]:
+    rows = []
+    for k_c in stiffnesses:
+        for method in methods:
+            for tol in tolerances:
+                scene = _scene(contact_stiffness=k_c, rod_stiffness=1e3 * k_c,
+                               integrator=method, tolerance=tol)
+                outcome, seconds = _timed_run(scene, repeats)
+                if outcome is None:
+                    failed.append({"method": "compliant", "setting": f"k_c={k_c:.0e}, "
+                                   f"{method}, tol={tol:.0e}", "message": seconds})
+                    progress(f"compliant k_c={k_c:.0e} {method} tol={tol:.0e} (failed)")
+                    continue
+                rows.append(_row("compliant", f"k_c={k_c:.0e}, {method}, tol={tol:.0e}",
+                                 _error(_compliant_values(outcome), exact), seconds,
+                                 ode_steps=outcome.ode_steps))
+                progress(f"compliant k_c={k_c:.0e} {method} tol={tol:.0e}")
+    return rows
+
+
+def _integration(repeats: int, methods, tolerances, progress, scene_tolerance: float,
+                 failed: list[dict]):
+    """Each integrator setting against a converged run of the same compliant model."""
+    base = dict(contact_stiffness=1e5, rod_stiffness=1e8)
+    converged = _compliant_values(run(_scene(**base, integrator="DOP853", tolerance=1e-12)))
+    with mpmath.workdps(30):
+        reference = {k: mpmath.mpf(v) for k, v in converged.items()}
+    rows = []
+    settings = [(m, t) for m in methods for t in tolerances] + [("auto", scene_tolerance)]
+    for method, tol in settings:
+        scene = _scene(**base, integrator=method, tolerance=tol)
+        outcome, seconds = _timed_run(scene, repeats)
+        if outcome is None:
+            failed.append({"method": "integration", "setting": f"{method}, tol={tol:.0e}",
+                           "message": seconds})
+            progress(f"integration {method} tol={tol:.0e} (failed)")
+            continue
+        picked = outcome.details["integrator"]["method"]
+        rows.append(_row("integration", f"{method}{' -> ' + picked if method == 'auto' else ''}"
+                         f", tol={tol:.0e}", _error(_compliant_values(outcome), reference),
+                         seconds, ode_steps=outcome.ode_steps, tolerance=tol,
+                         auto=method == "auto"))
+        progress(f"integration {method} tol={tol:.0e}")
+    return rows
+
+
+def _restrike_reference() -> tuple[float, mpmath.mpf]:
+    angle = math.radians(10.0)
+    with mpmath.workdps(40):
+        return angle, restrike.restrike_turn(mpmath.radians(10), 0, 1)
+
+
+def _restrike_flyers(angle: float):
+    """Ball and barbell after a perfectly inelastic hit with m = M at `angle`, as numbers."""
+    from rigidimpact.simulate.runner import flyer
+
+    text = SCENE.replace("e = 0.5", "e = 0").replace("M = 2", "M = 1")
+    scene = parse_scene(text, "restrike")
+    values = {**scene.values, symbol("theta"): sp.Float(angle, 30)}
+    solution = scene.impact().solve()
+    return [flyer(b, values) for b in (solution.first_after, solution.second_after)]
+
+
+def _restrike_event(repeats: int) -> list[dict]:
+    angle, exact = _restrike_reference()
+    ball, bar = _restrike_flyers(angle)
+    hit = first_contact(ball, bar)
+    turn = hit.t * bar.spin
+    with mpmath.workdps(40):
+        error = float(abs(mpmath.mpf(turn) - exact) / exact)
+    return [_row("restrike-event", "certified search", error,
+                 _median_time(lambda: first_contact(ball, bar), repeats, inner=20))]
+
+
+def _fixed_step_turn(angle: float, step: float) -> float:
+    """March the turn tau in fixed steps; the first change of side, interpolated."""
+    k = 1.0  # e = 0: the ball drifts at omega L sin(theta) relative to C
+    tau = np.arange(step, 2.2 * np.pi, step)
+    px, py = -np.cos(angle) + k * tau * np.sin(angle), -np.sin(angle)
+    side = np.cos(angle + tau) * py - np.sin(angle + tau) * px
+    inside = px * px + py * py <= 1.0
+    change = np.flatnonzero((np.sign(side[1:]) != np.sign(side[:-1])) & inside[1:])
+    j = change[0]
+    return float(tau[j] + step * side[j] / (side[j] - side[j + 1]))
+
+
+def _restrike_fixed(repeats: int, steps: Iterable[float]) -> list[dict]:
+    angle, exact = _restrike_reference()
+    rows = []
+    for h in steps:
+        turn = _fixed_step_turn(angle, h)
+        with mpmath.workdps(40):
+            error = float(abs(mpmath.mpf(turn) - exact) / exact)
+        rows.append(_row("restrike-fixed-step", f"h={h:.0e}", error,
+                         _median_time(lambda h=h: _fixed_step_turn(angle, h), repeats)))
+    return rows
+
+
+def _pymunk(exact, repeats: int, steps: Iterable[float]) -> list[dict]:
+    """The collision in pymunk: circles of radius 1e-3 for the ball and spheres."""
+    try:
+        import pymunk
+    except ImportError:
+        return []
+    v = _float_values()
+    m, big, half, angle, e = v["m"], v["M"], v["L"], v["theta"], v["e"]
+    radius = 1e-3
+
+    def collide(dt: float) -> dict[str, float]:
+        space = pymunk.Space()
+        space.iterations = 50
+        ball = pymunk.Body(m, pymunk.moment_for_circle(m, 0, radius))
+        ball.position = (-2 * radius - 1e-9, 0.0)
+        ball.velocity = (v["v_ix"], 0.0)
+        ball_shape = pymunk.Circle(ball, radius)
+        ball_shape.elasticity, ball_shape.friction = e, 0.0
+        bar = pymunk.Body(2 * big, 2 * big * half * half)
+        bar.position = (half * math.cos(angle), half * math.sin(angle))
+        spheres = []
+        for sign in (-1, 1):  # spheres A and B, in the barbell's own frame
+            shape = pymunk.Circle(bar, radius, offset=(sign * half, 0.0))
+            shape.elasticity, shape.friction = 1.0, 0.0
+            spheres.append(shape)
+        bar.angle = angle
+        space.add(ball, ball_shape, bar, *spheres)
+        for _ in range(int(round(0.01 / dt))):
+            space.step(dt)
+        return {"v_fx": ball.velocity.x, "V_x": bar.velocity.x,
+                "omega_z": bar.angular_velocity}
+
+    rows = []
+    for dt in steps:
+        values = collide(dt)
+        rows.append(_row("pymunk", f"dt={dt:.0e}, {pymunk.version}", _error(values, exact),
+                         _median_time(lambda dt=dt: collide(dt), repeats)))
+    return rows
+
+
+def throughput(count: int = 10**6, repeats: int = 5) -> dict[str, float]:
+    """The float64 kernel for V_x over `count` parameter sets, against hand-written NumPy.
+
+    Examples
+    --------
+    >>> sorted(throughput(1000, 1))
+    ['kernel_per_s', 'max_difference', 'numpy_per_s', 'ratio']
+    """
+    kernel = kernels(derive("barbell").results)["V_x"]
+    rng = np.random.default_rng(20070301)
+    m, big = rng.uniform(0.1, 10, count), rng.uniform(0.1, 10, count)
+    theta, e, v = rng.uniform(0, np.pi, count), rng.uniform(0, 1, count), np.ones(count)
+
+    def by_kernel():
+        return kernel(M=big, e=e, m=m, theta=theta, v_ix=v)
+
+    def by_hand():  # eq. (5): V_x = f v_ix, f = (1 + e) m / (2M + m (1 + sin^2 theta))
+        s = np.sin(theta)
+        return (1 + e) * m * v / (2 * big + m * (1 + s * s))
+
+    kernel_s = _median_time(by_kernel, repeats)
+    numpy_s = _median_time(by_hand, repeats)
+    return {"kernel_per_s": count / kernel_s, "numpy_per_s": count / numpy_s,
+            "ratio": kernel_s / numpy_s,
+            "max_difference": float(np.max(np.abs(by_kernel() - by_hand())
+                                           / np.abs(by_hand())))}
+
+
+def pareto(rows: list[dict]) -> list[dict]:
+    """The rows no other row beats in both error and time (ties kept), fastest first.
+
+    Examples
+    --------
+    >>> [r["setting"] for r in pareto([_row("a", "x", 1e-3, 1.0), _row("a", "y", 1e-6, 2.0),
+    ...                                  _row("a", "z", 1e-3, 3.0)])]
+    ['x', 'y']
+    """
+    front = []
+    for row in sorted(rows, key=lambda r: (r["seconds"], r["error"])):
+        if not front or max(row["error"], FLOOR) < max(front[-1]["error"], FLOOR):
+            front.append(row)
+    return front
+
+
+def auto_choice(rows: list[dict]) -> dict[str, Any]:
+    """Does the automatic pick meet its tolerance within 2x the cheapest that does?"""
+    auto = [r for r in rows if r.get("auto")]
+    if not auto:
+        return {}
+    pick = auto[0]
+    meeting = [r for r in rows if r["method"] == "integration" and not r.get("auto")
+               and r["error"] <= pick["tolerance"]]
+    cheapest = min(meeting, key=lambda r: r["seconds"]) if meeting else None
+    return {"setting": pick["setting"], "tolerance": pick["tolerance"],
+            "error": pick["error"], "seconds": pick["seconds"],
+            "meets_tolerance": pick["error"] <= pick["tolerance"],
+            "cheapest": None if cheapest is None else cheapest["setting"],
+            "cheapest_seconds": None if cheapest is None else cheapest["seconds"],
+            "cost_ratio": None if cheapest is None else pick["seconds"] / cheapest["seconds"]}
+
+
+def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
+              progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
+    """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
+    families = tuple(families)
+    unknown = set(families) - set(FAMILIES)
+    if unknown:
+        raise ValueError(f"unknown bench families: {sorted(unknown)}")
+    repeats = 3 if quick else 5
+    methods = ("DOP853", "LSODA") if quick else ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+    tolerances = (1e-4, 1e-8) if quick else (1e-3, 1e-5, 1e-7, 1e-9)
+    stiffnesses = (1e4, 1e5) if quick else (1e3, 1e4, 1e5, 1e6)
+    total = (len(stiffnesses) * len(methods) * len(tolerances) * ("compliant" in families)
+             + (len(methods) * len(tolerances) + 1) * ("integration" in families))
+    done = [0]
+
+    def tick(label: str) -> None:
+        done[0] += 1
+        if progress is not None:
+            progress(done[0], total, label)
+
+    exact = _exact()
+    rows: list[dict] = []
+    failed: list[dict] = []
+    if "symbolic" in families:
+        rows += _symbolic(exact, repeats)
+    if "float64" in families:
+        rows += _float64(exact, repeats)
+    if "mpmath" in families:
+        rows += _mpmath(exact, repeats, (15, 30, 50) if quick else (15, 30, 50, 100, 200))
+    if "compliant" in families:
+        rows += _compliant(exact, 1 if quick else 3, stiffnesses, methods, tolerances, tick,
+                           failed)
+    if "integration" in families:
+        rows += _integration(1 if quick else 3, methods, tolerances, tick, 1e-6, failed)
+    if "restrike-event" in families:
+        rows += _restrike_event(repeats)
+    if "restrike-fixed-step" in families:
+        rows += _restrike_fixed(repeats, (1e-2, 1e-3, 1e-4) if quick
+                                else (1e-2, 1e-3, 1e-4, 1e-5))
+    if "pymunk" in families:
+        rows += _pymunk(exact, repeats, (1e-4,) if quick else (1e-3, 1e-4, 1e-5))
+    fronts = {problem: pareto([r for r in rows if r["problem"] == problem])
+              for problem in ("collision", "restrike", "integration")}
+    report = {"rows": rows, "throughput": throughput(10**5 if quick else 10**6, repeats),
+              "pareto": {problem: [[r["method"], r["setting"]] for r in front]
+                         for problem, front in fronts.items()},
+              "auto_choice": auto_choice(rows), "quick": quick, "failed": failed}
+    report["pymunk"] = any(r["method"] == "pymunk" for r in rows)
+    return report
+
+
+def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
+    """bench.json, bench.md and accuracy-vs-time.png in `out`; returns the paths."""
+    import json
+
+    from rigidimpact.plots import accuracy_vs_time
+
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [out / "bench.json", out / "bench.md", out / "accuracy-vs-time.png"]
+    paths[0].write_text(json.dumps(report, indent=2) + "\n", encoding="utf-8")
+    front = {tuple(x) for pairs in report["pareto"].values() for x in pairs}
+    lines = ["Errors are relative, against the exact collision (problem `collision`), the "
+             "exact re-strike turn (`restrike`), or a converged run of the same compliant "
+             "model (`integration`); times are medians of repeated runs.", "",
+             "| problem | method | setting | error | seconds | on its front |",
+             "|---|---|---|---|---|---|"]
+    lines += [f"| {r['problem']} | {r['method']} | {r['setting']} | {r['error']:.2e} | "
+              f"{r['seconds']:.3e} | {'yes' if (r['method'], r['setting']) in front else ''} |"
+              for r in report["rows"]]
+    tp = report["throughput"]
+    lines += ["", f"Throughput (V_x over many parameter sets): kernel "
+                  f"{tp['kernel_per_s']:.3e}/s, hand-written NumPy {tp['numpy_per_s']:.3e}/s "
+                  f"(kernel time / NumPy time = {tp['ratio']:.2f})."]
+    auto = report.get("auto_choice") or {}
+    if auto:
+        lines += ["", f"Automatic choice for tolerance {auto['tolerance']:.0e}: "
+                      f"{auto['setting']}, error {auto['error']:.2e} "
+                      f"({'meets' if auto['meets_tolerance'] else 'MISSES'} it), "
+                      f"{auto['seconds']:.3e} s; cheapest measured setting that meets it: "
+                      f"{auto['cheapest']} at {auto['cheapest_seconds']:.3e} s "
+                      f"(ratio {auto['cost_ratio']:.2f})."]
+    if report.get("failed"):
+        lines += ["", "Settings the simulation refused (not timed):"]
+        lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]
+    paths[1].write_text("\n".join(lines) + "\n", encoding="utf-8")
+    fronts = [pareto([r for r in report["rows"] if r["problem"] == p])
+              for p in ("collision", "restrike")]
+    accuracy_vs_time(report["rows"], fronts, FLOOR).savefig(paths[2])
+    return paths

@@ -1,0 +1,80 @@
+"""The bench's machinery (not its timings): rows, fronts, the automatic choice, outputs."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import mpmath
+import pytest
+
+from rigidimpact import bench, restrike
+from rigidimpact.cli import main
+
+
+def test_pareto_keeps_only_unbeaten_rows():
+    rows = [bench._row("a", "slow and rough", 1e-3, 2.0), bench._row("a", "fast", 1e-3, 1.0),
+            bench._row("b", "fine", 1e-9, 3.0), bench._row("b", "exact", 0.0, 5.0),
+            bench._row("b", "dominated", 1e-6, 4.0)]
+    assert [r["setting"] for r in bench.pareto(rows)] == ["fast", "fine", "exact"]
+
+
+def test_auto_choice_compares_with_the_cheapest_setting_that_meets_the_tolerance():
+    rows = [bench._row("integration", "x", 1e-5, 1.0, tolerance=1e-4),
+            bench._row("integration", "y", 1e-7, 2.0, tolerance=1e-8),
+            bench._row("integration", "z", 1e-9, 3.0, tolerance=1e-8),
+            bench._row("integration", "auto", 5e-7, 2.5, tolerance=1e-6, auto=True)]
+    choice = bench.auto_choice(rows)
+    assert choice["meets_tolerance"] and choice["cheapest"] == "y"
+    assert math.isclose(choice["cost_ratio"], 1.25)
+
+
+def test_fixed_step_marching_converges_to_the_exact_restrike_turn():
+    angle = math.radians(10.0)
+    exact = float(restrike.restrike_turn(mpmath.radians(10), 0, 1))
+    errors = [abs(bench._fixed_step_turn(angle, h) - exact) for h in (1e-2, 1e-3)]
+    assert errors[1] < errors[0] / 10  # linear interpolation: second order in h
+
+
+def test_restrike_event_row_is_accurate():
+    [row] = bench._restrike_event(repeats=1)
+    assert row["error"] < 1e-13 and row["problem"] == "restrike"
+
+
+def test_throughput_kernel_and_numpy_agree():
+    result = bench.throughput(count=2000, repeats=1)
+    assert result["max_difference"] < 1e-14
+    assert result["kernel_per_s"] > 0 and result["numpy_per_s"] > 0
+
+
+def test_exact_families_have_the_accuracy_of_their_arithmetic():
+    report = bench.run_bench(quick=True, families=("symbolic", "float64", "mpmath"))
+    by_setting = {(r["method"], r["setting"]): r["error"] for r in report["rows"]}
+    assert by_setting[("mpmath", "dps=30")] < 1e-28
+    assert by_setting[("mpmath", "dps=50")] < 1e-48
+    assert by_setting[("float64", "stable-form kernel, one point")] < 1e-15
+    assert by_setting[("symbolic", "exact, then 17 digits")] < 1e-16
+
+
+def test_pymunk_row_when_installed():
+    pytest.importorskip("pymunk")
+    [row] = bench._pymunk(bench._exact(), repeats=1, steps=(1e-4,))
+    assert row["method"] == "pymunk" and row["error"] < 1e-6
+
+
+def test_unknown_family_is_refused():
+    with pytest.raises(ValueError, match="unknown"):
+        bench.run_bench(families=("magic",))
+
+
+def test_bench_cli_writes_its_three_files(tmp_path, capsys):
+    out = tmp_path / "bench"
+    assert main(["bench", "--quick", "--out", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {"rows", "throughput"} <= set(data)
+    assert all({"method", "setting", "error", "seconds"} <= set(r) for r in data["rows"])
+    assert {"kernel_per_s", "numpy_per_s"} <= set(data["throughput"])
+    assert data["auto_choice"]["meets_tolerance"]
+    assert json.loads((out / "bench.json").read_text())["rows"]
+    assert "| problem | method |" in (out / "bench.md").read_text()
+    assert (out / "accuracy-vs-time.png").read_bytes()[:4] == b"\x89PNG"
