@@ -180,3 +180,13 @@ def test_simulate_bad_table_is_one_line(tmp_path, capsys):
     assert main(["simulate", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "simulate.until" in err
+
+
+def test_simulate_plot_of_a_rigid_run_and_a_bad_plot_name(tmp_path, capsys):
+    path = tmp_path / "restrike.png"
+    assert main(["simulate", str(DERIVATIONS / "restrike.toml"), "--plot", str(path)]) == 0
+    assert path.read_bytes()[:4] == b"\x89PNG"
+    assert main(["simulate", str(DERIVATIONS / "restrike.toml"), "--plot",
+                 str(tmp_path / "x.pdf")]) == 2
+    assert "--plot" in capsys.readouterr().err
+    assert not (tmp_path / "x.pdf").exists()

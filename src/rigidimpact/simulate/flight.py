@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["Flyer", "Contact", "first_contact", "reach_interval", "segment_gap"]
+__all__ = ["Flyer", "Meeting", "first_contact", "reach_interval", "segment_gap"]
 
 SEGMENTS = ("barbell", "rod")
 ROUND = ("disc", "ring", "sphere")
@@ -108,8 +108,8 @@ class Flyer:
 
 
 @dataclass(frozen=True)
-class Contact:
-    """The first contact after the impact.
+class Meeting:
+    """The first meeting (a contact) after the impact.
 
     ``part`` is ``rod`` for a point inside the segment, an end's label (``B``) at an end,
     or ``surface`` for a round body; ``s`` is the signed distance along the segment from
@@ -206,7 +206,7 @@ def segment_gap(ball: Flyer, body: Flyer):
 
 
 def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
-                  tol: float = 1e-14) -> Contact | None:
+                  tol: float = 1e-14) -> Meeting | None:
     """The first time after t = 0 at which the point `ball` meets `body`, or None.
 
     `tol` is relative to the time the ball spends within reach of the body.
@@ -223,7 +223,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
         if window is None or window[0] == window[1] or window[0] > horizon:
             return None  # a straight path that leaves a circle never re-enters it
         t = window[0]
-        return Contact(t, "surface", tuple(ball.at(t)[0]))
+        return Meeting(t, "surface", tuple(float(c) for c in ball.at(t)[0]))
     if body.shape not in SEGMENTS or body.ends is None:
         raise ValueError(f"no contact search for a point against a {body.shape}")
     g, dg, p0, u, n0, half = segment_gap(ball, body)
@@ -237,7 +237,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     speed = float(np.linalg.norm(u))
     if not math.isfinite(stop):  # the ball sits still relative to the centre
         if w == 0.0:
-            return Contact(start, _part(float(n0 @ p0), half, body.labels),
+            return Meeting(start, _part(float(n0 @ p0), half, body.labels),
                            tuple(ball.at(start)[0])) if g(start) == 0.0 else None
         stop = start + 2 * math.pi / w  # the rod sweeps every direction within one turn
     rate = w * half + speed
@@ -245,7 +245,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     if abs(g(start)) <= 1e-15 * half:  # touching now (the impact itself): step clear of it
         slope = dg(start)
         if slope == 0.0:
-            return Contact(start, _part(float(n0 @ p0), half, body.labels),
+            return Meeting(start, _part(float(n0 @ p0), half, body.labels),
                            tuple(ball.at(start)[0]))
         start += abs(slope) / curvature  # |g| >= |g'| t - G t^2/2 > 0 until here
         if start >= stop:
@@ -258,7 +258,7 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     n = np.array([math.cos(math.atan2(n0[1], n0[0]) + turn),
                   math.sin(math.atan2(n0[1], n0[0]) + turn)])
     s = float(n @ (where - body.at(t)[0]))
-    return Contact(t, _part(s, half, body.labels), (float(where[0]), float(where[1])), s)
+    return Meeting(t, _part(s, half, body.labels), (float(where[0]), float(where[1])), s)
 
 
 def _part(s: float, half: float, labels: tuple[str, str]) -> str:
