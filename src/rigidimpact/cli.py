@@ -284,6 +284,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rigidimpact.simulate import explain, run
 
     scene = load_scene(args.scene)
+    if args.plot:
+        _check_plot_path(Path(args.plot))
     if args.explain:
         print(explain(scene))
         if not args.json and not args.plot:
@@ -303,6 +305,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_plot_path(path: Path) -> None:
+    if path.suffix.lower() != ".png":
+        raise InputError("--plot", f"expected a .png file name, got {str(path)!r}")
+    if not path.parent.is_dir():
+        raise InputError("--plot", f"no such folder: {str(path.parent)!r}")
+
+
 def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
     """Draw a run's trajectories to a PNG, written whole or not at all."""
     import os
@@ -310,10 +319,6 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
 
     from rigidimpact.plots import trajectories
 
-    if path.suffix.lower() != ".png":
-        raise InputError("--plot", f"expected a .png file name, got {str(path)!r}")
-    if not path.parent.is_dir():
-        raise InputError("--plot", f"no such folder: {str(path.parent)!r}")
     track = outcome.trajectory
     velocity = None
     if hasattr(track, "contact_velocity"):
