@@ -78,3 +78,17 @@ def test_bench_cli_writes_its_three_files(tmp_path, capsys):
     assert json.loads((out / "bench.json").read_text())["rows"]
     assert "| problem | method |" in (out / "bench.md").read_text()
     assert (out / "accuracy-vs-time.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_sweep_row_is_accurate_and_reports_time_per_angle():
+    [row] = bench._restrike_sweep(repeats=1, count=2000)
+    assert row["error"] < 1e-13 and row["problem"] == "restrike"
+    assert math.isclose(row["seconds"] * 2000, row["total_seconds"])
+
+
+def test_fixed_step_marching_stops_at_the_crossing_across_blocks():
+    angle = math.radians(10.0)
+    small_blocks = bench._fixed_step_turn(angle, 1e-3, block=64)
+    assert small_blocks == bench._fixed_step_turn(angle, 1e-3)
+    with pytest.raises(ArithmeticError):
+        bench._fixed_step_turn(math.radians(30.0), 1e-2)  # above theta_c: no re-strike

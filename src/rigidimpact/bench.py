@@ -9,13 +9,15 @@ answer and the median of repeated wall-clock timings. The families:
 * ``float64``: the vectorised kernel (one point per call);
 * ``mpmath``: the same stable form at several precisions;
 * ``compliant``: the compliant simulation (rod and contact springs) over a grid of
-  contact stiffness (the rod 1e3 times stiffer), integrator and tolerance — its error
-  against the rigid closed form is mostly the model's own (finite stiffness);
+  contact stiffness, rod stiffness (1e2 and 1e4 times the contact's), integrator and
+  tolerance — its error against the rigid closed form is mostly the model's own;
 * ``integration``: the compliant scene at fixed stiffness, each integrator and rtol
   against a tightly converged run of the same model: the error the settings control;
   the ``auto`` row is what ``simulate`` picks for the scene's tolerance;
-* ``restrike-event`` and ``restrike-fixed-step``: the re-strike time by the certified
-  event search, and by fixed-step time marching with linear interpolation;
+* ``restrike-event``, ``restrike-sweep`` and ``restrike-fixed-step``: the re-strike time by
+  the certified event search, by the vectorised sweep over 10^4 initial angles (time per
+  angle), and by fixed-step time marching (stopping at the first crossing, which is
+  interpolated linearly);
 * ``pymunk``: the same collision in a game-physics engine, when it is installed.
 
 Errors are the largest relative error over v_fx, V_x and omega_z (the turn at the
@@ -55,7 +57,7 @@ __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "FAMILIES", "FL
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
-            "restrike-fixed-step", "pymunk")
+            "restrike-sweep", "restrike-fixed-step", "pymunk")
 KEYS = ("v_fx", "V_x", "omega_z")
 VALUES = {"m": 1, "M": 2, "L": sp.Rational(1, 2), "theta": sp.pi / 6, "e": sp.Rational(1, 2),
           "v_ix": 1}
@@ -115,8 +117,9 @@ def _error(values: dict[str, Any], exact: dict[str, mpmath.mpf]) -> float:
     return float(worst)
 
 
+# what each family's error is measured on; the others answer the collision itself
 PROBLEM = {"restrike-event": "restrike", "restrike-fixed-step": "restrike",
-           "integration": "integration"}  # the others answer the collision itself
+           "restrike-sweep": "restrike", "integration": "integration"}
 
 
 def _row(method: str, setting: str, error: float, seconds: float, **extra: Any) -> dict:
@@ -194,24 +197,27 @@ def _scene(**table: Any):
     return replace(scene, simulate={**scene.simulate, **table})
 
 
-def _compliant(exact, repeats: int, stiffnesses, methods, tolerances, progress,
+def _compliant(exact, repeats: int, stiffnesses, rod_factors, methods, tolerances, progress,
                failed: list[dict]) -> list[dict]:
     rows = []
     for k_c in stiffnesses:
-        for method in methods:
-            for tol in tolerances:
-                scene = _scene(contact_stiffness=k_c, rod_stiffness=1e3 * k_c,
-                               integrator=method, tolerance=tol)
-                outcome, seconds = _timed_run(scene, repeats)
-                if outcome is None:
-                    failed.append({"method": "compliant", "setting": f"k_c={k_c:.0e}, "
-                                   f"{method}, tol={tol:.0e}", "message": seconds})
-                    progress(f"compliant k_c={k_c:.0e} {method} tol={tol:.0e} (failed)")
-                    continue
-                rows.append(_row("compliant", f"k_c={k_c:.0e}, {method}, tol={tol:.0e}",
-                                 _error(_compliant_values(outcome), exact), seconds,
-                                 ode_steps=outcome.ode_steps))
-                progress(f"compliant k_c={k_c:.0e} {method} tol={tol:.0e}")
+        for factor in rod_factors:
+            for method in methods:
+                for tol in tolerances:
+                    k_rod = factor * k_c
+                    setting = f"k_c={k_c:.0e}, k_rod={k_rod:.0e}, {method}, tol={tol:.0e}"
+                    scene = _scene(contact_stiffness=k_c, rod_stiffness=k_rod,
+                                   integrator=method, tolerance=tol)
+                    outcome, seconds = _timed_run(scene, repeats)
+                    if outcome is None:
+                        failed.append({"method": "compliant", "setting": setting,
+                                       "message": seconds})
+                        progress(f"compliant {setting} (failed)")
+                        continue
+                    rows.append(_row("compliant", setting,
+                                     _error(_compliant_values(outcome), exact), seconds,
+                                     ode_steps=outcome.ode_steps))
+                    progress(f"compliant {setting}")
     return rows
 
 
@@ -269,16 +275,24 @@ def _restrike_event(repeats: int) -> list[dict]:
                  _median_time(lambda: first_contact(ball, bar), repeats, inner=20))]
 
 
-def _fixed_step_turn(angle: float, step: float) -> float:
-    """March the turn tau in fixed steps; the first change of side, interpolated."""
+def _fixed_step_turn(angle: float, step: float, block: int = 1 << 20) -> float:
+    """March the turn tau in fixed steps until the ball changes side of the rod (within
+    reach), in blocks so memory stays bounded; the crossing is interpolated linearly."""
     k = 1.0  # e = 0: the ball drifts at omega L sin(theta) relative to C
-    tau = np.arange(step, 2.2 * np.pi, step)
-    px, py = -np.cos(angle) + k * tau * np.sin(angle), -np.sin(angle)
-    side = np.cos(angle + tau) * py - np.sin(angle + tau) * px
-    inside = px * px + py * py <= 1.0
-    change = np.flatnonzero((np.sign(side[1:]) != np.sign(side[:-1])) & inside[1:])
-    j = change[0]
-    return float(tau[j] + step * side[j] / (side[j] - side[j + 1]))
+    sin, cos = math.sin(angle), math.cos(angle)
+    block = min(block, int(2.2 * np.pi / step) + 2)  # a coarse march needs no more
+    start = 0
+    while start * step < 2.2 * np.pi:
+        tau = (np.arange(block + 1) + start + 1) * step
+        px, py = -cos + k * tau * sin, -sin
+        side = np.cos(angle + tau) * py - np.sin(angle + tau) * px
+        inside = px * px + py * py <= 1.0
+        change = np.flatnonzero((np.sign(side[1:]) != np.sign(side[:-1])) & inside[1:])
+        if change.size:
+            j = change[0]
+            return float(tau[j] + step * side[j] / (side[j] - side[j + 1]))
+        start += block
+    raise ArithmeticError("no crossing: the angle is above the critical angle")
 
 
 def _restrike_fixed(repeats: int, steps: Iterable[float]) -> list[dict]:
@@ -289,8 +303,23 @@ def _restrike_fixed(repeats: int, steps: Iterable[float]) -> list[dict]:
         with mpmath.workdps(40):
             error = float(abs(mpmath.mpf(turn) - exact) / exact)
         rows.append(_row("restrike-fixed-step", f"h={h:.0e}", error,
-                         _median_time(lambda h=h: _fixed_step_turn(angle, h), repeats)))
+                         _median_time(lambda h=h: _fixed_step_turn(angle, h),
+                                      repeats if h >= 1e-5 else 1)))
     return rows
+
+
+def _restrike_sweep(repeats: int, count: int = 10_000) -> list[dict]:
+    """The vectorised sweep over `count` initial angles: time per angle, worst error at
+    every 200th angle that is struck again (against the 40-digit turn)."""
+    angles = np.radians(np.linspace(0.01, 179.99, count))
+    swept = restrike.sweep(angles)
+    sample = np.flatnonzero(swept.hit)[::200]
+    with mpmath.workdps(40):
+        worst = max(float(abs(mpmath.mpf(swept.turn[j]) - restrike.restrike_turn(angles[j]))
+                          / restrike.restrike_turn(angles[j])) for j in sample)
+    seconds = _median_time(lambda: restrike.sweep(angles), repeats)
+    return [_row("restrike-sweep", f"{count} angles at once (time per angle)", worst,
+                 seconds / count, total_seconds=seconds)]
 
 
 def _pymunk(exact, repeats: int, steps: Iterable[float]) -> list[dict]:
@@ -405,7 +434,9 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
     methods = ("DOP853", "LSODA") if quick else ("RK45", "DOP853", "Radau", "BDF", "LSODA")
     tolerances = (1e-4, 1e-8) if quick else (1e-3, 1e-5, 1e-7, 1e-9)
     stiffnesses = (1e4, 1e5) if quick else (1e3, 1e4, 1e5, 1e6)
-    total = (len(stiffnesses) * len(methods) * len(tolerances) * ("compliant" in families)
+    rod_factors = (1e3,) if quick else (1e2, 1e4)
+    total = (len(stiffnesses) * len(rod_factors) * len(methods) * len(tolerances)
+             * ("compliant" in families)
              + (len(methods) * len(tolerances) + 1) * ("integration" in families))
     done = [0]
 
@@ -424,15 +455,17 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
     if "mpmath" in families:
         rows += _mpmath(exact, repeats, (15, 30, 50) if quick else (15, 30, 50, 100, 200))
     if "compliant" in families:
-        rows += _compliant(exact, 1 if quick else 3, stiffnesses, methods, tolerances, tick,
-                           failed)
+        rows += _compliant(exact, 1 if quick else 3, stiffnesses, rod_factors, methods,
+                           tolerances, tick, failed)
     if "integration" in families:
         rows += _integration(1 if quick else 3, methods, tolerances, tick, 1e-6, failed)
     if "restrike-event" in families:
         rows += _restrike_event(repeats)
+    if "restrike-sweep" in families:
+        rows += _restrike_sweep(repeats)
     if "restrike-fixed-step" in families:
         rows += _restrike_fixed(repeats, (1e-2, 1e-3, 1e-4) if quick
-                                else (1e-2, 1e-3, 1e-4, 1e-5))
+                                else (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7))
     if "pymunk" in families:
         rows += _pymunk(exact, repeats, (1e-4,) if quick else (1e-3, 1e-4, 1e-5))
     fronts = {problem: pareto([r for r in rows if r["problem"] == problem])
