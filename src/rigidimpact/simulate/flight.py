@@ -254,9 +254,9 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
                               tol * max(stop - start, 1.0) if math.isfinite(stop) else tol)
     if t is None:
         return None
-    where, turn = ball.at(t)[0], float(body.spin) * t
-    n = np.array([math.cos(math.atan2(n0[1], n0[0]) + turn),
-                  math.sin(math.atan2(n0[1], n0[0]) + turn)])
+    where = ball.at(t)[0]
+    phi = math.atan2(n0[1], n0[0]) + float(body.spin) * t
+    n = np.array([math.cos(phi), math.sin(phi)])
     s = float(n @ (where - body.at(t)[0]))
     return Meeting(t, _part(s, half, body.labels), (float(where[0]), float(where[1])), s)
 

@@ -165,8 +165,7 @@ def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], fl
     else:
         reach = other.radius
     window = reach_interval(ball.at(0)[0] - other.at(0)[0],
-                            ball.at(1)[0] - other.at(1)[0] - (ball.at(0)[0] - other.at(0)[0]),
-                            reach)
+                            ball.velocity_at(0) - other.velocity_at(0), reach)
     leaves = window[1] if window is not None and math.isfinite(window[1]) else 0.0
     if math.isfinite(horizon):
         return [], horizon
