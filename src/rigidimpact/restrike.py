@@ -278,35 +278,29 @@ def _analysis(restitution: Fraction, mass_ratio: Fraction) -> CriticalAngle:
     d = derive()
     at = _parameters(restitution, mass_ratio)
     factors = [f.subs(at) for f in d.factors]
+    outrace = _critical_equation(at)
     with mpmath.workdps(DIGITS + 10):
         lo, hi = mpmath.mpf(0), mpmath.pi
-        at_rest = _at_rest_edges(factors[0])
-        edges = [(_mp_value(x), "at rest") for x in at_rest]
+        edges = [Edge(_mp_value(x), "at rest", sp.Eq(theta, x))
+                 for x in _at_rest_edges(factors[0])]
         if factors[1].free_symbols:
-            edges += [(r, "outrace") for r in _roots(factors[1], lo, hi)
-                      if all(abs(r - x) > ENDS for x, _ in edges)]
-        edges.sort(key=lambda x: x[0])
-        cuts = [(lo, "limit")] + edges + [(hi, "limit")]
+            edges += [Edge(r, "outrace", outrace) for r in _roots(factors[1], lo, hi)
+                      if all(abs(r - x.rad) > ENDS for x in edges)]
+        edges.sort(key=lambda x: x.rad)
+        cuts = [Edge(lo, "limit", None), *edges, Edge(hi, "limit", None)]
         product = sp.lambdify(theta, d.sign * sp.Mul(*factors), modules="mpmath")
-        windows: list[list] = []
-        for (a, kind_a), (b, kind_b) in zip(cuts, cuts[1:], strict=False):
-            if b - a <= 0 or product((a + b) / 2) <= 0:
+        windows: list[list[Edge]] = []
+        for a, b in zip(cuts, cuts[1:], strict=False):
+            if b.rad - a.rad <= 0 or product((a.rad + b.rad) / 2) <= 0:
                 continue
-            if windows and windows[-1][1][0] == a:  # the edge between was a touching root
-                windows[-1][1] = (b, kind_b)
+            if windows and windows[-1][1] is a:  # the edge between was a touching root
+                windows[-1][1] = b
             else:
-                windows.append([(a, kind_a), (b, kind_b)])
-        closed = {_mp_value(x): sp.Eq(theta, x) for x in at_rest}
-
-        def edge(x: mpmath.mpf, kind: str) -> Edge:
-            if kind == "at rest":
-                return Edge(+x, kind, closed[x])
-            return Edge(+x, kind, _critical_equation(at) if kind == "outrace" else None)
-
-        result = tuple((edge(*a), edge(*b)) for a, b in windows)
+                windows.append([a, b])
+        result = tuple((a, b) for a, b in windows)
     first = result[0][1] if result else None
     theta_c = first.rad if first is not None and first.kind == "outrace" else None
-    return CriticalAngle(restitution, mass_ratio, theta_c, _critical_equation(at), result)
+    return CriticalAngle(restitution, mass_ratio, theta_c, outrace, result)
 
 
 def _at_rest_edges(factor: sp.Expr) -> list[sp.Expr]:

@@ -37,13 +37,13 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import sympy as sp
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
 from rigidimpact.scene import Scene
+from rigidimpact.simulate.numbers import as_array, as_float, scene_values
 from rigidimpact.simulate.planner import Plan
 
 __all__ = ["restitution_of", "damping_ratio_for", "run_compliant", "prepare", "Model",
@@ -168,30 +168,23 @@ class _Part:
         return {"point": 4, "rigid": 6, "spring": 8}[self.kind]
 
 
-def _num(x: Any, values: Mapping) -> float:
-    return float(sp.sympify(x).subs(values).evalf(30))
-
-
-def _vec(v: Any, values: Mapping) -> np.ndarray:
-    return np.array([_num(c, values) for c in v], dtype=float)
-
-
 def _cross(a: np.ndarray, b: np.ndarray) -> float:
+    """z component of the cross product of two plane vectors."""
     return float(a[0] * b[1] - a[1] * b[0])
 
 
 def _build(body: Body, slot: int, values: Mapping, plan: Plan) -> tuple[_Part, list[float]]:
-    mass, position = _num(body.mass, values), _vec(body.position, values)
-    velocity, spin = _vec(body.velocity, values), _num(body.spin, values)
+    mass, position = as_float(body.mass, values), as_array(body.position, values)
+    velocity, spin = as_array(body.velocity, values), as_float(body.spin, values)
     if body.shape == "barbell" and "rod-compliance" in plan.effects:
-        a, b = (_vec(p.position, values) for p in body.parts)
+        a, b = (as_array(p.position, values) for p in body.parts)
         va, vb = (velocity + spin * np.array([-(r - position)[1], (r - position)[0]])
                   for r in (a, b))
-        part = _Part(body.name, "spring", slot, mass, _num(body.inertia, values),
+        part = _Part(body.name, "spring", slot, mass, as_float(body.inertia, values),
                      rest=float(np.linalg.norm(b - a)),
                      stiffness=plan.settings["rod_stiffness"])
         return part, [*a, *b, *va, *vb]
-    inertia = _num(body.inertia, values)
+    inertia = as_float(body.inertia, values)
     if inertia == 0.0:
         return _Part(body.name, "point", slot, mass), [*position, *velocity]
     return (_Part(body.name, "rigid", slot, mass, inertia, contact=-position),
@@ -362,10 +355,10 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
         state += initial
         slot += part.size
     state.append(0.0)  # work done by the contact force on the bodies
-    normal = _vec(scene.contact.frame[0, :], values)
+    normal = as_array(scene.contact.frame[0, :], values)
     normal /= np.linalg.norm(normal)
     first, second = parts
-    e = _num(scene.contact.restitution, values)
+    e = as_float(scene.contact.restitution, values)
     y0 = np.array(state)
     # the isolated contact: the two bodies as rigid, meeting at O (a stiff rod is rigid
     # on the contact's time scale); its damping returns the requested e
@@ -529,16 +522,16 @@ def rigid_limit(scene: Scene, contact_stiffnesses: list[float], rod_exponent: fl
     """
     from dataclasses import replace
 
-    from rigidimpact.simulate.runner import _numbers, run
+    from rigidimpact.simulate.runner import run
 
-    values = _numbers(scene)
+    values = scene_values(scene)
     solution = scene.impact().solve()
     rigid = {}
     for body in (solution.first_after, solution.second_after):
         for key, x in ((f"{body.name}.vx", body.velocity[0]),
                        (f"{body.name}.vy", body.velocity[1]),
                        (f"{body.name}.omega", body.spin)):
-            rigid[key] = _num(x, values)
+            rigid[key] = as_float(x, values)
     rows: list[dict[str, float]] = []
     for k_c in contact_stiffnesses:
         table = {**scene.simulate, "effects": ["rod-compliance", "contact-compliance"],

@@ -25,6 +25,7 @@ from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
 from rigidimpact.scene import Scene
 from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
+from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.planner import Plan, make_plan
 
 __all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack"]
@@ -92,7 +93,7 @@ def explain(scene: Scene) -> str:
     if any(step.model == "compliant" for step in plan.steps):
         from rigidimpact.simulate.compliant import prepare
 
-        model = prepare(scene, plan, _numbers(scene))
+        model = prepare(scene, plan, scene_values(scene))
         chosen = model.integrator
         lines.append(f"integrator: {chosen['method']}, rtol {chosen['rtol']:.1e} "
                      f"(tolerance {plan.settings['tolerance']:.1e}); {chosen['why']}")
@@ -105,25 +106,6 @@ def explain(scene: Scene) -> str:
     return "\n".join(lines)
 
 
-def _numbers(scene: Scene) -> dict[sp.Symbol, sp.Expr]:
-    needed = set()
-    for body in scene.bodies:
-        for x in (body.mass, body.inertia, *body.position, *body.velocity, body.spin,
-                  *(v for _, v in body.dimensions)):
-            needed |= x.free_symbols
-    needed |= sp.sympify(scene.contact.restitution).free_symbols
-    for x in scene.contact.normal:
-        needed |= sp.sympify(x).free_symbols
-    missing = sorted(s.name for s in needed if s not in scene.values)
-    if missing:
-        raise InputError("values", f"simulate needs numbers for: {', '.join(missing)}")
-    return dict(scene.values)
-
-
-def _float(x: sp.Expr, values: Mapping[sp.Symbol, sp.Expr]) -> float:
-    return float(sp.sympify(x).subs(values).evalf(30))
-
-
 def flyer(body: Body, values: Mapping[sp.Symbol, sp.Expr]) -> Flyer:
     """A body just after the impact, as numbers for free flight.
 
@@ -132,22 +114,22 @@ def flyer(body: Body, values: Mapping[sp.Symbol, sp.Expr]) -> Flyer:
     >>> flyer(Body.rod(1, 2, 0, 1, velocity=(0, 1)), {}).ends[1]
     (1.0, 0.0)
     """
-    position = tuple(_float(c, values) for c in body.position)
-    velocity = tuple(_float(c, values) for c in body.velocity)
-    spin = _float(body.spin, values)
+    position = tuple(as_float(c, values) for c in body.position)
+    velocity = tuple(as_float(c, values) for c in body.velocity)
+    spin = as_float(body.spin, values)
     dims = dict(body.dimensions)
     if body.shape == "barbell":
         first, second = body.parts
-        ends = tuple(tuple(_float(c, values) for c in part.position - body.position)
+        ends = tuple(tuple(as_float(c, values) for c in part.position - body.position)
                      for part in (first, second))
         return Flyer(body.name, body.shape, position, velocity, spin, ends,
                      (first.label, second.label))
     if body.shape == "rod":
-        half, angle = _float(dims["length"] / 2, values), _float(dims["angle"], values)
+        half, angle = as_float(dims["length"] / 2, values), as_float(dims["angle"], values)
         end = (half * math.cos(angle), half * math.sin(angle))
         return Flyer(body.name, body.shape, position, velocity, spin,
                      ((-end[0], -end[1]), end), ("end 1", "end 2"))
-    radius = _float(dims["radius"], values) if "radius" in dims else 0.0
+    radius = as_float(dims["radius"], values) if "radius" in dims else 0.0
     return Flyer(body.name, body.shape, position, velocity, spin, radius=radius)
 
 
@@ -183,7 +165,7 @@ def run(scene: Scene) -> Outcome:
     """
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
-    values = _numbers(scene)
+    values = scene_values(scene)
     if any(step.model == "compliant" for step in plan.steps):
         from rigidimpact.simulate.compliant import run_compliant
 
