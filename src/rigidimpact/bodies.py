@@ -257,6 +257,11 @@ class Body:
         radius = _must_be_positive(_expr(radius, f"{name}.radius"), f"{name}.radius")
         if position is None:
             position = (side * radius, 0)
+        centre = as_vector(position, f"{name}.position")
+        if tidy(centre[0] ** 2 + centre[1] ** 2 - radius**2).is_zero is False:
+            raise InputError(f"{name}.position", f"the centre must lie at the radius "
+                             f"{radius} from the contact point O, but it is at "
+                             f"({centre[0]}, {centre[1]})")
         return cls(name, mass, factor * mass * radius**2, position, velocity, spin, shape,
                    (("radius", radius),))
 

@@ -64,6 +64,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     from rigidimpact.latex import equation_latex, fragment, to_latex
 
     d = _derivation(args.target)
+    for warning in d.warnings:
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
         _print_json({
             "problem": d.problem,
@@ -76,6 +78,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "named": {k: _expr_json(v) for k, v in d.named.items()},
             "definitions": {k: _expr_json(v) for k, v in d.definitions.items()},
             "seconds": round(d.seconds, 4),
+            "warnings": list(d.warnings),
         })
         return 0
     if args.format == "latex":
@@ -150,59 +153,48 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _numbers(target: str, settings: Sequence[str]) -> tuple[Any, dict[str, Any]]:
-    """The derivation and its values: a scene's [values], then each --set NAME=VALUE."""
+def _evaluation(target: str, settings: Sequence[str], dps: int | None):
+    """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
     from rigidimpact.problems import PROBLEMS
-    from rigidimpact.scene import check_value, load_scene, parse_expression
+    from rigidimpact.scene import load_scene
 
     if target in PROBLEMS:
-        derivation, values = _derivation(target), {}
+        derivation, values, sources = _derivation(target), {}, {}
     else:
         scene = load_scene(target)
         derivation = scene.derivation()
         values = {s.name: v for s, v in scene.values.items()}
-    needed = set().union(*(x.free_symbols for x in derivation.results.values()))
-    by_name = {s.name: s for s in needed}
+        sources = {name: f"values.{name}" for name in values}
     for setting in settings:
         name, eq, text = setting.partition("=")
         name = name.strip()
         if not eq or not name:
             raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
-        if name not in by_name:
-            raise InputError(f"--set {name}", f"not a symbol of {derivation.problem}; it "
-                             f"uses {', '.join(sorted(by_name)) or 'none'}")
-        value = parse_expression(text, f"--set {name}", {})
-        values[name] = check_value(by_name[name], value, f"--set {name}")
-    missing = sorted(set(by_name) - set(values))
-    if missing:
-        raise InputError("--set", f"{derivation.problem} needs values for: {', '.join(missing)}")
-    solution = derivation.solution
-    if solution is not None:
-        approach = solution.impact.approach_speed.subs({by_name[n]: values[n] for n in by_name
-                                                        if n in values})
-        if approach.is_number and approach <= 0:
-            raise InputError("--set", "with these values the bodies are not approaching at O")
-    return derivation, values
+        values[name], sources[name] = text, f"--set {name}"
+    return derivation.evaluate(values, dps, sources)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
     import mpmath
 
-    from rigidimpact.numeric import evaluate
-
     if args.dps is not None and not 5 <= args.dps <= 10000:
         raise InputError("--dps", f"must lie between 5 and 10000, got {args.dps}")
-    derivation, values = _numbers(args.target, args.set)
-    numbers = evaluate(derivation.results, values, args.dps)
+    result = _evaluation(args.target, args.set, args.dps)
 
-    def literal(x: Any) -> str:
-        return mpmath.nstr(x, args.dps, min_fixed=-3, max_fixed=3) if args.dps else repr(x)
+    def literal(x: Any) -> str:  # a float's repr, or an mpmath number beyond float64
+        if isinstance(x, float):
+            return repr(x)
+        return mpmath.nstr(x, args.dps or 17, min_fixed=-3, max_fixed=3)
 
+    for warning in result.warnings:
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:  # full-precision JSON number literals (mpmath values are not floats)
-        body = ",\n".join(f"  {json.dumps(k)}: {literal(v)}" for k, v in numbers.items())
-        print("{\n" + body + "\n}")
+        body = [f"  {json.dumps(k)}: {literal(v)}" for k, v in result.numbers.items()]
+        if result.warnings:
+            body.append(f'  "warnings": {json.dumps(list(result.warnings))}')
+        print("{\n" + ",\n".join(body) + "\n}")
     else:
-        for key, value in numbers.items():
+        for key, value in result.numbers.items():
             print(f"{key} = {literal(value)}")
     return 0
 

@@ -33,6 +33,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
 
 __all__ = ["stable_form", "magnitude", "Kernel", "kernels", "evaluate"]
@@ -154,7 +155,9 @@ _CACHE: dict[tuple, Any] = {}
 def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...], module: str):
     key = (expr, symbols, module)
     if key not in _CACHE:
-        _CACHE[key] = sp.lambdify(symbols, expr, module)
+        # dummify: a scene's symbol named like the generated code's names (mpf, sin,
+        # select) must not shadow them
+        _CACHE[key] = sp.lambdify(symbols, expr, module, dummify=True)
     return _CACHE[key]
 
 
@@ -170,9 +173,46 @@ def kernels(results: Mapping[str, sp.Expr]) -> dict[str, Kernel]:
     return {key: Kernel.from_expr(expr) for key, expr in results.items()}
 
 
-def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, float],
+FALLBACK_DIGITS = 40  # where float64 cannot hold a result or a step toward it
+_FLOAT_MAX = np.finfo(np.float64).max
+_FLOAT_TINY = np.finfo(np.float64).tiny
+
+
+def _float_point(kernel: Kernel, args: Mapping[str, Any]) -> float | None:
+    """The float64 kernel at one point, or None where float64 overflows, underflows or
+    divides by zero on the way (the answer would be wrong, not merely inexact)."""
+    try:
+        with np.errstate(over="raise", under="raise", invalid="raise", divide="raise"):
+            value = float(kernel(**{n: float(v) for n, v in args.items()}))
+    except (OverflowError, FloatingPointError, ZeroDivisionError):
+        return None
+    return value if np.isfinite(value) else None
+
+
+def _mp_point(kernel: Kernel, key: str, args: Mapping[str, Any], dps: int) -> mpmath.mpf:
+    """The stable form in mpmath; refuse a result that is undefined at these values."""
+    with mpmath.workdps(dps + 10):
+        exact = {n: mpmath.mpf(sp.N(v, dps + 10)) if isinstance(v, sp.Basic) else v
+                 for n, v in args.items()}
+    try:
+        value = kernel.mp(dps, **exact)
+    except (ZeroDivisionError, OverflowError, ValueError):
+        value = mpmath.nan
+    if not mpmath.isfinite(value):
+        raise InputError(key, "undefined at these values (a division by zero or an "
+                         "infinite result); the geometry or data are degenerate")
+    return value
+
+
+def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, Any],
              dps: int | None = None) -> dict[str, Any]:
     """Evaluate every result at `values` (name -> number): float64, or mpmath at `dps`.
+
+    The float64 path never returns NaN or an infinity: where float64 would overflow or
+    underflow on the way, the result is computed with mpmath at 40 digits instead, and
+    returned as a float when it fits in float64 (else as the mpmath number). A result
+    that is undefined at the values raises :class:`InputError`. This is the unchecked
+    core: :meth:`rigidimpact.problems.Derivation.evaluate` checks the values first.
 
     Examples
     --------
@@ -180,12 +220,20 @@ def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, float],
     >>> evaluate(derive("discs").results, {"V_1ix": 1.0, "V_2ix": 0.0, "V_1iy": 0.0,
     ...                                    "V_2iy": 0.0, "e": 1.0})["V_2fx"]
     1.0
+    >>> big = {"V_1ix": sp.Integer(10)**100, "V_2ix": 0, "V_1iy": 0, "V_2iy": 0, "e": 1}
+    >>> evaluate({"square": derive("discs").results["V_2fx"]**4}, big)["square"]
+    mpf('1.0e+400')
     """
     out: dict[str, Any] = {}
-    if dps:  # exact inputs (pi/6, 1/3) reach mpmath at full precision, not via float64
-        with mpmath.workdps(dps + 10):
-            values = {n: mpmath.mpf(sp.N(v, dps + 10)) for n, v in values.items()}
     for key, kernel in kernels(results).items():
         args = {n: values[n] for n in kernel.arguments}
-        out[key] = kernel.mp(dps, **args) if dps else float(kernel(**args))
+        if dps:
+            out[key] = _mp_point(kernel, key, args, dps)
+            continue
+        value = _float_point(kernel, args)
+        if value is None:
+            precise = _mp_point(kernel, key, args, FALLBACK_DIGITS)
+            fits = precise == 0 or _FLOAT_TINY <= abs(precise) <= _FLOAT_MAX
+            value = float(precise) if fits else precise
+        out[key] = value
     return out

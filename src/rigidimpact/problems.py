@@ -20,6 +20,7 @@ import functools
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import sympy as sp
 
@@ -31,10 +32,14 @@ from rigidimpact.impact import Impact
 from rigidimpact.laws import Equation
 from rigidimpact.notation import symbol
 from rigidimpact.rewrite import recognise, tidy
+from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.solution import Solution
 
 __all__ = [
     "Derivation",
+    "Evaluation",
+    "physics_warnings",
+    "model_warnings",
     "PROBLEMS",
     "derive",
     "barbell_impact",
@@ -76,6 +81,8 @@ class Derivation:
         The underlying solved impact.
     seconds : float
         Wall time the derivation took.
+    warnings : tuple of str
+        What the model cannot honour in general (see :func:`model_warnings`).
     """
 
     problem: str
@@ -88,6 +95,166 @@ class Derivation:
     definitions: Mapping[str, sp.Expr] = field(default_factory=dict)
     solution: Solution | None = field(default=None, repr=False)
     seconds: float = 0.0
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def symbols(self) -> dict[str, sp.Symbol]:
+        """The symbols the results use, by name."""
+        found = set().union(*(x.free_symbols for x in self.results.values()))
+        return {s.name: s for s in sorted(found, key=lambda s: s.name)}
+
+    @property
+    def data_symbols(self) -> dict[str, sp.Symbol]:
+        """Every symbol of the problem's data (some may not reach any result)."""
+        found = set(self.symbols.values())
+        for role in self.roles:
+            found |= sp.sympify(role.expr).free_symbols
+        if self.solution is not None:
+            for body in (self.solution.impact.first, self.solution.impact.second):
+                found |= sp.Tuple(*body.position, *body.velocity, body.spin).free_symbols
+        return {s.name: s for s in sorted(found, key=lambda s: s.name)}
+
+    @property
+    def roles(self) -> tuple[Role, ...]:
+        """What bounds the data by role (restitution in [0, 1], masses positive, ...)."""
+        if self.solution is None:
+            return ()
+        impact = self.solution.impact
+        return roles_of((impact.first, impact.second), (impact.contact,))
+
+    def checked(self, values: Mapping[str, Any],
+                sources: Mapping[str, str] | None = None) -> dict[str, sp.Expr]:
+        """Exact numbers for every symbol of the results, checked by assumption and role.
+
+        This is the one door every number passes (a scene's ``[values]``, ``--set``,
+        the Python API): each value is read exactly (``0.1`` is 1/10), must be a number
+        the tool supports, must fit its symbol's assumptions, and every role it fills
+        must allow it.
+
+        Parameters
+        ----------
+        values : mapping of name to number (int, float, str or SymPy number)
+        sources : mapping of name to str, optional
+            Where each value came from, for messages (default ``values.NAME``).
+
+        Raises
+        ------
+        InputError
+            For an unknown or missing name or a value its symbol or role refuses.
+
+        Examples
+        --------
+        >>> derive("discs").checked({"V_1ix": 1, "V_2ix": 0, "V_1iy": 0, "V_2iy": 0,
+        ...                          "e": 1.5})
+        Traceback (most recent call last):
+        ...
+        rigidimpact.errors.InputError: values.e: the restitution coefficient (contact.restitution = e) must lie in [0, 1], got 3/2
+        """  # noqa: E501
+        from rigidimpact.expr import parse_expression
+
+        sources = dict(sources or {})
+        by_name, exact = self.data_symbols, {}
+        for name, raw in values.items():
+            where = sources.setdefault(name, f"values.{name}")
+            if name not in by_name:
+                raise InputError(where, f"not a symbol of {self.problem}; it uses "
+                                 f"{', '.join(by_name) or 'none'}")
+            value = raw if isinstance(raw, sp.Basic) else parse_expression(raw, where)
+            if not value.is_number or value.free_symbols:
+                raise InputError(where, f"must be a number, got {value}")
+            exact[by_name[name]] = check_assumptions(by_name[name], sp.sympify(value), where)
+        check_roles(self.roles, exact, {by_name[n]: w for n, w in sources.items()
+                                        if n in by_name})
+        missing = sorted(set(self.symbols) - {s.name for s in exact})
+        if missing:
+            raise InputError("--set", f"{self.problem} needs values for: {', '.join(missing)}")
+        if self.solution is not None:
+            approach = self.solution.impact.approach_speed.xreplace(exact)
+            if approach.is_number and approach <= 0:
+                raise InputError(", ".join(sources[n] for n in sorted(sources)) or "values",
+                                 "with these values the bodies are not approaching at O")
+        return {s.name: v for s, v in exact.items() if s.name in self.symbols}
+
+    def evaluate(self, values: Mapping[str, Any], dps: int | None = None,
+                 sources: Mapping[str, str] | None = None) -> Evaluation:
+        """Every result at `values`, checked first (see :meth:`checked`).
+
+        Returns an :class:`Evaluation`: the numbers, and warnings where the model cannot
+        honour the physics at these values (kinetic energy created, a contact that
+        would have to pull).
+
+        Examples
+        --------
+        >>> out = derive("discs").evaluate({"V_1ix": 1, "V_2ix": 0, "V_1iy": 0,
+        ...                                 "V_2iy": 0, "e": 1})
+        >>> out.numbers["V_2fx"], out.warnings
+        (1.0, ())
+        """
+        from rigidimpact.numeric import evaluate
+
+        numbers = evaluate(self.results, self.checked(values, sources), dps)
+        model = "the model"
+        if self.solution is not None:
+            contact = self.solution.impact.contact
+            model = f"{contact.law.capitalize()}'s restitution with a {contact.tangential} contact"
+        return Evaluation(numbers, physics_warnings(numbers, dps, model))
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Numbers for a derivation's results, with what the model could not honour."""
+
+    numbers: Mapping[str, Any]
+    warnings: tuple[str, ...] = ()
+
+
+def model_warnings(contact: Contact) -> tuple[str, ...]:
+    """What a contact's laws cannot honour for some data, said once at derivation time.
+
+    Newton's kinematic restitution fixes the normal velocity after; with a sticking
+    contact the tangential impulse that enforces no slip also changes the normal one, and
+    for e > 0 the pair can leave with more kinetic energy than it had (when the contact
+    point also slides before, and the bodies couple the two directions).
+
+    Examples
+    --------
+    >>> model_warnings(Contact(restitution=sp.Rational(1, 2), tangential="stick"))[0][:52]
+    "Newton's restitution with a sticking contact is not "
+    >>> model_warnings(Contact(restitution=0, tangential="stick"))
+    ()
+    """
+    if contact.tangential == "stick" and not contact.restitution.is_zero:
+        return ("Newton's restitution with a sticking contact is not energy-consistent: for "
+                "e > 0 it creates kinetic energy for some data (check that "
+                "energy_loss_fraction >= 0 at your values; evaluate warns when it is not)",)
+    return ()
+
+
+def physics_warnings(numbers: Mapping[str, Any], dps: int | None = None,
+                     model: str = "the model") -> tuple[str, ...]:
+    """Where numbers break what an impact must obey, in words (empty when nothing does).
+
+    An impact may not create kinetic energy, and a contact can only push: a negative
+    energy loss or a negative normal impulse beyond rounding means the model (Newton's
+    restitution with a sticking contact, for instance) cannot honour the physics here.
+
+    Examples
+    --------
+    >>> physics_warnings({"energy_loss_fraction": -0.25, "impulse": 1.0})
+    ('kinetic energy is created: the energy lost is -0.25 of the energy before; the model cannot honour the physics at these values',)
+    """  # noqa: E501
+    tolerance = 1e-12 if dps is None else 10.0 ** (3 - dps)
+    found = []
+    loss = numbers.get("energy_loss_fraction")
+    if loss is not None and loss < -tolerance:
+        found.append(f"kinetic energy is created: the energy lost is {float(loss):.6g} of "
+                     f"the energy before; {model} cannot honour the physics at these "
+                     "values")
+    for key, value in numbers.items():
+        if (key == "impulse" or key.endswith("normal_impulse")) and value < -tolerance:
+            found.append(f"{key} is {float(value):.6g} < 0: the contact would have to pull; "
+                         f"{model} cannot honour the physics at these values")
+    return tuple(found)
 
 
 def barbell_impact(restitution: sp.Expr = e, tangential: str = "smooth") -> Impact:

@@ -1,10 +1,10 @@
 """Scene files: a collision stated once in TOML, read safely.
 
-Expressions in a scene are parsed by a small recursive-descent parser that knows
-numbers, declared symbols, ``+ - * / **`` (and ``^``), parentheses, ``sin cos tan sqrt``
-and ``pi``, with an optional trailing ``deg``. It builds SymPy objects directly: text
-from a file never reaches ``eval``, ``sympify`` or ``parse_expr``. Every problem is
-reported as an :class:`~rigidimpact.errors.InputError` naming the field.
+Expressions in a scene are read by the bounded parser of :mod:`rigidimpact.expr`
+(numbers, declared symbols, ``+ - * / **`` and ``^``, parentheses, ``sin cos tan sqrt``
+and ``pi``, an optional trailing ``deg``): text from a file never reaches ``eval``,
+``sympify`` or ``parse_expr``. Every problem is reported as an
+:class:`~rigidimpact.errors.InputError` naming the field.
 
 Examples
 --------
@@ -15,12 +15,12 @@ pi/6
 >>> parse_expression("__import__(1)", "demo")
 Traceback (most recent call last):
 ...
-rigidimpact.errors.InputError: demo: unknown symbol '__import__'; declare it under [symbols]
+rigidimpact.errors.InputError: demo: unknown function '__import__'; use sin, cos, tan or sqrt
 """
 
 from __future__ import annotations
 
-import math
+import keyword
 import re
 import time
 import tomllib
@@ -31,180 +31,34 @@ from typing import Any
 
 import sympy as sp
 
+from rigidimpact import expr as expressions
 from rigidimpact.bodies import SHAPES, Body
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.impact import Impact
 from rigidimpact.notation import SYMBOLS, make_symbol
-from rigidimpact.problems import Derivation
+from rigidimpact.problems import Derivation, model_warnings
+from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
 
 __all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
 
-MAX_EXPRESSION = 400
-MAX_DEPTH = 40
-FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt}
-CONSTANTS = {"pi": sp.pi}
 ASSUMPTIONS = ("positive", "nonnegative", "negative", "nonpositive", "real", "nonzero")
-
-_TOKEN = re.compile(r"""
-    (?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)
-  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
-  | (?P<op>\*\*|[-+*/^()])
-  | (?P<space>\s+)
-""", re.VERBOSE)
-
-
-class _Parser:
-    """Recursive descent over the tokens of one expression."""
-
-    def __init__(self, text: str, where: str, symbols: Mapping[str, sp.Symbol]) -> None:
-        self.where, self.symbols = where, symbols
-        self.tokens: list[tuple[str, str]] = []
-        pos = 0
-        while pos < len(text):
-            match = _TOKEN.match(text, pos)
-            if match is None:
-                raise InputError(where, f"unexpected character {text[pos]!r} in {text!r}")
-            if match.lastgroup != "space":
-                self.tokens.append((match.lastgroup, match.group()))
-            pos = match.end()
-        self.pos = 0
-        self.depth = 0
-
-    def fail(self, message: str) -> InputError:
-        return InputError(self.where, message)
-
-    def peek(self) -> tuple[str, str] | None:
-        return self.tokens[self.pos] if self.pos < len(self.tokens) else None
-
-    def take(self, value: str | None = None) -> tuple[str, str]:
-        token = self.peek()
-        if token is None:
-            raise self.fail("the expression ends too early")
-        if value is not None and token[1] != value:
-            raise self.fail(f"expected {value!r}, found {token[1]!r}")
-        self.pos += 1
-        return token
-
-    def parse(self) -> sp.Expr:
-        if not self.tokens:
-            raise self.fail("empty expression")
-        expr = self.sum()
-        if self.peek() is not None:
-            raise self.fail(f"unexpected {self.peek()[1]!r}")
-        return expr
-
-    def sum(self) -> sp.Expr:
-        expr = self.product()
-        while (token := self.peek()) and token[1] in "+-" and token[0] == "op":
-            self.take()
-            rhs = self.product()
-            expr = expr + rhs if token[1] == "+" else expr - rhs
-        return expr
-
-    def product(self) -> sp.Expr:
-        expr = self.unary()
-        while (token := self.peek()) and token[1] in ("*", "/"):
-            self.take()
-            rhs = self.unary()
-            if token[1] == "/":
-                if rhs.is_zero:
-                    raise self.fail("division by zero")
-                expr = expr / rhs
-            else:
-                expr = expr * rhs
-        return expr
-
-    def unary(self) -> sp.Expr:
-        self.depth += 1
-        if self.depth > MAX_DEPTH:
-            raise self.fail("expression nested too deeply")
-        try:
-            token = self.peek()
-            if token and token[1] in ("+", "-") and token[0] == "op":
-                self.take()
-                operand = self.unary()
-                return operand if token[1] == "+" else -operand
-            return self.power()
-        finally:
-            self.depth -= 1
-
-    def power(self) -> sp.Expr:
-        base = self.atom()
-        if (token := self.peek()) and token[1] in ("**", "^"):
-            self.take()
-            exponent = self.unary()
-            if exponent.free_symbols or not exponent.is_number or abs(exponent) > 16:
-                raise self.fail("powers must be numbers of size at most 16")
-            return base**exponent
-        return base
-
-    def atom(self) -> sp.Expr:
-        kind, text = self.take()
-        if kind == "number":
-            return sp.Rational(text)
-        if kind == "name":
-            if text in FUNCTIONS:
-                self.take("(")
-                argument = self.sum()
-                self.take(")")
-                return FUNCTIONS[text](argument)
-            if text in CONSTANTS:
-                return CONSTANTS[text]
-            if text in self.symbols:
-                return self.symbols[text]
-            raise self.fail(f"unknown symbol {text!r}; declare it under [symbols]")
-        if text == "(":
-            self.depth += 1
-            if self.depth > MAX_DEPTH:
-                raise self.fail("expression nested too deeply")
-            inner = self.sum()
-            self.take(")")
-            self.depth -= 1
-            return inner
-        raise self.fail(f"unexpected {text!r}")
 
 
 def parse_expression(value: Any, where: str,
                      symbols: Mapping[str, sp.Symbol] = SYMBOLS) -> sp.Expr:
-    """An exact SymPy expression from a scene value (a TOML number or string).
+    """An exact SymPy expression from a scene value, over the project's symbols by default.
 
-    Parameters
-    ----------
-    value : str, int or float
-        The value as read from TOML.
-    where : str
-        The field, for messages.
-    symbols : mapping
-        The names that may appear.
+    The bounded parser itself is :func:`rigidimpact.expr.parse_expression`.
 
     Examples
     --------
     >>> parse_expression(0.25, "x")
     1/4
-    >>> parse_expression("1e7", "x")
-    10000000
+    >>> parse_expression("2*m", "x")
+    2*m
     """
-    if isinstance(value, bool):
-        raise InputError(where, "expected a number or expression, not true/false")
-    if isinstance(value, int):
-        return sp.Integer(value)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise InputError(where, f"must be finite, got {value}")
-        return sp.Rational(repr(value))
-    if not isinstance(value, str):
-        raise InputError(where, f"expected a number or expression, got {type(value).__name__}")
-    if len(value) > MAX_EXPRESSION:
-        raise InputError(where, f"expression longer than {MAX_EXPRESSION} characters")
-    text = value.strip()
-    degrees = re.fullmatch(r"(.*?)\s*deg", text, re.DOTALL)
-    if degrees:
-        text = degrees.group(1)
-    if text.lower() in ("nan", "inf", "infinity", "-inf", "+inf"):
-        raise InputError(where, f"must be finite, got {value!r}")
-    expr = _Parser(text, where, symbols).parse()
-    return expr * sp.pi / 180 if degrees else expr
+    return expressions.parse_expression(value, where, symbols)
 
 
 def _vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
@@ -240,6 +94,11 @@ class Scene:
     contact: Contact
     simulate: Mapping[str, Any] = field(default_factory=dict)
     name: str = "scene"
+
+    @property
+    def roles(self) -> tuple[Role, ...]:
+        """What bounds the scene's data by role (see :mod:`rigidimpact.roles`)."""
+        return roles_of(self.bodies, (self.contact,))
 
     def impact(self) -> Impact:
         """The scene's impact."""
@@ -278,7 +137,8 @@ class Scene:
                   f"{self.contact.normal[1]}), restitution {self.contact.restitution}",)
         return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
                           solution.results(), solution=solution,
-                          seconds=time.perf_counter() - start)
+                          seconds=time.perf_counter() - start,
+                          warnings=model_warnings(self.contact))
 
 
 def _table(data: Mapping[str, Any], key: str, form: str) -> dict[str, Any]:
@@ -295,7 +155,8 @@ def _symbols_table(table: Mapping[str, Any]) -> dict[str, sp.Symbol]:
         where = f"symbols.{name}"
         if not re.fullmatch(r"[A-Za-z][A-Za-z0-9]*(_[A-Za-z0-9]+)?", name):
             raise InputError(where, "a symbol name is letters and digits, with at most one _")
-        if name in FUNCTIONS or name in CONSTANTS or name == "deg":
+        if (name in expressions.FUNCTIONS or name in expressions.CONSTANTS or name == "deg"
+                or keyword.iskeyword(name) or name in ("True", "False", "None")):
             raise InputError(where, f"{name!r} is reserved")
         if not isinstance(spec, dict):
             raise InputError(where, "expected a table such as { positive = true }")
@@ -320,34 +181,12 @@ def _values_table(table: Mapping[str, Any],
         if name not in symbols:
             raise InputError(where, "unknown symbol; declare it under [symbols]")
         value = parse_expression(raw, where, {})  # numbers only: a value names no symbol
-        values[symbols[name]] = check_value(symbols[name], value, where)
+        values[symbols[name]] = check_assumptions(symbols[name], value, where)
     return values
 
 
-def check_value(sym: sp.Symbol, value: sp.Expr, where: str) -> sp.Expr:
-    """Refuse a number that contradicts the symbol's assumptions (or e outside [0, 1]).
-
-    Examples
-    --------
-    >>> check_value(SYMBOLS["m"], sp.Integer(-1), "values.m")
-    Traceback (most recent call last):
-    ...
-    rigidimpact.errors.InputError: values.m: must be positive (m is positive), got -1
-    """
-    if not value.is_finite:
-        raise InputError(where, f"must be finite, got {value}")
-    for assumption, ok in (("positive", value > 0), ("nonnegative", value >= 0),
-                           ("negative", value < 0), ("nonpositive", value <= 0),
-                           ("nonzero", value != 0)):
-        if getattr(sym, f"is_{assumption}") and not ok:
-            raise InputError(where, f"must be {assumption} ({sym} is {assumption}), got {value}")
-    if sym.name == "e" and not 0 <= value <= 1:
-        raise InputError(where, f"the restitution coefficient must lie in [0, 1], got {value}")
-    return value
-
-
 _BODY_KEYS = {
-    "particle": {"mass"},
+    "particle": {"mass"},  # a point has no spin that an impact could change or use
     "barbell": {"mass", "half_length", "angle", "struck"},
     "rod": {"mass", "length", "angle", "struck_at"},
     "disc": {"mass", "radius", "position"},
@@ -378,7 +217,9 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     if shape not in SHAPES:
         raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
                          f"{', '.join(SHAPES)}")
-    allowed = _BODY_KEYS[shape] | {"name", "shape", "velocity", "spin"}
+    allowed = _BODY_KEYS[shape] | {"name", "shape", "velocity"}
+    if shape != "particle":
+        allowed |= {"spin"}
     for key in table:
         if key not in allowed:
             raise InputError(f"{where}.{key}", f"not a field of a {shape}; allowed: "
@@ -458,11 +299,21 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     tables = data.get("bodies")
     if not isinstance(tables, list) or len(tables) != 2:
         raise InputError("bodies", "exactly two [[bodies]] entries are required")
-    order = contact_table.get("bodies", [t.get("name") for t in tables
-                                         if isinstance(t, dict)])
-    if (not isinstance(order, list) or len(order) != 2 or len(set(map(str, order))) != 2):
+    by_name: dict[str, tuple[int, dict]] = {}
+    for index, table in enumerate(tables):
+        if not isinstance(table, dict):
+            raise InputError(f"bodies[{index}]", "each [[bodies]] entry must be a table")
+        body_name = table.get("name")
+        if not isinstance(body_name, str) or not body_name.isidentifier():
+            raise InputError(f"bodies[{index}].name", "required: an identifier such as "
+                             "\"ball\"")
+        if body_name in by_name:
+            raise InputError(f"bodies[{index}].name", f"two bodies are named {body_name!r}")
+        by_name[body_name] = (index, table)
+    order = contact_table.get("bodies", list(by_name))
+    if (not isinstance(order, list) or len(order) != 2
+            or not all(isinstance(x, str) for x in order) or order[0] == order[1]):
         raise InputError("contact.bodies", "must name the two bodies, e.g. [\"ball\", \"bar\"]")
-    by_name = {t.get("name"): (k, t) for k, t in enumerate(tables) if isinstance(t, dict)}
     bodies = []
     for side, body_name in zip((-1, 1), order, strict=True):
         if body_name not in by_name:
@@ -477,17 +328,11 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
 
 
 def _check_scene(scene: Scene) -> None:
-    """Checks that need the whole scene: e and approach with the given values."""
+    """Checks that need the whole scene: roles and approach with the given values."""
     impact = scene.impact()  # refuses bodies known not to approach
     if scene.values:
-        e = scene.contact.restitution.subs(scene.values)
-        if e.is_number and not 0 <= e <= 1:
-            raise InputError("contact.restitution", f"must lie in [0, 1], got {e} with "
-                             "[values]")
-        for body in scene.bodies:
-            if body.mass.subs(scene.values).is_nonpositive:
-                raise InputError(f"{body.name}.mass", "must be positive with [values]")
-        approach = impact.approach_speed.subs(scene.values)
+        check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
+        approach = impact.approach_speed.xreplace(dict(scene.values))
         if approach.is_number and approach <= 0:
             raise InputError("bodies", f"the bodies are not approaching at O with [values] "
                              f"(normal approach speed {sp.N(approach, 6)})")
@@ -503,7 +348,7 @@ def load_scene(path: str | Path) -> Scene:
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark is accepted
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(str(path), f"cannot read the scene file: "
                          f"{getattr(exc, 'strerror', None) or exc}") from None
