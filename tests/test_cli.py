@@ -160,7 +160,7 @@ def test_simulate_restrike_scene_reports_the_event(capsys):
     data = _json(capsys, ["simulate", str(DERIVATIONS / "restrike.toml"), "--json"])
     assert {"effects", "not_simulated", "final", "events", "cost"} <= set(data)
     kinds = [event["kind"] for event in data["events"]]
-    assert kinds == ["impact", "restrike"]
+    assert kinds == ["impact", "restrike", "end"]
     assert data["events"][1]["part"] == "rod"
     assert data["cost"]["ode_steps"] == 0
     assert data["final"]["t"] == data["events"][1]["t"]

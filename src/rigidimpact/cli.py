@@ -283,6 +283,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         if not args.json and not args.plot:
             return 0
     outcome = run(scene)
+    for warning in outcome.details.get("warnings", ()):
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.plot:
         _plot_outcome(scene, outcome, Path(args.plot))
     if args.json:

@@ -60,6 +60,7 @@ __all__ = ["Restrike", "derive", "Edge", "CriticalAngle", "critical_angle", "win
 
 DIGITS = 40  # working precision of the window edges; 30 are promised, 10 are guard digits
 ENDS = mpmath.mpf(10) ** -12  # edges closer than this to 0 or pi (radians) are not resolved
+CERTIFY = mpmath.mpf(10) ** -(DIGITS + 2)  # an edge's sign change is shown this close
 GRID, END_GRID = 2048, 200  # scan points across (0, pi), and toward each end
 m, M, L, theta, e, v_ix = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
 tau = symbol("tau")
@@ -213,16 +214,24 @@ class CriticalAngle:
 
 
 def _checked(restitution, mass_ratio) -> tuple[Fraction, Fraction]:
-    try:
-        e_value = Fraction(str(restitution))
-        r_value = Fraction(str(mass_ratio))
-    except (ValueError, ZeroDivisionError):
-        raise InputError("--e/--mass-ratio", f"not numbers: {restitution!r}, "
-                         f"{mass_ratio!r}") from None
+    """e and m/M as exact fractions (``"0.3"`` is 3/10), each bounded as scene numbers."""
+    from rigidimpact.expr import parse_expression
+
+    exact = []
+    for value, where in ((restitution, "--e"), (mass_ratio, "--mass-ratio")):
+        if isinstance(value, Fraction):
+            value = f"{value.numerator}/{value.denominator}"
+        number = parse_expression(value, where)
+        if not number.is_Rational:
+            raise InputError(where, f"must be a rational number such as 0.3 or 1/3, got "
+                             f"{value!r}")
+        exact.append(Fraction(int(number.p), int(number.q)))
+    e_value, r_value = exact
     if not 0 <= e_value <= 1:
-        raise InputError("e", f"must lie in [0, 1], got {restitution}")
+        raise InputError("--e", f"the restitution coefficient must lie in [0, 1], got "
+                         f"{restitution}")
     if not r_value > 0:
-        raise InputError("mass-ratio", f"m/M must be positive, got {mass_ratio}")
+        raise InputError("--mass-ratio", f"m/M must be positive, got {mass_ratio}")
     return e_value, r_value
 
 
@@ -233,23 +242,70 @@ def _grid(lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
     return sorted(set([lo + x for x in near] + middle + [hi - x for x in near]))
 
 
+def _scale(expr: sp.Expr) -> sp.Expr:
+    """The expression with every sum's terms in absolute value: the size it is made of."""
+    return expr.replace(lambda n: isinstance(n, sp.Add),
+                        lambda n: sp.Add(*(sp.Abs(t) for t in n.args)))
+
+
+def _bisect(f, a: mpmath.mpf, b: mpmath.mpf, width: mpmath.mpf) -> mpmath.mpf:
+    """A root of `f` in [a, b] (where f changes sign) by halving down to `width`."""
+    fa = f(a)
+    while b - a > width:
+        mid = (a + b) / 2
+        fm = f(mid)
+        if fm == 0:
+            return mid
+        if (fm > 0) == (fa > 0):
+            a, fa = mid, fm
+        else:
+            b = mid
+    return (a + b) / 2
+
+
+def _certified(f, r: mpmath.mpf, a: mpmath.mpf, b: mpmath.mpf) -> mpmath.mpf:
+    """`r` if f provably changes sign within ``CERTIFY`` (relative) of it, else the root
+    found by bisection of [a, b]; either way the printed digits are right."""
+    delta = abs(r) * CERTIFY
+    noise = mpmath.mpf(10) ** (-(DIGITS + 5))
+    if a < r - delta and r + delta < b:
+        left, right = f(r - delta), f(r + delta)
+        if left * right < 0 and min(abs(left), abs(right)) > noise:
+            return r
+    root = _bisect(f, a, b, delta)
+    left, right = f(root - delta), f(root + delta)
+    if not (left * right < 0 and min(abs(left), abs(right)) > noise):
+        raise InputError("--mass-ratio", "the edge of a window cannot be certified to the "
+                         "digits printed at this e and mass ratio (the condition is too flat "
+                         "there)")
+    return root
+
+
 def _roots(expr: sp.Expr, lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
     """The roots of `expr` (a function of theta) in (lo, hi).
 
-    The factor is scanned on a grid (dense toward the ends, where a root can sit within
-    a hair of 0 or pi); a sign change is a simple root, refined by a bracketing solver.
-    Where |f| has a local minimum without a sign change, the derivative's root there is
-    found and, if f changes sign at it, both roots of the pair are taken. Roots closer
-    than ``ENDS`` to the ends are not resolved.
+    The factor is divided by its scale (``_scale``), so its size does not depend on m/M
+    (a factor of size 1e-80 would otherwise pass any absolute tolerance at once). It is
+    scanned on a grid (dense toward the ends, where a root can sit within a hair of 0 or
+    pi); a sign change is a simple root, refined by a bracketing solver and then
+    certified: the sign must change within ``CERTIFY`` of the root (relative), or the
+    root is found by bisection instead. Where |f| has a local minimum without a sign
+    change, the derivative's root there is found and, if f changes sign at it, both roots
+    of the pair are taken. Roots closer than ``ENDS`` to the ends are not resolved.
     """
-    f = sp.lambdify(theta, expr, modules="mpmath")
-    df = sp.lambdify(theta, sp.diff(expr, theta), modules="mpmath")
+    f = sp.lambdify(theta, expr / _scale(expr), modules="mpmath")
+    df = sp.lambdify(theta, sp.diff(expr, theta) / _scale(sp.diff(expr, theta)),
+                     modules="mpmath")
     xs = _grid(lo, hi)
     ys = [f(x) for x in xs]
     found: list[mpmath.mpf] = []
 
     def bracketed(a, b):
-        return mpmath.findroot(f, (a, b), solver="anderson")
+        try:
+            guess = mpmath.findroot(f, (a, b), solver="anderson")
+        except (ValueError, ZeroDivisionError):
+            guess = (a + b) / 2
+        return _certified(f, guess if a <= guess <= b else (a + b) / 2, a, b)
 
     for j in range(len(xs) - 1):
         if ys[j] == 0:
@@ -260,7 +316,12 @@ def _roots(expr: sp.Expr, lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
             a, b = xs[j - 1], xs[j + 1]
             if df(a) * df(b) >= 0:
                 continue
-            turning = mpmath.findroot(df, (a, b), solver="anderson")
+            try:
+                turning = mpmath.findroot(df, (a, b), solver="anderson")
+            except (ValueError, ZeroDivisionError):
+                turning = _bisect(df, a, b, abs(a) * CERTIFY)
+            if not a < turning < b:
+                turning = _bisect(df, a, b, abs(a) * CERTIFY)
             if f(turning) == 0 or abs(f(turning)) < mpmath.mpf(10) ** (-DIGITS):
                 found.append(turning)  # touching: an edge of zero width
             elif f(turning) * ys[j] < 0:

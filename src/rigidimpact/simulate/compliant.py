@@ -52,6 +52,8 @@ __all__ = ["restitution_of", "damping_ratio_for", "run_compliant", "prepare", "M
 MAX_DAMPING_RATIO = 1e3  # e = 2.5e-7 here; e -> 0 needs an unbounded dashpot
 SETTLE_PERIODS = 3  # after the last contact, watch this many of the slowest periods
 MAX_SEGMENTS = 2000  # contact changes (or instant impacts) before giving up
+MAX_STEPS = 200_000  # an estimate above this is refused: the run would take minutes
+STEPS_PER_PERIOD = 4  # explicit methods step at most a quarter of the fastest period
 
 
 def _gap(z: float, t: np.ndarray | float):
@@ -160,6 +162,7 @@ class _Part:
     mass: float
     inertia: float = 0.0
     contact: np.ndarray | None = None  # rigid: the touching point relative to the centre
+    round: bool = False  # disc, ring, sphere: the touching point stays on the normal
     rest: float = 0.0  # spring: rest length
     stiffness: float = 0.0
 
@@ -187,20 +190,28 @@ def _build(body: Body, slot: int, values: Mapping, plan: Plan) -> tuple[_Part, l
     inertia = as_float(body.inertia, values)
     if inertia == 0.0:
         return _Part(body.name, "point", slot, mass), [*position, *velocity]
-    return (_Part(body.name, "rigid", slot, mass, inertia, contact=-position),
+    # a round body touches at the surface point facing the other body, whatever its spin:
+    # that point does not turn with the material, so a normal force there has no torque
+    # about the centre when the normal passes through it
+    return (_Part(body.name, "rigid", slot, mass, inertia, contact=-position,
+                  round=body.shape in ("disc", "ring", "sphere")),
             [*position, 0.0, *velocity, spin])
 
 
 def _contact_point(part: _Part, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Position and velocity of the part's material point that touched at O."""
+    """Position and velocity of the part's touching point: the material point that touched
+    at O, or for a round body the surface point facing along the original normal."""
     s = part.slot
     if part.kind == "point":
         return y[s:s + 2], y[s + 2:s + 4]
     if part.kind == "spring":  # the struck sphere comes first
         return y[s:s + 2], y[s + 4:s + 6]
     c, phi, v, w = y[s:s + 2], y[s + 2], y[s + 3:s + 5], y[s + 5]
-    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
-    r = rot @ part.contact
+    if part.round:
+        r = part.contact
+    else:
+        rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+        r = rot @ part.contact
     return c + r, v + w * np.array([-r[1], r[0]])
 
 
@@ -390,10 +401,35 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     if approach <= 0:
         raise InputError("bodies", "the bodies are not approaching at O")
     fast, slow = min(periods), max(periods)
+    springs = any(p.kind == "spring" for p in parts)
+    watched = SETTLE_PERIODS * slow if plan.until == "separation" else float(plan.until)
+    # the fast mode is followed as long as a rod spring rings, else only while touching
+    estimate = STEPS_PER_PERIOD * (watched if springs else SETTLE_PERIODS * slow) / fast
+    if estimate > MAX_STEPS:
+        raise InputError("simulate", f"this run would take about {estimate:.1e} integration "
+                         f"steps (the fastest period is {fast:.2e} s, followed for "
+                         f"{watched:.3g} s); ask for a shorter time or stiffnesses closer "
+                         "together")
     integrator = choose_integrator(fast, slow, plan.settings["tolerance"])
     if plan.integrator != "auto":
         integrator |= {"method": plan.integrator, "why": "asked for by the scene"}
     return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
+
+
+def _max_step(parts: list[_Part], y: np.ndarray, fast: float, resolving: bool,
+              explicit: bool) -> float:
+    """The longest step that cannot skip a contact event.
+
+    While the contact acts or a rod spring rings, an explicit method steps at most a
+    quarter of the fastest period. In free flight of rigid bodies the gap between the
+    touching points is linear in time plus one sinusoid per spinning body, so an eighth
+    of the fastest turn is short enough to see it change sign.
+    """
+    if resolving:
+        return fast / STEPS_PER_PERIOD if explicit else np.inf
+    spins = [abs(y[p.slot + 5]) for p in parts if p.kind == "rigid" and not p.round]
+    fastest = max(spins, default=0.0)
+    return math.pi / 4 / fastest if fastest > 0 else np.inf
 
 
 def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
@@ -465,14 +501,24 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     steps, quiet_since = 0, 0.0
     times, states = [0.0], [y.copy()]
     explicit = integrator["method"] in ("RK45", "DOP853")
-    max_step = fast / 4 if explicit else np.inf
+    springs = any(p.kind == "spring" for p in parts)
+    why = ""
     for _ in range(MAX_SEGMENTS):
-        stop = min(horizon, (t if touching else quiet_since) + SETTLE_PERIODS * slow)
+        if touching:
+            stop = min(horizon, t + SETTLE_PERIODS * slow)
+        elif math.isfinite(horizon):
+            stop = horizon
+        else:
+            stop = quiet_since + SETTLE_PERIODS * slow
         if t >= stop:
+            why = (f"reached until = {horizon:g} s" if t >= horizon else
+                   f"separated, and no new contact within {SETTLE_PERIODS} of the slowest "
+                   f"periods ({slow:.3g} s) after the last one")
             break
         sol = solve_ivp(rhs, (t, stop), y, method=integrator["method"],
                         rtol=integrator["rtol"], atol=atol,
-                        events=[lets_go] if touching else [touches], max_step=max_step)
+                        events=[lets_go] if touching else [touches],
+                        max_step=_max_step(parts, y, fast, touching or springs, explicit))
         if sol.status == -1:
             raise InputError("simulate", f"the integrator failed: {sol.message}")
         steps += len(sol.t) - 1
@@ -497,6 +543,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     else:
         raise InputError("simulate", f"more than {MAX_SEGMENTS} contacts: the bodies chatter"
                          " (a rigid contact with e near 0 sticks; ask for contact-compliance)")
+    events.append({"kind": "end", "t": t, "why": why})
     final: dict[str, float] = {}
     for p in parts:
         final |= _final(p, y)

@@ -5,7 +5,7 @@ Examples
 >>> from rigidimpact.scene import load_scene
 >>> outcome = run(load_scene("derivations/barbell.toml"))
 >>> [event["kind"] for event in outcome.events]
-['impact']
+['impact', 'end']
 >>> round(outcome.final["barbell.vx"], 12)
 0.285714285714
 """
@@ -23,6 +23,7 @@ import sympy as sp
 
 from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
+from rigidimpact.problems import physics_warnings
 from rigidimpact.scene import Scene
 from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
@@ -175,7 +176,7 @@ def run(scene: Scene) -> Outcome:
     g = plan.settings["g"] if "gravity" in plan.effects else 0.0
     flyers = [replace(flyer(b, values), gravity=g) for b in after]
     events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
-    t_end = 0.0
+    t_end, why = 0.0, "the bodies separate at the impact (until = separation)"
     if plan.until != "separation":
         horizon = math.inf if plan.until == "restrike" else float(plan.until)
         points = [f for f in flyers if f.shape == "particle"]
@@ -186,6 +187,18 @@ def run(scene: Scene) -> Outcome:
         other = flyers[1 - flyers.index(ball)]
         more, t_end = _restrike(ball, other, horizon)
         events += more
+        why = {"restrike": "the next contact", "out-of-reach": "no next contact: the "
+               "ball leaves the other body's reach for good"}.get(
+            more[0]["kind"] if more else "", f"reached until = {t_end:g} s")
+    events.append({"kind": "end", "t": t_end, "why": why})
+    details = {}
+    energy = {"energy_loss_fraction": as_float(solution.energy_loss_fraction, values),
+              "impulse": as_float(solution.normal_impulse, values)}
+    contact = scene.contact
+    warnings = physics_warnings(energy, None, f"{contact.law.capitalize()}'s restitution "
+                                f"with a {contact.tangential} contact")
+    if warnings:
+        details["warnings"] = list(warnings)
     final: dict[str, float] = {}
     for body in flyers:
         place, turn = body.at(t_end)
@@ -196,5 +209,5 @@ def run(scene: Scene) -> Outcome:
                   f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
                   f"{body.name}.turn": turn}
     final["t"] = t_end
-    return Outcome(plan, final, events, time.perf_counter() - start,
+    return Outcome(plan, final, events, time.perf_counter() - start, details=details,
                    trajectory=FlightTrack(tuple(flyers), t_end))
