@@ -39,7 +39,7 @@ def test_export_writes_one_fragment_per_result_and_a_document(tmp_path):
     names = {p.name for p in written}
     assert "derivations.tex" in names
     assert len(names) == 1 + sum(len(d.results) for d in derivations)
-    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".export-")]
+    assert not [p for p in tmp_path.parent.iterdir() if p.name.startswith(f".{tmp_path.name}.")]
 
 
 def test_failed_export_leaves_nothing_behind(tmp_path, monkeypatch):
@@ -49,7 +49,21 @@ def test_failed_export_leaves_nothing_behind(tmp_path, monkeypatch):
     monkeypatch.setattr(latex, "compile_pdf", broken)
     with pytest.raises(RuntimeError):
         latex.write_export(tmp_path / "out", [derive("discs")], pdf=True)
-    assert list((tmp_path / "out").iterdir()) == []
+    assert list(tmp_path.iterdir()) == []  # no folder, no staging left behind
+
+
+def test_failed_export_keeps_the_previous_one_whole(tmp_path, monkeypatch):
+    first = latex.write_export(tmp_path / "out", [derive("discs")])
+    before = {p.name: p.read_text() for p in first}
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("pdflatex failed on derivations.tex: ! Emergency stop")
+
+    monkeypatch.setattr(latex, "compile_pdf", broken)
+    with pytest.raises(RuntimeError):
+        latex.write_export(tmp_path / "out", [derive("barbell")], pdf=True)
+    assert {p.name: p.read_text() for p in first} == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed")

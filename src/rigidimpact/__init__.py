@@ -12,30 +12,35 @@ L*m/(2*M + m)
 
 from __future__ import annotations
 
-# primitives and contact
-from rigidimpact.bodies import Body, join
-from rigidimpact.contact import Contact
-from rigidimpact.errors import InputError
+from importlib import import_module
+from typing import Any
 
-# solving
-from rigidimpact.impact import Impact
-from rigidimpact.laws import Equation
-from rigidimpact.notation import symbol
-from rigidimpact.problems import PROBLEMS, Derivation, derive
+# name -> module; imported on first use, so `import rigidimpact` (and the command line's
+# start) costs only what is used
+_PUBLIC = {
+    # primitives and contact
+    "Body": "bodies", "join": "bodies", "Contact": "contact", "InputError": "errors",
+    # solving
+    "Impact": "impact", "Equation": "laws", "Solution": "solution", "symbol": "notation",
+    "PROBLEMS": "problems", "Derivation": "problems", "derive": "problems",
+    # scenes and checks
+    "Scene": "scene", "load_scene": "scene", "parse_scene": "scene",
+    "run_checks": "verify",
+    # after the impact
+    "critical_angle": "restrike", "make_plan": "simulate", "run": "simulate",
+}
 
-# after the impact (importing restrike also adds its checks to `run_checks`)
-from rigidimpact.restrike import critical_angle
-
-# scenes and checks
-from rigidimpact.scene import Scene, load_scene, parse_scene
-from rigidimpact.simulate import make_plan, run
-from rigidimpact.solution import Solution
-from rigidimpact.verify import run_checks
-
-__all__ = [
-    "Body", "join", "Contact", "InputError",
-    "Impact", "Equation", "Solution", "symbol", "PROBLEMS", "Derivation", "derive",
-    "Scene", "load_scene", "parse_scene", "run_checks",
-    "critical_angle", "make_plan", "run",
-]
+__all__ = list(_PUBLIC)
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str) -> Any:
+    if name in _PUBLIC:
+        value = getattr(import_module(f"rigidimpact.{_PUBLIC[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'rigidimpact' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_PUBLIC])

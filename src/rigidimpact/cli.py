@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -143,8 +144,6 @@ def _cmd_export(args: argparse.Namespace) -> int:
         written = write_export(Path(args.out), derivations, checks, pdf=args.pdf)
     except RuntimeError as exc:
         raise InputError("--pdf", str(exc)) from None
-    except OSError as exc:
-        raise InputError("--out", f"cannot write there: {exc.strerror or exc}") from None
     if args.json:
         _print_json([str(p) for p in written])
     else:
@@ -291,8 +290,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _print_json(outcome.as_json())
         return 0
     for event in outcome.events:
-        extra = ", ".join(f"{k} {v}" for k, v in event.items() if k not in ("kind", "t"))
-        print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else ""))
+        extra = ", ".join(f"{k} {v}" for k, v in event.items()
+                          if k not in ("kind", "t", "why"))
+        print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else "")
+              + (f": {event['why']}" if "why" in event else ""))
     for key, value in outcome.final.items():
         print(f"{key} = {value!r}")
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
@@ -302,15 +303,18 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 def _check_plot_path(path: Path) -> None:
     if path.suffix.lower() != ".png":
         raise InputError("--plot", f"expected a .png file name, got {str(path)!r}")
+    if path.is_dir():
+        raise InputError("--plot", f"{str(path)!r} is a folder; give a file name")
     if not path.parent.is_dir():
         raise InputError("--plot", f"no such folder: {str(path.parent)!r}")
+    if not os.access(path.parent, os.W_OK | os.X_OK):
+        raise InputError("--plot", f"cannot write in {str(path.parent)!r} (permission "
+                         "denied)")
 
 
 def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
     """Draw a run's trajectories to a PNG, written whole or not at all."""
-    import os
-    import tempfile
-
+    from rigidimpact.atomic import write_file
     from rigidimpact.plots import trajectories
 
     track = outcome.trajectory
@@ -319,14 +323,7 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
         name = scene.bodies[1].name
         velocity = (f"{name} at O", track.contact_velocity(name))
     figure = trajectories(track.t, track.points(), scene.title, velocity)
-    handle, temporary = tempfile.mkstemp(suffix=".png", dir=path.parent)
-    os.close(handle)
-    try:
-        figure.savefig(temporary)
-        os.replace(temporary, path)
-    finally:
-        if os.path.exists(temporary):
-            os.remove(temporary)
+    write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
 
 
 def _progress_bar(done: int, total: int, label: str) -> None:
@@ -347,6 +344,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise InputError("--out", f"not a folder: {str(out)!r}")
+    existing = out if out.exists() else next((p for p in out.parents if p.exists()), Path("."))
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise InputError("--out", f"cannot write in {str(existing)!r} (permission denied)")
     report = run_bench(quick=args.quick, progress=_progress_bar)
     paths = write_outputs(report, out)
     if args.json:
@@ -361,6 +361,7 @@ def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
                      description="Derive, verify and simulate impulsive planar collisions "
                                  "of rigid bodies (after Mungan, Eur. J. Phys. 28, 2007).")
+    parser.add_argument("--version", action="version", version=f"rigidimpact {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     p = sub.add_parser("derive", help="derive a collision symbolically")
@@ -416,8 +417,21 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("rigidimpact")
+    except PackageNotFoundError:
+        return "unknown"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status.
+
+    Bad input ends in one line on standard error and status 2; Ctrl-C in one line and
+    status 130; a closed output pipe (``| head``) quietly. An unexpected error is one
+    line too (set ``RIGIDIMPACT_DEBUG=1`` for the traceback), status 70.
 
     Parameters
     ----------
@@ -434,3 +448,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     except InputError as exc:
         print(f"rigidimpact: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("rigidimpact: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # the reader went away (| head): say nothing, and keep Python from complaining
+        # when it flushes standard output at exit
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
+    except (RecursionError, MemoryError) as exc:
+        print(f"rigidimpact: error: the input is too large or deeply nested to handle "
+              f"({type(exc).__name__})", file=sys.stderr)
+        return 2
+    except Exception as exc:  # one line for the user; the traceback on request
+        if os.environ.get("RIGIDIMPACT_DEBUG"):
+            raise
+        message = " ".join(str(exc).split())[:300]
+        print(f"rigidimpact: internal error: {type(exc).__name__}: {message} (please "
+              "report it; RIGIDIMPACT_DEBUG=1 shows the traceback)", file=sys.stderr)
+        return 70

@@ -14,16 +14,15 @@ Examples
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 import subprocess
-import tempfile
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 import sympy as sp
 
+from rigidimpact.atomic import replace_folder
 from rigidimpact.laws import Equation
 from rigidimpact.notation import SYMBOLS, latex_name, latex_names
 from rigidimpact.problems import Derivation
@@ -215,36 +214,39 @@ def document(derivations: Sequence[Derivation], checks: Iterable = ()) -> str:
 
 def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Iterable = (),
                  pdf: bool = False) -> list[Path]:
-    """Write every fragment and ``derivations.tex`` (and ``.pdf``) into `out_dir`.
+    """Write every fragment and ``derivations.tex`` (and ``.pdf``) as the folder `out_dir`.
 
-    Everything is rendered (and, with `pdf`, compiled) in a temporary folder first;
-    only then are the files moved into place, each by an atomic rename, so a failure
-    leaves nothing half-written behind.
+    Everything is rendered (and, with `pdf`, compiled) in a staging folder beside
+    `out_dir`, which is then swapped in with one atomic rename: a reader sees the old
+    export or the new one, never a mix, also when the process is killed (see
+    :mod:`rigidimpact.atomic`). An existing `out_dir` must be an earlier export (or
+    empty, or hold only LaTeX output); anything else is refused, not replaced.
 
     Returns
     -------
     list of Path
         The files written.
     """
-    out_dir = Path(out_dir)
     files: dict[str, str] = {}
     for derivation in derivations:
         files.update(fragments(derivation))
     files["derivations.tex"] = document(derivations, checks)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=out_dir, prefix=".export-") as tmp:
-        staging = Path(tmp)
+
+    def fill(staging: Path) -> list[str]:
         for name, text in files.items():
             (staging / name).write_text(text, encoding="utf-8")
         names = list(files)
         if pdf:
             compile_pdf(staging / "derivations.tex")
             names.append("derivations.pdf")
-        written = []
-        for name in names:
-            os.replace(staging / name, out_dir / name)
-            written.append(out_dir / name)
-    return written
+            for leftover in ("derivations.aux", "derivations.log", "derivations.out"):
+                (staging / leftover).unlink(missing_ok=True)
+        return names
+
+    return replace_folder(Path(out_dir), fill, LATEX_OUTPUT)
+
+
+LATEX_OUTPUT = (".tex", ".pdf", ".aux", ".log", ".out")  # what export writes
 
 
 def compile_pdf(tex: Path) -> Path:
