@@ -21,11 +21,12 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, NoReturn
-
-import sympy as sp
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from rigidimpact.errors import InputError
+
+if TYPE_CHECKING:
+    import sympy as sp
 
 __all__ = ["main"]
 
@@ -344,11 +345,18 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise InputError("--out", f"not a folder: {str(out)!r}")
-    existing = out if out.exists() else next((p for p in out.parents if p.exists()), Path("."))
-    if not os.access(existing, os.W_OK | os.X_OK):
-        raise InputError("--out", f"cannot write in {str(existing)!r} (permission denied)")
+    try:  # before the long run, not after it
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError("--out", f"cannot make {str(out)!r}: {exc.strerror or exc}") from None
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise InputError("--out", f"cannot write in {str(out)!r} (permission denied)")
     report = run_bench(quick=args.quick, progress=_progress_bar)
-    paths = write_outputs(report, out)
+    try:
+        paths = write_outputs(report, out)
+    except OSError as exc:
+        raise InputError("--out", f"cannot write the bench there: {exc.strerror or exc}") \
+            from None
     if args.json:
         _print_json({k: v for k, v in report.items()})
         return 0

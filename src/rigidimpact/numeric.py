@@ -155,9 +155,11 @@ _CACHE: dict[tuple, Any] = {}
 def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...], module: str):
     key = (expr, symbols, module)
     if key not in _CACHE:
-        # dummify: a scene's symbol named like the generated code's names (mpf, sin,
-        # select) must not shadow them
-        _CACHE[key] = sp.lambdify(symbols, expr, module, dummify=True)
+        # the generated code sees only fresh dummies: a scene's symbol named like one of
+        # its own names (mpf, sin, select) would otherwise shadow it
+        dummies = [sp.Dummy(f"x{k}") for k in range(len(symbols))]
+        safe = expr.xreplace(dict(zip(symbols, dummies, strict=True)))
+        _CACHE[key] = sp.lambdify(dummies, safe, module)
     return _CACHE[key]
 
 

@@ -416,6 +416,29 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
 
 
+def _scales(parts: list[_Part], y0: np.ndarray, normal: np.ndarray,
+            fast: float) -> np.ndarray:
+    """The size of each state component, for absolute tolerances: positions on the scale
+    of the contact's squeeze (speed times the fastest period), velocities on the speed's,
+    angles and spins through each body's arm, the work on the energy's. One scale for
+    all would let a large spin loosen the squeeze that sets e."""
+    first, second = parts
+    speed = abs(float(normal @ (_contact_point(first, y0)[1] - _contact_point(second, y0)[1])))
+    squeeze = speed * fast / (2 * math.pi)
+    scales = np.empty_like(y0)
+    for p in parts:
+        s = p.slot
+        if p.kind == "point":
+            scales[s:s + 4] = [squeeze, squeeze, speed, speed]
+        elif p.kind == "spring":
+            scales[s:s + 8] = [squeeze] * 4 + [speed] * 4
+        else:
+            arm = float(np.linalg.norm(p.contact)) or 1.0
+            scales[s:s + 6] = [squeeze, squeeze, squeeze / arm, speed, speed, speed / arm]
+    scales[-1] = sum(_energy(parts, y0)) or 1.0
+    return scales
+
+
 def _max_step(parts: list[_Part], y: np.ndarray, fast: float, resolving: bool,
               explicit: bool) -> float:
     """The longest step that cannot skip a contact event.
@@ -442,8 +465,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     k_c, c_c, fast, slow = model.k_c, model.c_c, model.fast, model.slow
     integrator, contact_info = model.integrator, model.contact
     compliant_contact = "contact-compliance" in plan.effects
-    scale = float(np.max(np.abs(y0[:-1]))) or 1.0
-    atol = integrator["rtol"] * scale * np.ones_like(y0)
+    atol = integrator["rtol"] * _scales(parts, y0, normal, fast)
 
     def penetration(y: np.ndarray) -> tuple[float, float]:
         (p1, v1), (p2, v2) = _contact_point(first, y), _contact_point(second, y)

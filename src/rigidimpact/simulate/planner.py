@@ -38,6 +38,17 @@ SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance
 INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
 DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81}
+# what the compliant runs can honour in float64 and in reasonable time (a pairing of
+# stiffnesses that is too costly is refused later, from its estimated step count)
+RANGES = {
+    "rod_stiffness": (1e-3, 1e16, "outside it the run either cannot resolve the spring "
+                      "in float64 or lasts for ages"),
+    "contact_stiffness": (1e-3, 1e16, "outside it the run either cannot resolve the "
+                          "contact in float64 or lasts for ages"),
+    "tolerance": (1e-12, 1e-1, "float64 cannot meet a tighter one, and a looser one "
+                  "is no answer"),
+    "g": (1e-6, 1e6, "a gravity outside it belongs to another problem"),
+}
 
 
 @dataclass(frozen=True)
@@ -98,6 +109,10 @@ def _number(table: Mapping[str, Any], key: str) -> float:
         raise InputError(f"simulate.{key}", f"must be a number, got {value!r}")
     if not math.isfinite(value) or value <= 0:
         raise InputError(f"simulate.{key}", f"must be positive and finite, got {value!r}")
+    low, high, why = RANGES[key]
+    if not low <= value <= high:
+        raise InputError(f"simulate.{key}", f"must lie in [{low:g}, {high:g}], got "
+                         f"{value!r}: {why}")
     return float(value)
 
 

@@ -170,7 +170,7 @@ def run(scene: Scene) -> Outcome:
     if any(step.model == "compliant" for step in plan.steps):
         from rigidimpact.simulate.compliant import run_compliant
 
-        return run_compliant(scene, plan, values, start)
+        return _finite(run_compliant(scene, plan, values, start))
     solution = scene.impact().solve()
     after = (solution.first_after, solution.second_after)
     g = plan.settings["g"] if "gravity" in plan.effects else 0.0
@@ -209,5 +209,14 @@ def run(scene: Scene) -> Outcome:
                   f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
                   f"{body.name}.turn": turn}
     final["t"] = t_end
-    return Outcome(plan, final, events, time.perf_counter() - start, details=details,
-                   trajectory=FlightTrack(tuple(flyers), t_end))
+    return _finite(Outcome(plan, final, events, time.perf_counter() - start,
+                           details=details, trajectory=FlightTrack(tuple(flyers), t_end)))
+
+
+def _finite(outcome: Outcome) -> Outcome:
+    """The outcome, unless float64 could not hold a number of it (never print NaN)."""
+    bad = sorted(k for k, v in outcome.final.items() if not math.isfinite(v))
+    if bad:
+        raise InputError("simulate", f"{', '.join(bad)} left float64's range in this run; "
+                         "scale the scene's numbers closer to 1")
+    return outcome
