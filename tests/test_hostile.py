@@ -99,9 +99,10 @@ def test_non_ascii_is_refused(text):
         parse_expression(text, "field", SYMBOLS)
 
 
-@pytest.mark.parametrize("text", ["__import__('os')", "m.real", "m[0]", "lambda: 1", "m if m else M",
-                                  "[m]", "m == M", "1j", "0x10", "1_000", "'m'", "sin(m, M)",
-                                  "sin", "True", "None", "m; M", "sqrt(-1)", "tan(pi/2)",
+@pytest.mark.parametrize("text", ["__import__('os')", "m.real", "m[0]", "lambda: 1",
+                                  "m if m else M", "[m]", "m == M", "1j", "0x10", "1_000",
+                                  "'m'", "sin(m, M)", "sin", "True", "None", "m; M",
+                                  "sqrt(-1)", "tan(pi/2)",
                                   "0**-1", "nan", "-inf"])
 def test_anything_outside_the_grammar_is_refused(text):
     with pytest.raises(InputError):

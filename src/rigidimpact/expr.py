@@ -43,8 +43,8 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 
-__all__ = ["parse_expression", "check_size", "MAX_EXPRESSION", "MAX_DIGITS", "MAX_POWER", "MAX_DEPTH",
-           "FUNCTIONS", "CONSTANTS"]
+__all__ = ["parse_expression", "check_size", "MAX_EXPRESSION", "MAX_DIGITS", "MAX_POWER",
+           "MAX_DEPTH", "FUNCTIONS", "CONSTANTS"]
 
 MAX_EXPRESSION = 400
 MAX_DIGITS = 101  # numerator or denominator: 1e100 and 1e-100 fit, 1e101 does not
