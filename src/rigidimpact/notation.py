@@ -29,7 +29,7 @@ GREEK = frozenset(
     "tau upsilon phi chi psi omega Gamma Delta Theta Lambda Xi Pi Sigma Phi Psi Omega".split()
 )
 
-# name -> assumptions; the problem symbols of DESIGN.md plus a few generic names scenes use.
+# name -> assumptions; the problem symbols of docs/scenes.md plus a few generic names scenes use.
 _ASSUMPTIONS: dict[str, dict[str, bool]] = {
     # section 1: ball and barbell
     "m": {"positive": True},

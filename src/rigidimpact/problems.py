@@ -1,6 +1,6 @@
 """The paper's problems built from primitives and solved: each gives a :class:`Derivation`.
 
-Built-in names (DESIGN.md): ``barbell`` (section 1), ``sticking`` (the clay ball of
+Built-in names: ``barbell`` (section 1), ``sticking`` (the clay ball of
 figure 2), ``discs`` (equal smooth discs, eq. 16) and ``two-body`` (the general smooth
 planar impact of section 3). Nothing here is typed in from the paper's results: every
 result is solved from the laws; :mod:`rigidimpact.paper` holds what it is checked against.

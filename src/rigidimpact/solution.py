@@ -145,7 +145,7 @@ class Solution:
                 self.second_after.contact_velocity.applyfunc(tidy))
 
     def results(self) -> dict[str, sp.Expr]:
-        """Results under the keys of DESIGN.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
+        """Results under the keys of docs/scenes.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
         ``impulse`` and ``energy_loss_fraction`` (and ``impulse_t`` when sticking).
 
         Examples

@@ -34,7 +34,7 @@ __all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack"]
 
 @dataclass(frozen=True)
 class Outcome:
-    """What a simulation found, in the keys of DESIGN.md.
+    """What a simulation found, in the keys of docs/scenes.md.
 
     ``final`` holds each body's ``vx, vy, omega`` and its place ``x, y`` and the angle
     ``turn`` it has turned through since the impact, at the end time ``t``.
