@@ -482,11 +482,13 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
     """bench.json, bench.md and accuracy-vs-time.png in `out`; returns the paths."""
     import json
 
+    from rigidimpact.atomic import write_file
     from rigidimpact.plots import accuracy_vs_time
 
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "bench.json", out / "bench.md", out / "accuracy-vs-time.png"]
-    paths[0].write_text(json.dumps(report, indent=2) + "\n", encoding="utf-8")
+    text = json.dumps(report, indent=2, allow_nan=False) + "\n"
+    write_file(paths[0], lambda p: p.write_text(text, encoding="utf-8"))
     front = {tuple(x) for pairs in report["pareto"].values() for x in pairs}
     lines = ["Errors are relative, against the exact collision (problem `collision`), the "
              "exact re-strike turn (`restrike`), or a converged run of the same compliant "
@@ -511,8 +513,9 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
     if report.get("failed"):
         lines += ["", "Settings the simulation refused (not timed):"]
         lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]
-    paths[1].write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_file(paths[1], lambda p: p.write_text("\n".join(lines) + "\n", encoding="utf-8"))
     fronts = [pareto([r for r in report["rows"] if r["problem"] == p])
               for p in ("collision", "restrike")]
-    accuracy_vs_time(report["rows"], fronts, FLOOR).savefig(paths[2])
+    figure = accuracy_vs_time(report["rows"], fronts, FLOOR)
+    write_file(paths[2], lambda p: figure.savefig(p, format="png"))
     return paths

@@ -58,8 +58,19 @@ def _expr_json(expr: sp.Expr) -> dict[str, str]:
     return {"sympy": str(expr), "latex": to_latex(expr)}
 
 
+def _finite_json(data: Any) -> Any:
+    """The data with every non-finite float as null: JSON has no NaN or Infinity."""
+    if isinstance(data, float):
+        return data if data == data and abs(data) != float("inf") else None
+    if isinstance(data, dict):
+        return {k: _finite_json(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_finite_json(v) for v in data]
+    return data
+
+
 def _print_json(data: Any) -> None:
-    print(json.dumps(data, indent=2))
+    print(json.dumps(_finite_json(data), indent=2, allow_nan=False))
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
