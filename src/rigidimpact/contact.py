@@ -29,6 +29,7 @@ import sympy as sp
 from rigidimpact.bodies import _expr, as_vector
 from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
+from rigidimpact.roles import Role
 
 __all__ = ["Contact", "RESTITUTION_LAWS", "TANGENTIAL"]
 
@@ -69,8 +70,9 @@ class Contact:
             raise InputError("contact.normal", "must not be the zero vector")
         object.__setattr__(self, "normal", normal)
         e = _expr(self.restitution, "contact.restitution")
-        if e.is_negative or (e - 1).is_positive:
-            raise InputError("contact.restitution", f"must lie in [0, 1], got {e}")
+        role = Role("contact.restitution", "the restitution coefficient", e, 0, 1)
+        if e.is_negative or (e - 1).is_positive or role.allows(e) is False:
+            raise InputError("contact.restitution", role.describe(e))
         object.__setattr__(self, "restitution", e)
         if self.tangential not in TANGENTIAL:
             raise InputError("contact.tangential", f"must be one of {', '.join(TANGENTIAL)}, "

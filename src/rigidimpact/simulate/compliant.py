@@ -215,15 +215,28 @@ def _contact_point(part: _Part, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return c + r, v + w * np.array([-r[1], r[0]])
 
 
-def _apply(part: _Part, dy: np.ndarray, y: np.ndarray, force: np.ndarray) -> None:
-    """Add a force at the contact point to the part's accelerations."""
+def _application_point(first: _Part, second: _Part, y: np.ndarray) -> np.ndarray:
+    """The one point where the contact force acts on both bodies (same line of action, so
+    the pair's angular momentum is kept): a point mass's place, else a round body's
+    surface point, else midway between the two touching points."""
+    for part in (first, second):
+        if part.kind in ("point", "spring"):
+            return _contact_point(part, y)[0]
+    for part in (first, second):
+        if part.round:
+            return _contact_point(part, y)[0]
+    return (_contact_point(first, y)[0] + _contact_point(second, y)[0]) / 2
+
+
+def _apply(part: _Part, dy: np.ndarray, y: np.ndarray, force: np.ndarray,
+           point: np.ndarray) -> None:
+    """Add a force acting at `point` to the part's accelerations."""
     s = part.slot
     if part.kind == "point":
         dy[s + 2:s + 4] += force / part.mass
     elif part.kind == "spring":
         dy[s + 4:s + 6] += force / (part.mass / 2)
     else:
-        point, _ = _contact_point(part, y)
         dy[s + 3:s + 5] += force / part.mass
         dy[s + 5] += _cross(point - y[s:s + 2], force) / part.inertia
 
@@ -249,12 +262,15 @@ def _free(part: _Part, y: np.ndarray, dy: np.ndarray, g: float = 0.0) -> None:
         dy[s + 6:s + 8] -= pull / each
 
 
-def _effective_mass(part: _Part, y: np.ndarray, normal: np.ndarray) -> float:
+def _effective_mass(part: _Part, y: np.ndarray, normal: np.ndarray,
+                    point: np.ndarray | None = None) -> float:
+    """The mass a normal impulse at `point` (default: the touching point) meets."""
     if part.kind == "point":
         return part.mass
     if part.kind == "spring":
         return part.mass / 2
-    point, _ = _contact_point(part, y)
+    if point is None:
+        point, _ = _contact_point(part, y)
     arm = _cross(point - y[part.slot:part.slot + 2], normal)
     return 1.0 / (1.0 / part.mass + arm * arm / part.inertia)
 
@@ -481,8 +497,9 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
             d, rate = penetration(y)
             push = k_c * d + c_c * rate if d > 0 else 0.0
             if push > 0:
-                _apply(second, dy, y, push * normal)
-                _apply(first, dy, y, -push * normal)
+                point = _application_point(first, second, y)
+                _apply(second, dy, y, push * normal, point)
+                _apply(first, dy, y, -push * normal, point)
                 dy[-1] = -push * rate
         return dy
 
@@ -503,13 +520,15 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         d, rate = penetration(y)
         if rate <= 0:
             return y
-        m1, m2 = _effective_mass(first, y, normal), _effective_mass(second, y, normal)
+        point = _application_point(first, second, y)
+        m1 = _effective_mass(first, y, normal, point)
+        m2 = _effective_mass(second, y, normal, point)
         j = (1 + e) * rate / (1 / m1 + 1 / m2)
         before = _energy(parts, y)[0]
         y = y.copy()
         for part, sign in ((first, -1.0), (second, 1.0)):
             dy = np.zeros_like(y)
-            _apply(part, dy, y, sign * j * normal)
+            _apply(part, dy, y, sign * j * normal, point)
             s, n = part.slot, part.size
             vel = slice(s + n // 2, s + n)
             y[vel] += dy[vel]
