@@ -32,7 +32,7 @@ from rigidimpact.rewrite import tidy
 
 __all__ = ["Body", "join", "cross", "as_vector"]
 
-SHAPES = ("particle", "barbell", "rod", "disc", "ring", "sphere", "rigid")
+SHAPES = ("particle", "barbell", "rod", "disc", "ring", "sphere", "rigid", "fixed")
 
 
 def _expr(value: Any, where: str) -> sp.Expr:
@@ -138,6 +138,9 @@ class Body:
         The sizes the shape was built from, for display and simulation.
     parts : tuple of Part
         Point masses for bodies made of them (barbell, particle).
+    pivot : 2-vector or None
+        A frictionless hinge fixed in the world at this point (relative to O): the body
+        can only turn about it, and its velocity must be that of such a turn.
 
     Examples
     --------
@@ -154,6 +157,7 @@ class Body:
     shape: str = "rigid"
     dimensions: tuple[tuple[str, Any], ...] = ()
     parts: tuple[Part, ...] = field(default=(), repr=False)
+    pivot: Any = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
@@ -174,14 +178,60 @@ class Body:
         if self.inertia.is_zero and not all(c.is_zero for c in self.position):
             raise InputError(f"{self.name}.position", "a point mass must sit at the contact "
                              "point O, or it cannot be touched there")
+        if self.pivot is not None:
+            self._check_pivot()
+
+    def _check_pivot(self) -> None:
+        if self.shape == "fixed":
+            raise InputError(f"{self.name}.pivot", "a fixed body cannot also have a pivot")
+        pivot = as_vector(self.pivot, f"{self.name}.pivot")
+        object.__setattr__(self, "pivot", pivot)
+        if self.inertia_about_pivot.is_zero:
+            raise InputError(f"{self.name}.pivot", "a point mass pivoted at its own place "
+                             "cannot move: put the pivot elsewhere or make the body fixed")
+        expected = _spin_cross(self.spin, self.position - pivot)
+        for axis, (v, w) in enumerate(zip(self.velocity, expected, strict=True)):
+            if tidy(v - w).is_zero is False:
+                raise InputError(f"{self.name}.velocity", f"a pivoted body moves only by "
+                                 f"turning about its pivot: with spin {self.spin} its "
+                                 f"centre's velocity must be ({expected[0]}, "
+                                 f"{expected[1]}), got {v} in component {axis}")
+
+    @property
+    def support(self) -> str:
+        """``"free"``, ``"pivot"`` (a hinge fixed in the world) or ``"fixed"``.
+
+        Examples
+        --------
+        >>> Body.fixed("wall").support, Body.particle(1).support
+        ('fixed', 'free')
+        """
+        if self.shape == "fixed":
+            return "fixed"
+        return "free" if self.pivot is None else "pivot"
+
+    @property
+    def inertia_about_pivot(self) -> sp.Expr:
+        """Moment of inertia about the pivot (parallel-axis theorem).
+
+        Examples
+        --------
+        >>> Body.rod(3, 2, 0, 1, pivot=(2, 0)).inertia_about_pivot
+        4
+        """
+        offset = self.position - self.pivot
+        return tidy(self.inertia + self.mass * (offset[0] ** 2 + offset[1] ** 2))
 
     def __repr__(self) -> str:
         def vec(v: sp.MatrixBase) -> str:
             return f"({v[0]}, {v[1]})"
 
+        if self.shape == "fixed":
+            return f"Body.fixed({self.name!r})"
+        pivot = "" if self.pivot is None else f", pivot={vec(self.pivot)}"
         return (f"Body(name={self.name!r}, mass={self.mass}, inertia={self.inertia}, "
                 f"position={vec(self.position)}, velocity={vec(self.velocity)}, "
-                f"spin={self.spin}, shape={self.shape!r})")
+                f"spin={self.spin}, shape={self.shape!r}{pivot})")
 
     # ---- constructors ---------------------------------------------------------------
 
@@ -229,7 +279,7 @@ class Body:
 
     @classmethod
     def rod(cls, mass: Any, length: Any, angle: Any, struck_at: Any, velocity: Any = (0, 0),
-            spin: Any = 0, name: str = "rod") -> Body:
+            spin: Any = 0, name: str = "rod", pivot: Any = None) -> Body:
         """A uniform thin rod; its centre is at ``struck_at*(cos(angle), sin(angle))``.
 
         An end hit has ``struck_at = length/2``.
@@ -248,7 +298,8 @@ class Body:
                              f"|{struck_at}| exceeds half the length {length / 2}")
         position = struck_at * sp.ImmutableMatrix([sp.cos(angle), sp.sin(angle)])
         return cls(name, mass, mass * length**2 / 12, position, velocity, spin, "rod",
-                   (("length", length), ("angle", angle), ("struck_at", struck_at)))
+                   (("length", length), ("angle", angle), ("struck_at", struck_at)),
+                   pivot=pivot)
 
     @classmethod
     def _round(cls, shape: str, factor: sp.Expr, mass: Any, radius: Any, position: Any,
@@ -308,7 +359,7 @@ class Body:
 
     @classmethod
     def rigid(cls, mass: Any, inertia: Any, position: Any, velocity: Any = (0, 0),
-              spin: Any = 0, name: str = "body") -> Body:
+              spin: Any = 0, name: str = "body", pivot: Any = None) -> Body:
         """Any rigid body given by mass, central inertia and centre position.
 
         Examples
@@ -316,7 +367,20 @@ class Body:
         >>> Body.rigid(1, 2, (3, 4)).position.T
         Matrix([[3, 4]])
         """
-        return cls(name, mass, inertia, position, velocity, spin, "rigid")
+        return cls(name, mass, inertia, position, velocity, spin, "rigid", pivot=pivot)
+
+    @classmethod
+    def fixed(cls, name: str = "wall") -> Body:
+        """An immovable body (a wall, a floor, a nail) as a contact partner.
+
+        Its mass stands in for an infinite one: nothing it is given is used.
+
+        Examples
+        --------
+        >>> Body.fixed("floor").kinetic_energy
+        0
+        """
+        return cls(name, 1, 0, (0, 0), (0, 0), 0, "fixed")
 
     # ---- kinematics and dynamics ----------------------------------------------------
 
@@ -383,6 +447,8 @@ class Body:
         >>> Body.rigid(2, 4, (1, 0), velocity=(1, 1), spin=1).kinetic_energy
         4
         """
+        if self.shape == "fixed":
+            return sp.Integer(0)
         v = self.velocity
         return sp.Rational(1, 2) * (self.mass * (v[0] ** 2 + v[1] ** 2)
                                     + self.inertia * self.spin**2)

@@ -39,12 +39,16 @@ DEFAULT_UNKNOWNS = (("V_1fx", "V_1fy", "omega_1fz"), ("V_2fx", "V_2fy", "omega_2
 
 def _rotated(body: Body, frame: sp.MatrixBase, digits: int | None) -> Body:
     """The body described in the contact frame (as 50-digit numbers in numeric mode)."""
+    pivot = body.pivot
     if frame != sp.eye(2):
-        body = replace(body, position=frame * body.position, velocity=frame * body.velocity)
+        pivot = None if pivot is None else sp.ImmutableMatrix(frame * pivot)
+        body = replace(body, position=frame * body.position, velocity=frame * body.velocity,
+                       pivot=pivot)
     if digits:
         body = replace(body, mass=body.mass.evalf(digits), inertia=body.inertia.evalf(digits),
                        position=body.position.evalf(digits),
-                       velocity=body.velocity.evalf(digits), spin=body.spin.evalf(digits))
+                       velocity=body.velocity.evalf(digits), spin=body.spin.evalf(digits),
+                       pivot=None if pivot is None else pivot.evalf(digits))
     return body
 
 
@@ -78,6 +82,8 @@ class Impact:
     def __post_init__(self) -> None:
         if self.first.name == self.second.name:
             raise InputError("bodies", f"the two bodies share the name {self.first.name!r}")
+        if self.first.support != "free" and self.second.support != "free":
+            raise InputError("bodies", "at most one of the two bodies may be pivoted or fixed")
         approach = self.approach_speed
         if approach.is_nonpositive:
             raise InputError("bodies", f"the bodies are not approaching at O (normal approach "
@@ -99,6 +105,7 @@ class Impact:
         data = [self.contact.restitution, *self.contact.normal]
         for b in (self.first, self.second):
             data += [b.mass, b.inertia, *b.position, *b.velocity, b.spin]
+            data += [] if b.pivot is None else list(b.pivot)
         exact = sp.Tuple(*data)
         return not exact.free_symbols and bool(exact.atoms(sp.sin, sp.cos, sp.tan))
 
@@ -135,8 +142,13 @@ class Impact:
         states = []
         for body, names in zip(self.before, self.unknown_names, strict=True):
             vx, vy, omega = (make_symbol(n, real=True) for n in names)
-            spin = 0 if body.inertia.is_zero else omega
-            states.append(body.with_motion((vx, vy), spin))
+            if body.support == "fixed":
+                states.append(body)
+            elif body.support == "pivot":  # one unknown: the turn about the pivot
+                states.append(body.with_motion(_turning(omega, body), omega))
+            else:
+                spin = 0 if body.inertia.is_zero else omega
+                states.append(body.with_motion((vx, vy), spin))
         return states[0], states[1]
 
     @property
@@ -144,8 +156,9 @@ class Impact:
         """The final velocity components and spins to solve for."""
         found: list[sp.Symbol] = []
         for body in self.after:
-            found += [body.velocity[0], body.velocity[1]]
-            if isinstance(body.spin, sp.Symbol):
+            if body.support == "free":
+                found += [body.velocity[0], body.velocity[1]]
+            if body.support != "fixed" and isinstance(body.spin, sp.Symbol):
                 found.append(body.spin)
         return tuple(found)
 
@@ -161,6 +174,9 @@ class Impact:
         ['(1), (12)', '(13)', '(13)', '(2), (14)', '(3), (4)']
         """
         (first, second), (first_after, second_after) = self.before, self.after
+        supported = [b for b in (first, second) if b.support != "free"]
+        if supported:
+            return self._supported_equations(supported[0])
         equations = [laws.normal_momentum(first, first_after, second, second_after)]
         if self.contact.tangential == "smooth":
             equations += [laws.tangential_momentum(first, first_after),
@@ -171,6 +187,29 @@ class Impact:
         # a point mass at O has no angular momentum about O: its law reads 0 = 0
         equations += [laws.angular_momentum(b, a) for b, a in
                       ((first, first_after), (second, second_after)) if not b.inertia.is_zero]
+        equations.append(laws.restitution(first, first_after, second, second_after,
+                                          self.contact.restitution))
+        if self.contact.tangential == "stick":
+            equations.append(laws.no_slip(first_after, second_after))
+        return tuple(equations)
+
+    def _supported_equations(self, support: Body) -> tuple[laws.Equation, ...]:
+        """The laws when one body is pivoted or fixed: the support's reaction impulse is
+        unknown, so the pair's linear momentum is not kept. With a pivot, the pair's
+        angular momentum about the pivot is (the reaction has no moment there); the free
+        body keeps its own angular momentum about O and, on a smooth contact, its
+        tangential momentum."""
+        (first, second), (first_after, second_after) = self.before, self.after
+        free, free_after = ((first, first_after) if support is second
+                            else (second, second_after))
+        equations = []
+        if support.support == "pivot":
+            equations.append(laws.angular_momentum_about_pivot(
+                (first, second), (first_after, second_after), support))
+        if self.contact.tangential == "smooth":
+            equations.append(laws.tangential_momentum(free, free_after))
+        if not free.inertia.is_zero:
+            equations.append(laws.angular_momentum(free, free_after))
         equations.append(laws.restitution(first, first_after, second, second_after,
                                           self.contact.restitution))
         if self.contact.tangential == "stick":
@@ -218,17 +257,36 @@ class Impact:
         solved = {j: tidy(x) for j, x in zip(impulses, matrix.LUsolve(rhs), strict=True)}
         values = {}
         for state, kicked in ((self.after[0], first_kicked), (self.after[1], second_kicked)):
-            values[state.velocity[0]] = tidy(kicked.velocity[0].subs(solved))
-            values[state.velocity[1]] = tidy(kicked.velocity[1].subs(solved))
-            if isinstance(state.spin, sp.Symbol):
+            if state.support == "free":
+                values[state.velocity[0]] = tidy(kicked.velocity[0].subs(solved))
+                values[state.velocity[1]] = tidy(kicked.velocity[1].subs(solved))
+            if state.support != "fixed" and isinstance(state.spin, sp.Symbol):
                 values[state.spin] = tidy(sp.sympify(kicked.spin).subs(solved))
-        return Solution(self, self.equations(), self.unknowns, values)
+        contact_impulse = (solved[normal], solved[tangent] if sticking else sp.Integer(0))
+        return Solution(self, self.equations(), self.unknowns, values, contact_impulse)
 
 
 def _kicked(body: Body, impulse: sp.MatrixBase) -> Body:
-    """The body after receiving `impulse` at O (momentum and angular momentum about O)."""
+    """The body after receiving `impulse` at O.
+
+    A free body changes its momentum by the impulse and its angular momentum about its
+    centre by the impulse's moment; a pivoted one only turns, by the impulse's moment
+    about the pivot over its inertia there (the reaction takes the rest); a fixed one
+    does not move.
+    """
+    if body.support == "fixed":
+        return body
+    if body.support == "pivot":
+        spin = body.spin + cross(-body.pivot, impulse) / body.inertia_about_pivot
+        return body.with_motion(_turning(spin, body), spin)
     velocity = body.velocity + impulse / body.mass
     if body.inertia.is_zero:
         return body.with_motion(velocity, body.spin)
     spin = body.spin + cross(-body.position, impulse) / body.inertia
     return body.with_motion(velocity, spin)
+
+
+def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:
+    """The centre's velocity of a body turning at `spin` about its pivot."""
+    offset = body.position - body.pivot
+    return sp.ImmutableMatrix([-spin * offset[1], spin * offset[0]])

@@ -7,7 +7,7 @@ step by step.
 
 Examples
 --------
->>> from rigidimpact.bodies import Body
+>>> from rigidimpact.bodies import Body, cross
 >>> ball = Body.particle(2, velocity=(3, 0))
 >>> after = ball.with_motion((1, 0), 0)
 >>> tangential_momentum(ball, after)
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from rigidimpact.bodies import Body
+from rigidimpact.bodies import Body, cross
 
 __all__ = [
     "Equation",
@@ -28,6 +28,7 @@ __all__ = [
     "tangential_momentum",
     "pair_tangential_momentum",
     "angular_momentum",
+    "angular_momentum_about_pivot",
     "restitution",
     "no_slip",
 ]
@@ -131,6 +132,36 @@ def angular_momentum(before: Body, after: Body) -> Equation:
     """
     return Equation(f"angular momentum of {before.name} about O", "(2), (14)",
                     before.angular_momentum, after.angular_momentum)
+
+
+def angular_momentum_about_pivot(before: tuple[Body, Body], after: tuple[Body, Body],
+                                 hinged: Body) -> Equation:
+    """With one body on a fixed hinge, the pair's angular momentum about the hinge is kept.
+
+    The hinge's reaction impulse acts at the hinge, so it has no moment about it; the
+    contact impulses are internal to the pair. Each body counts ``I omega`` plus
+    ``m (R - q) x V`` about the hinge q. (The pair's linear momentum is *not* kept: the
+    reaction changes it.)
+
+    Examples
+    --------
+    >>> ball = Body.particle(1, (1, 0), "ball")
+    >>> rod = Body.rod(3, 2, sp.pi / 2, 0, pivot=(0, -1), name="rod")
+    >>> w, u = sp.symbols("w u")
+    >>> angular_momentum_about_pivot((ball, rod), (ball.with_motion((u, 0), 0),
+    ...                              rod.with_motion((-w, 0), w)), rod).as_sympy()
+    Eq(-1, -u + 4*w)
+    """
+    q = hinged.pivot
+
+    def about_pivot(body: Body) -> sp.Expr:
+        if body.support == "fixed":
+            return sp.Integer(0)
+        return body.inertia * body.spin + body.mass * cross(body.position - q, body.velocity)
+
+    return Equation(f"angular momentum of the pair about {hinged.name}'s pivot", "-",
+                    sum((about_pivot(b) for b in before), sp.Integer(0)),
+                    sum((about_pivot(b) for b in after), sp.Integer(0)))
 
 
 def restitution(first: Body, first_after: Body, second: Body, second_after: Body,

@@ -112,6 +112,7 @@ class Derivation:
         if self.solution is not None:
             for body in (self.solution.impact.first, self.solution.impact.second):
                 found |= sp.Tuple(*body.position, *body.velocity, body.spin).free_symbols
+                found |= sp.Tuple(*(body.pivot if body.pivot is not None else ())).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
 
     @property

@@ -155,6 +155,8 @@ def roles_of(bodies: Iterable[Any], contacts: Iterable[Any]) -> tuple[Role, ...]
     """
     roles: list[Role] = []
     for body in bodies:
+        if getattr(body, "support", "free") == "fixed":
+            continue
         roles.append(Role(f"{body.name}.mass", "a mass", body.mass, 0, None, open_low=True))
         roles.append(Role(f"{body.name}.inertia", "a moment of inertia", body.inertia, 0))
         for key, size in body.dimensions:

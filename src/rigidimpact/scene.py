@@ -25,7 +25,7 @@ import re
 import time
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -130,15 +130,22 @@ class Scene:
         impact = self.impact()
         solution = impact.solve()
         first, second = self.bodies
-        setup = tuple(f"{b.name}: {b.shape}, mass {b.mass}, centre ({b.position[0]}, "
-                      f"{b.position[1]}) from O, velocity ({b.velocity[0]}, "
-                      f"{b.velocity[1]}), spin {b.spin}" for b in (first, second))
+        setup = tuple(_described(b) for b in (first, second))
         setup += (f"contact: {self.contact.tangential}, normal ({self.contact.normal[0]}, "
                   f"{self.contact.normal[1]}), restitution {self.contact.restitution}",)
         return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
                           solution.results(), solution=solution,
                           seconds=time.perf_counter() - start,
                           warnings=model_warnings(self.contact))
+
+
+def _described(b: Body) -> str:
+    """One line of the givens for a body."""
+    if b.support == "fixed":
+        return f"{b.name}: fixed (immovable)"
+    pivot = "" if b.pivot is None else f", on a pivot at ({b.pivot[0]}, {b.pivot[1]})"
+    return (f"{b.name}: {b.shape}, mass {b.mass}, centre ({b.position[0]}, {b.position[1]}) "
+            f"from O, velocity ({b.velocity[0]}, {b.velocity[1]}), spin {b.spin}{pivot}")
 
 
 def _table(data: Mapping[str, Any], key: str, form: str) -> dict[str, Any]:
@@ -193,6 +200,7 @@ _BODY_KEYS = {
     "ring": {"mass", "radius", "position"},
     "sphere": {"mass", "radius", "position"},
     "rigid": {"mass", "inertia", "position"},
+    "fixed": set(),
 }
 _REQUIRED = {
     "particle": ("mass",),
@@ -202,6 +210,7 @@ _REQUIRED = {
     "ring": ("mass", "radius"),
     "sphere": ("mass", "radius"),
     "rigid": ("mass", "inertia", "position"),
+    "fixed": (),
 }
 
 
@@ -217,8 +226,10 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     if shape not in SHAPES:
         raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
                          f"{', '.join(SHAPES)}")
-    allowed = _BODY_KEYS[shape] | {"name", "shape", "velocity"}
-    if shape != "particle":
+    allowed = _BODY_KEYS[shape] | {"name", "shape"}
+    if shape != "fixed":  # a fixed body does not move
+        allowed |= {"velocity", "pivot"}
+    if shape not in ("particle", "fixed"):
         allowed |= {"spin"}
     for key in table:
         if key not in allowed:
@@ -228,34 +239,47 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
         if key not in table:
             raise InputError(f"{where}.{key}", f"required for a {shape}")
 
-    def expr(key: str) -> sp.Expr:
-        return parse_expression(table[key], f"{where}.{key}", symbols)
-
+    if shape == "fixed":
+        return Body.fixed(name)
     velocity = _vector(table.get("velocity", [0, 0]), f"{where}.velocity", symbols)
-    spin = expr("spin") if "spin" in table else 0
+    spin = parse_expression(table["spin"], f"{where}.spin", symbols) if "spin" in table else 0
     try:
-        if shape == "particle":
-            return Body.particle(expr("mass"), velocity, name)
-        if shape == "barbell":
-            struck = table.get("struck", "A")
-            return Body.barbell(expr("mass"), expr("half_length"), expr("angle"), velocity,
-                                spin, name, struck)
-        if shape == "rod":
-            return Body.rod(expr("mass"), expr("length"), expr("angle"), expr("struck_at"),
-                            velocity, spin, name)
-        if shape == "rigid":
-            return Body.rigid(expr("mass"), expr("inertia"),
-                              _vector(table["position"], f"{where}.position", symbols),
-                              velocity, spin, name)
-        radius = expr("radius")
-        position = (_vector(table["position"], f"{where}.position", symbols)
-                    if "position" in table else tuple(side * radius * normal))
-        maker = {"disc": Body.disc, "ring": Body.ring, "sphere": Body.sphere}[shape]
-        return maker(expr("mass"), radius, position, side, velocity, spin, name)
+        body = _shaped(table, where, shape, (name, velocity, spin), side * normal, symbols)
+        if "pivot" in table:
+            body = replace(body, pivot=_vector(table["pivot"], f"{where}.pivot", symbols))
+        return body
     except InputError as exc:
         # name the entry in the file, not only the body
         field_name = exc.field.split(".", 1)[-1] if "." in exc.field else exc.field
         raise InputError(f"{where}.{field_name}", exc.message) from None
+
+
+def _shaped(table: Mapping[str, Any], where: str, shape: str, motion: tuple,
+            outward: sp.MatrixBase, symbols: Mapping[str, sp.Symbol]) -> Body:
+    """The body of a shape from its fields; `outward` points from O to a round body's
+    centre when the table gives no position."""
+    name, velocity, spin = motion
+
+    def expr(key: str) -> sp.Expr:
+        return parse_expression(table[key], f"{where}.{key}", symbols)
+
+    if shape == "particle":
+        return Body.particle(expr("mass"), velocity, name)
+    if shape == "barbell":
+        return Body.barbell(expr("mass"), expr("half_length"), expr("angle"), velocity,
+                            spin, name, table.get("struck", "A"))
+    if shape == "rod":
+        return Body.rod(expr("mass"), expr("length"), expr("angle"), expr("struck_at"),
+                        velocity, spin, name)
+    if shape == "rigid":
+        return Body.rigid(expr("mass"), expr("inertia"),
+                          _vector(table["position"], f"{where}.position", symbols),
+                          velocity, spin, name)
+    radius = expr("radius")
+    position = (_vector(table["position"], f"{where}.position", symbols)
+                if "position" in table else tuple(radius * outward))
+    maker = {"disc": Body.disc, "ring": Body.ring, "sphere": Body.sphere}[shape]
+    return maker(expr("mass"), radius, position, 1, velocity, spin, name)  # place given
 
 
 def parse_scene(text: str, name: str = "scene") -> Scene:

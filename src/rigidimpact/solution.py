@@ -46,12 +46,16 @@ class Solution:
         What was solved for (contact-frame components).
     values : mapping
         Unknown -> exact expression.
+    contact_impulse : pair of Expr, optional
+        The impulse the first body gives the second, (normal, tangential) in the contact
+        frame, as solved.
     """
 
     impact: Impact
     equations: tuple[Equation, ...]
     unknowns: tuple[sp.Symbol, ...]
     values: Mapping[sp.Symbol, sp.Expr]
+    contact_impulse: tuple[sp.Expr, sp.Expr] | None = None
 
     def __repr__(self) -> str:
         return (f"Solution({self.impact.first.name!r}, {self.impact.second.name!r}, "
@@ -59,14 +63,17 @@ class Solution:
 
     def _final(self, index: int) -> Body:
         after = self.impact.after[index]
+        if after.support == "fixed":
+            return (self.impact.first, self.impact.second)[index]
         velocity = after.velocity.subs(self.values)
         spin = sp.sympify(after.spin).subs(self.values)
         original = (self.impact.first, self.impact.second)[index]
         back = self.impact.frame.T  # contact frame -> scene frame
         if self.impact.numeric:  # keep the body's data in the same 50-digit numbers
             numbers = self.impact.before[index]
+            pivot = None if numbers.pivot is None else back * numbers.pivot
             original = replace(original, mass=numbers.mass, inertia=numbers.inertia,
-                               position=back * numbers.position)
+                               position=back * numbers.position, pivot=pivot)
         return original.with_motion((back * velocity).applyfunc(tidy), tidy(spin))
 
     @cached_property
@@ -92,8 +99,30 @@ class Solution:
         ...        Contact(restitution=1)).solve().impulse.T
         Matrix([[2, 0]])
         """
+        if self.contact_impulse is not None:
+            local = sp.ImmutableMatrix(self.contact_impulse)
+            return (self.impact.frame.T * local).applyfunc(tidy)
         change = self.second_after.momentum - self.impact.second.momentum
         return change.applyfunc(tidy)
+
+    def pivot_impulse(self, body: Body) -> sp.ImmutableMatrix:
+        """The reaction impulse a pivot gives its body (scene frame): the body's change of
+        momentum less the contact impulse it received.
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> from rigidimpact.contact import Contact
+        >>> from rigidimpact.impact import Impact
+        >>> rod = Body.rod(1, 3, sp.pi / 2, sp.Rational(1, 2), pivot=(0, 2), name="rod")
+        >>> sol = Impact(Body.particle(1, (1, 0), "ball"), rod, Contact()).solve()
+        >>> sol.pivot_impulse(rod).T  # struck at the centre of percussion, 2/3 down
+        Matrix([[0, 0]])
+        """
+        index = (self.impact.first.name, self.impact.second.name).index(body.name)
+        after = (self.first_after, self.second_after)[index]
+        given = self.impulse if index == 1 else -self.impulse
+        return (after.momentum - body.momentum - given).applyfunc(tidy)
 
     @cached_property
     def normal_impulse(self) -> sp.Expr:
@@ -145,8 +174,10 @@ class Solution:
                 self.second_after.contact_velocity.applyfunc(tidy))
 
     def results(self) -> dict[str, sp.Expr]:
-        """Results under the keys of docs/scenes.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
-        ``impulse`` and ``energy_loss_fraction`` (and ``impulse_t`` when sticking).
+        """Results under the keys of docs/scenes.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``
+        (not for a fixed body), ``impulse`` and ``energy_loss_fraction`` (and ``impulse_t``
+        when sticking), ``contact.normal_impulse`` and ``contact.tangential_impulse``, and
+        ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body.
 
         Examples
         --------
@@ -155,11 +186,13 @@ class Solution:
         >>> from rigidimpact.impact import Impact
         >>> sorted(Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
         ...               Contact()).solve().results())  # doctest: +NORMALIZE_WHITESPACE
-        ['a.omega', 'a.vx', 'a.vy', 'b.omega', 'b.vx', 'b.vy', 'energy_loss_fraction',
-         'impulse']
+        ['a.omega', 'a.vx', 'a.vy', 'b.omega', 'b.vx', 'b.vy', 'contact.normal_impulse',
+         'contact.tangential_impulse', 'energy_loss_fraction', 'impulse']
         """
         results: dict[str, sp.Expr] = {}
         for body in (self.first_after, self.second_after):
+            if body.support == "fixed":
+                continue
             results[f"{body.name}.vx"] = body.velocity[0]
             results[f"{body.name}.vy"] = body.velocity[1]
             results[f"{body.name}.omega"] = body.spin
@@ -167,4 +200,11 @@ class Solution:
         if self.impact.contact.tangential == "stick":
             results["impulse_t"] = self.tangential_impulse
         results["energy_loss_fraction"] = self.energy_loss_fraction
+        results["contact.normal_impulse"] = self.normal_impulse
+        results["contact.tangential_impulse"] = self.tangential_impulse
+        for body in (self.impact.first, self.impact.second):
+            if body.support == "pivot":
+                reaction = self.pivot_impulse(body)
+                results[f"{body.name}.pivot_impulse_x"] = reaction[0]
+                results[f"{body.name}.pivot_impulse_y"] = reaction[1]
         return results

@@ -34,6 +34,8 @@ def scene_values(scene: Scene) -> dict[sp.Symbol, sp.Expr]:
         for x in (body.mass, body.inertia, *body.position, *body.velocity, body.spin,
                   *(v for _, v in body.dimensions)):
             needed |= x.free_symbols
+        if body.pivot is not None:
+            needed |= sp.Tuple(*body.pivot).free_symbols
     needed |= sp.sympify(scene.contact.restitution).free_symbols
     for x in scene.contact.normal:
         needed |= sp.sympify(x).free_symbols

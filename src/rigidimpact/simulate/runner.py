@@ -167,6 +167,11 @@ def run(scene: Scene) -> Outcome:
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
     values = scene_values(scene)
+    supported = [b.name for b in scene.bodies if b.support != "free"]
+    if supported and (plan.until != "separation" or len(plan.steps) > 1):
+        raise InputError("simulate", f"{supported[0]} is pivoted or fixed: only the impact "
+                         "itself (until = separation, no effects) is simulated for such "
+                         "scenes so far")
     if any(step.model == "compliant" for step in plan.steps):
         from rigidimpact.simulate.compliant import run_compliant
 
