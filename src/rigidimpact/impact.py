@@ -116,11 +116,43 @@ class Impact:
         return frame.evalf(NUMERIC_DIGITS) if self.numeric else frame
 
     @cached_property
-    def before(self) -> tuple[Body, Body]:
-        """Both bodies before the impact, in the contact frame."""
+    def _local(self) -> tuple[tuple[Body, Body], dict[sp.Dummy, sp.Expr]]:
+        """The bodies in the contact frame, and what stands for what.
+
+        With a symbolic tilt of the normal, each rotated component that still holds the
+        angle (``R_1x cos(phi) + R_1y sin(phi)``) is replaced by a stand-in symbol: the
+        algebra is then that of the untilted problem, and the rotation is put back once,
+        at the end, untidied. Tidying through the angle multiplies out products of
+        sines and cosines with every other symbol and costs minutes.
+        """
         digits = NUMERIC_DIGITS if self.numeric else None
-        return (_rotated(self.first, self.contact.frame, digits),
-                _rotated(self.second, self.contact.frame, digits))
+        bodies = [_rotated(b, self.contact.frame, digits) for b in (self.first, self.second)]
+        tilt = self.contact.frame.free_symbols
+        if digits or not tilt:
+            return (bodies[0], bodies[1]), {}
+        stand_ins: dict[sp.Dummy, sp.Expr] = {}
+
+        def local(x: sp.Expr, name: str) -> sp.Expr:
+            x = tidy(x)
+            if not x.free_symbols & tilt:
+                return x
+            stand_in = sp.Dummy(name, real=True)
+            stand_ins[stand_in] = x
+            return stand_in
+
+        for k, body in enumerate(bodies):
+            def vector(v, name, k=k):
+                return None if v is None else sp.ImmutableMatrix(
+                    [local(c, f"{name}{k + 1}{axis}") for c, axis in zip(v, "nt", strict=True)])
+            bodies[k] = replace(body, position=vector(body.position, "R"),
+                                velocity=vector(body.velocity, "V"),
+                                pivot=vector(body.pivot, "Q"))
+        return (bodies[0], bodies[1]), stand_ins
+
+    @property
+    def before(self) -> tuple[Body, Body]:
+        """Both bodies before the impact, in the contact frame (see ``_local``)."""
+        return self._local[0]
 
     @property
     def approach_speed(self) -> sp.Expr:
@@ -134,7 +166,8 @@ class Impact:
         2
         """
         first, second = self.before
-        return sp.cancel(first.contact_velocity[0] - second.contact_velocity[0])
+        closing = sp.cancel(first.contact_velocity[0] - second.contact_velocity[0])
+        return closing.xreplace(self._local[1])
 
     @cached_property
     def after(self) -> tuple[Body, Body]:
@@ -163,7 +196,8 @@ class Impact:
         return tuple(found)
 
     def equations(self) -> tuple[laws.Equation, ...]:
-        """The laws that fix the unknowns, in the order the paper gives them.
+        """The laws that fix the unknowns, in the order the paper gives them (with a
+        symbolic tilt, in the rotated components themselves).
 
         Examples
         --------
@@ -173,6 +207,12 @@ class Impact:
         >>> [eq.paper for eq in imp.equations()]
         ['(1), (12)', '(13)', '(13)', '(2), (14)', '(3), (4)']
         """
+        stand_ins = self._local[1]
+        local = self._local_equations()
+        return tuple(eq.xreplace(stand_ins) for eq in local) if stand_ins else local
+
+    def _local_equations(self) -> tuple[laws.Equation, ...]:
+        """The laws in the contact frame, stand-ins and all."""
         (first, second), (first_after, second_after) = self.before, self.after
         supported = [b for b in (first, second) if b.support != "free"]
         if supported:
@@ -262,8 +302,51 @@ class Impact:
                 values[state.velocity[1]] = tidy(kicked.velocity[1].subs(solved))
             if state.support != "fixed" and isinstance(state.spin, sp.Symbol):
                 values[state.spin] = tidy(sp.sympify(kicked.spin).subs(solved))
-        contact_impulse = (solved[normal], solved[tangent] if sticking else sp.Integer(0))
-        return Solution(self, self.equations(), self.unknowns, values, contact_impulse)
+        local_impulse = sp.ImmutableMatrix([solved[normal],
+                                            solved[tangent] if sticking else 0])
+        return self._solution(values, local_impulse)
+
+    def _solution(self, values: dict, local_impulse: sp.ImmutableMatrix) -> Solution:
+        """The self-contained solution: final motion rotated back to the scene frame once,
+        energies from the work of the impulse in the contact frame, stand-ins put back."""
+        stand_ins = self._local[1]
+        (first, second), after = self.before, self.after
+        moved = [a.with_motion(a.velocity.subs(values), sp.sympify(a.spin).subs(values))
+                 if a.support != "fixed" else a for a in after]
+        closing_before = second.contact_velocity - first.contact_velocity
+        closing_after = moved[1].contact_velocity - moved[0].contact_velocity
+        lost = tidy(-local_impulse.dot(closing_before + closing_after) / 2)
+        back = self.frame.T  # contact frame -> scene frame
+        finals = []
+        for k, (original, local) in enumerate(zip((self.first, self.second), moved,
+                                                  strict=True)):
+            if original.support == "fixed":
+                finals.append(original)
+                continue
+            velocity = local.velocity if back == sp.eye(2) else \
+                (back * local.velocity).applyfunc(tidy)
+            if self.numeric:  # keep the body's data in the same 50-digit numbers
+                numbers = self.before[k]
+                pivot = None if numbers.pivot is None else back * numbers.pivot
+                original = replace(original, mass=numbers.mass, inertia=numbers.inertia,
+                                   position=back * numbers.position, pivot=pivot)
+            finals.append(original.with_motion(velocity.xreplace(stand_ins),
+                                               sp.sympify(local.spin).xreplace(stand_ins)))
+        # a rotation keeps kinetic energy: with a tilt, take it in the scene frame
+        given = (self.first, self.second) if stand_ins else (first, second)
+        energy_before = tidy(given[0].kinetic_energy + given[1].kinetic_energy)
+        lost = lost.xreplace(stand_ins)
+        # with a tilt the two are large and share little: their quotient is left as it is
+        fraction = lost / energy_before if stand_ins else tidy(lost / energy_before)
+        return Solution(
+            before=(self.first, self.second), after=(finals[0], finals[1]),
+            contact=self.contact, frame=self.frame, equations=self.equations(),
+            unknowns=self.unknowns,
+            values={u: x.xreplace(stand_ins) for u, x in values.items()},
+            contact_impulse=(local_impulse[0].xreplace(stand_ins),
+                             local_impulse[1].xreplace(stand_ins)),
+            kinetic_energy_before=energy_before, energy_lost=lost,
+            energy_loss_fraction=fraction, approach_speed=self.approach_speed)
 
 
 def _kicked(body: Body, impulse: sp.MatrixBase) -> Body:

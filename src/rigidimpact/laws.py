@@ -76,6 +76,18 @@ class Equation:
         return Equation(self.label, self.paper, self.lhs.subs(*args, **kwargs),
                         self.rhs.subs(*args, **kwargs))
 
+    def xreplace(self, rule: dict) -> Equation:
+        """The same law with `rule` replacing subexpressions exactly on both sides.
+
+        Examples
+        --------
+        >>> x = sp.Symbol("x")
+        >>> Equation("demo", "", x, 1).xreplace({x: 2}).lhs
+        2
+        """
+        return Equation(self.label, self.paper, self.lhs.xreplace(rule),
+                        self.rhs.xreplace(rule))
+
 
 def normal_momentum(first: Body, first_after: Body, second: Body,
                     second_after: Body) -> Equation:

@@ -110,7 +110,7 @@ class Derivation:
         for role in self.roles:
             found |= sp.sympify(role.expr).free_symbols
         if self.solution is not None:
-            for body in (self.solution.impact.first, self.solution.impact.second):
+            for body in self.solution.before:
                 found |= sp.Tuple(*body.position, *body.velocity, body.spin).free_symbols
                 found |= sp.Tuple(*(body.pivot if body.pivot is not None else ())).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
@@ -120,8 +120,7 @@ class Derivation:
         """What bounds the data by role (restitution in [0, 1], masses positive, ...)."""
         if self.solution is None:
             return ()
-        impact = self.solution.impact
-        return roles_of((impact.first, impact.second), (impact.contact,))
+        return roles_of(self.solution.before, (self.solution.contact,))
 
     def checked(self, values: Mapping[str, Any],
                 sources: Mapping[str, str] | None = None) -> dict[str, sp.Expr]:
@@ -170,7 +169,7 @@ class Derivation:
         if missing:
             raise InputError("--set", f"{self.problem} needs values for: {', '.join(missing)}")
         if self.solution is not None:
-            approach = self.solution.impact.approach_speed.xreplace(exact)
+            approach = self.solution.approach_speed.xreplace(exact)
             if approach.is_number and approach <= 0:
                 raise InputError(", ".join(sources[n] for n in sorted(sources)) or "values",
                                  "with these values the bodies are not approaching at O")
@@ -196,7 +195,7 @@ class Derivation:
         numbers = evaluate(self.results, self.checked(values, sources), dps)
         model = "the model"
         if self.solution is not None:
-            contact = self.solution.impact.contact
+            contact = self.solution.contact
             model = f"{contact.law.capitalize()}'s restitution with a {contact.tangential} contact"
         return Evaluation(numbers, physics_warnings(numbers, dps, model))
 
