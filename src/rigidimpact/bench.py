@@ -53,11 +53,12 @@ from rigidimpact.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 
-__all__ = ["run_bench", "pareto", "throughput", "write_outputs", "FAMILIES", "FLOOR"]
+__all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
+           "verify_against_plain", "ladder_scene", "FAMILIES", "FLOOR"]
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
-            "restrike-sweep", "restrike-fixed-step", "pymunk")
+            "restrike-sweep", "restrike-fixed-step", "pymunk", "ladder")
 KEYS = ("v_fx", "V_x", "omega_z")
 VALUES = {"m": 1, "M": 2, "L": sp.Rational(1, 2), "theta": sp.pi / 6, "e": sp.Rational(1, 2),
           "v_ix": 1}
@@ -423,6 +424,133 @@ def auto_choice(rows: list[dict]) -> dict[str, Any]:
             "cost_ratio": None if cheapest is None else pick["seconds"] / cheapest["seconds"]}
 
 
+# ---- the symbolic ladder: derive time against the number of free symbols ---------------
+
+LADDER_SCENE = """
+[symbols]
+phi = {{ real = true }}
+[[bodies]]
+name = "body1"
+shape = "rigid"
+mass = "{m_1}"
+inertia = "{I_1}"
+position = ["{R_1x}", "{R_1y}"]
+velocity = ["{V_1ix}", "{V_1iy}"]
+spin = "{omega_1iz}"
+[[bodies]]
+name = "body2"
+shape = "rigid"
+mass = "{m_2}"
+inertia = "{I_2}"
+position = ["{R_2x}", "{R_2y}"]
+velocity = ["{V_2ix}", "{V_2iy}"]
+spin = "{omega_2iz}"
+[contact]
+bodies = ["body1", "body2"]
+normal = ["cos({phi})", "sin({phi})"]
+restitution = "{e}"
+tangential = "{tangential}"
+"""
+# the numbers a symbol takes while it is not yet free (the bodies approach along phi)
+LADDER_NUMBERS = {"phi": "3/10", "e": "1/2", "m_1": "2", "m_2": "3", "V_1ix": "2",
+                  "V_2ix": "-1", "R_1x": "-1", "R_2y": "1/2", "I_1": "1", "I_2": "2",
+                  "R_1y": "1/4", "R_2x": "1", "V_1iy": "1/2", "V_2iy": "0",
+                  "omega_1iz": "1", "omega_2iz": "-1"}
+LADDER_ORDER = tuple(LADDER_NUMBERS)  # the tilt first, then the rest
+
+PLAIN_LADDER = """
+import sys, time
+import sympy as sp
+from rigidimpact.scene import parse_scene
+impact = parse_scene(sys.stdin.read()).impact()
+equations = [eq.as_sympy() for eq in impact.equations()]
+start = time.perf_counter()
+solved = sp.solve(equations, impact.unknowns, dict=True)[0]
+simplified = [sp.simplify(x) for x in solved.values()]
+print(time.perf_counter() - start)
+"""
+
+PLAIN_BARBELL = """
+import sympy as sp
+m, M, L, th, e, v = sp.symbols("m M L theta e v_ix", positive=True)
+vf, V, w = sp.symbols("v_fx V_x omega_z")
+laws = [sp.Eq(m * v, m * vf + 2 * M * V),                      # (1)
+        sp.Eq(0, 2 * M * L**2 * w - 2 * M * L * V * sp.sin(th)),  # (2)
+        sp.Eq(V + L * w * sp.sin(th) - vf, e * v)]                # (4)
+s = sp.solve(laws, [vf, V, w], dict=True)[0]
+kinetic = m * s[vf]**2 / 2 + M * s[V]**2 + M * L**2 * s[w]**2
+print(sp.simplify((m * v**2 / 2 - kinetic) / (m * v**2 / 2)))
+"""
+
+
+def ladder_scene(free: int, tangential: str = "smooth") -> str:
+    """The two-body scene with its first `free` symbols (see ``LADDER_ORDER``) left free."""
+    kept = set(LADDER_ORDER[:free])
+    values = {name: (name if name in kept else number)
+              for name, number in LADDER_NUMBERS.items()}
+    return LADDER_SCENE.format(**values, tangential=tangential)
+
+
+def _python(script: str, stdin: str = "", limit: float = 60.0) -> float | None:
+    """Wall time of a fresh Python running `script`, or None past `limit` seconds."""
+    import subprocess
+    import sys
+
+    start = time.perf_counter()
+    try:
+        subprocess.run([sys.executable, "-c", script], input=stdin, text=True, check=True,
+                       capture_output=True, timeout=limit)
+    except subprocess.TimeoutExpired:
+        return None
+    return time.perf_counter() - start
+
+
+def _plain_solve_seconds(text: str, limit: float) -> float | None:
+    """sympy.solve + simplify of the scene's own printed laws, timed inside a child."""
+    import subprocess
+    import sys
+
+    try:
+        done = subprocess.run([sys.executable, "-c", PLAIN_LADDER], input=text, text=True,
+                              check=True, capture_output=True, timeout=limit)
+    except subprocess.TimeoutExpired:
+        return None
+    return float(done.stdout.strip().splitlines()[-1])
+
+
+def symbolic_ladder(counts: Iterable[int] = (2, 4, 6, 8, 10, 12, 14, 16),
+                    limit: float = 30.0, tangentials: Iterable[str] = ("smooth", "stick"),
+                    progress: Callable[[str], None] | None = None) -> list[dict]:
+    """Derive time against free symbols, beside plain SymPy on the same laws.
+
+    Each row times ``Scene.derivation()`` in this process and, in a child process,
+    ``sympy.solve`` of the same printed laws followed by ``simplify`` of every unknown
+    (``None`` when it runs past `limit` seconds).
+    """
+    rows = []
+    for tangential in tangentials:
+        for free in counts:
+            text = ladder_scene(free, tangential)
+            start = time.perf_counter()
+            parse_scene(text).derivation()
+            ours = time.perf_counter() - start
+            plain = _plain_solve_seconds(text, limit)
+            rows.append({"free_symbols": free, "tangential": tangential, "derive_s": ours,
+                         "plain_sympy_s": plain, "limit_s": limit})
+            if progress is not None:
+                progress(f"ladder {tangential} {free}")
+    return rows
+
+
+def verify_against_plain(repeats: int = 3) -> dict[str, float]:
+    """``rigidimpact verify`` end to end against a plain SymPy script that solves only the
+    barbell (eqs. 1, 2 and 4) and simplifies its energy loss; medians of fresh processes."""
+    ours = statistics.median(
+        _python("from rigidimpact.cli import main; main(['verify'])") for _ in range(repeats))
+    plain = statistics.median(_python(PLAIN_BARBELL) for _ in range(repeats))
+    return {"verify_s": ours, "plain_barbell_s": plain, "ratio": ours / plain}
+
+
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
               progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
     """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
@@ -475,6 +603,11 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
                          for problem, front in fronts.items()},
               "auto_choice": auto_choice(rows), "quick": quick, "failed": failed}
     report["pymunk"] = any(r["method"] == "pymunk" for r in rows)
+    if "ladder" in families:
+        report["ladder"] = symbolic_ladder((2, 8, 16) if quick else (2, 4, 6, 8, 10, 12, 14, 16),
+                                           10.0 if quick else 30.0,
+                                           ("smooth",) if quick else ("smooth", "stick"))
+        report["verify_vs_plain"] = verify_against_plain(1 if quick else 3)
     return report
 
 
@@ -510,6 +643,18 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                       f"{auto['seconds']:.3e} s; cheapest measured setting that meets it: "
                       f"{auto['cheapest']} at {auto['cheapest_seconds']:.3e} s "
                       f"(ratio {auto['cost_ratio']:.2f})."]
+    if report.get("ladder"):
+        lines += ["", "Symbolic ladder: derive time against free symbols (a two-body scene "
+                      "with a tilted normal), beside sympy.solve + simplify of the same laws "
+                      "in a fresh process:", "",
+                  "| free symbols | contact | derive (s) | plain SymPy (s) |", "|---|---|---|---|"]
+        lines += [f"| {r['free_symbols']} | {r['tangential']} | {r['derive_s']:.2f} | "
+                  + (f"{r['plain_sympy_s']:.2f}" if r["plain_sympy_s"] is not None
+                     else f"> {r['limit_s']:g}") + " |" for r in report["ladder"]]
+        vp = report["verify_vs_plain"]
+        lines += ["", f"`rigidimpact verify` end to end {vp['verify_s']:.2f} s against a plain "
+                      f"SymPy barbell script {vp['plain_barbell_s']:.2f} s: ratio "
+                      f"{vp['ratio']:.2f}."]
     if report.get("failed"):
         lines += ["", "Settings the simulation refused (not timed):"]
         lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]
