@@ -127,14 +127,15 @@ class Impact:
         """
         digits = NUMERIC_DIGITS if self.numeric else None
         bodies = [_rotated(b, self.contact.frame, digits) for b in (self.first, self.second)]
-        tilt = self.contact.frame.free_symbols
+        # a symbolic angle, or a numeric one inside sin and cos (cos(0.3)), tilts the frame
+        tilt = self.contact.frame.free_symbols | self.contact.frame.atoms(sp.sin, sp.cos)
         if digits or not tilt:
             return (bodies[0], bodies[1]), {}
         stand_ins: dict[sp.Dummy, sp.Expr] = {}
 
         def local(x: sp.Expr, name: str) -> sp.Expr:
             x = tidy(x)
-            if not x.free_symbols & tilt:
+            if not x.has(*tilt):
                 return x
             stand_in = sp.Dummy(name, real=True)
             stand_ins[stand_in] = x
@@ -144,9 +145,11 @@ class Impact:
             def vector(v, name, k=k):
                 return None if v is None else sp.ImmutableMatrix(
                     [local(c, f"{name}{k + 1}{axis}") for c, axis in zip(v, "nt", strict=True)])
-            bodies[k] = replace(body, position=vector(body.position, "R"),
-                                velocity=vector(body.velocity, "V"),
-                                pivot=vector(body.pivot, "Q"))
+            position, pivot = vector(body.position, "R"), vector(body.pivot, "Q")
+            # a pivoted body's velocity is its turn about the pivot, in the same stand-ins
+            velocity = (vector(body.velocity, "V") if pivot is None
+                        else _offset_turn(body.spin, position, pivot))
+            bodies[k] = replace(body, position=position, velocity=velocity, pivot=pivot)
         return (bodies[0], bodies[1]), stand_ins
 
     @property
@@ -325,13 +328,16 @@ class Impact:
                 continue
             velocity = local.velocity if back == sp.eye(2) else \
                 (back * local.velocity).applyfunc(tidy)
+            spin = sp.sympify(local.spin).xreplace(stand_ins)
             if self.numeric:  # keep the body's data in the same 50-digit numbers
                 numbers = self.before[k]
                 pivot = None if numbers.pivot is None else back * numbers.pivot
                 original = replace(original, mass=numbers.mass, inertia=numbers.inertia,
                                    position=back * numbers.position, pivot=pivot)
-            finals.append(original.with_motion(velocity.xreplace(stand_ins),
-                                               sp.sympify(local.spin).xreplace(stand_ins)))
+            if original.support == "pivot":  # the turn about the pivot, by construction
+                finals.append(original.with_motion(_turning(spin, original), spin))
+                continue
+            finals.append(original.with_motion(velocity.xreplace(stand_ins), spin))
         # a rotation keeps kinetic energy: with a tilt, take it in the scene frame
         given = (self.first, self.second) if stand_ins else (first, second)
         energy_before = tidy(given[0].kinetic_energy + given[1].kinetic_energy)
@@ -371,5 +377,11 @@ def _kicked(body: Body, impulse: sp.MatrixBase) -> Body:
 
 def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:
     """The centre's velocity of a body turning at `spin` about its pivot."""
-    offset = body.position - body.pivot
+    return _offset_turn(spin, body.position, body.pivot)
+
+
+def _offset_turn(spin: sp.Expr, position: sp.MatrixBase,
+                 pivot: sp.MatrixBase) -> sp.ImmutableMatrix:
+    """The velocity of the point at `position` turning at `spin` about `pivot`."""
+    offset = position - pivot
     return sp.ImmutableMatrix([-spin * offset[1], spin * offset[0]])

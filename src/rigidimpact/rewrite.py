@@ -53,8 +53,9 @@ def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
     >>> _shield(sp.sqrt(2) * sp.Symbol("x"))[0].free_symbols == {sp.Symbol("x")}
     False
     """
-    constants = sorted((a for a in expr.atoms(sp.Pow)
-                        if a.is_number and not a.is_Rational and a.is_positive),
+    constants = sorted((a for a in expr.atoms(sp.Pow)  # radicals of rationals only:
+                        if a.base.is_Rational and a.exp.is_Rational  # sin(1)**2 must stay
+                        and not a.exp.is_Integer and a.is_positive),  # for sin^2 + cos^2
                        key=sp.default_sort_key)
     if not constants:
         return expr, {}
