@@ -13,35 +13,11 @@ import random
 import pytest
 import sympy as sp
 
+from rigidimpact.bench import LADDER_ORDER, LADDER_SCENE
 from rigidimpact.scene import parse_scene
 
-TILTED = """
-[symbols]
-phi = {{ real = true }}
-[[bodies]]
-name = "body1"
-shape = "rigid"
-mass = "{m_1}"
-inertia = "{I_1}"
-position = ["{R_1x}", "{R_1y}"]
-velocity = ["{V_1ix}", "{V_1iy}"]
-spin = "{omega_1iz}"
-[[bodies]]
-name = "body2"
-shape = "rigid"
-mass = "{m_2}"
-inertia = "{I_2}"
-position = ["{R_2x}", "{R_2y}"]
-velocity = ["{V_2ix}", "{V_2iy}"]
-spin = "{omega_2iz}"
-[contact]
-bodies = ["body1", "body2"]
-normal = ["cos({phi})", "sin({phi})"]
-restitution = "{e}"
-tangential = "{tangential}"
-"""
-NAMES = ("m_1", "I_1", "R_1x", "R_1y", "V_1ix", "V_1iy", "omega_1iz", "m_2", "I_2", "R_2x",
-         "R_2y", "V_2ix", "V_2iy", "omega_2iz", "phi", "e")
+TILTED = LADDER_SCENE  # the bench's ladder scene: 16 symbols with a tilted normal
+NAMES = LADDER_ORDER
 
 
 def numbers(generator: random.Random) -> dict[str, str]:
