@@ -145,10 +145,13 @@ class Impact:
             def vector(v, name, k=k):
                 return None if v is None else sp.ImmutableMatrix(
                     [local(c, f"{name}{k + 1}{axis}") for c, axis in zip(v, "nt", strict=True)])
-            position, pivot = vector(body.position, "R"), vector(body.pivot, "Q")
-            # a pivoted body's velocity is its turn about the pivot, in the same stand-ins
-            velocity = (vector(body.velocity, "V") if pivot is None
-                        else _offset_turn(body.spin, position, pivot))
+            position = vector(body.position, "R")
+            if body.pivot is None:
+                pivot, velocity = None, vector(body.velocity, "V")
+            else:  # the pivot through its offset from the centre (zero stays zero), and
+                # the velocity as the turn about it, in the same stand-ins
+                pivot = sp.ImmutableMatrix(position - vector(body.position - body.pivot, "D"))
+                velocity = _offset_turn(body.spin, position, pivot)
             bodies[k] = replace(body, position=position, velocity=velocity, pivot=pivot)
         return (bodies[0], bodies[1]), stand_ins
 
