@@ -30,7 +30,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
 
-__all__ = ["Body", "join", "cross", "as_vector"]
+__all__ = ["Body", "join", "cross", "spin_cross", "as_vector"]
 
 SHAPES = ("particle", "barbell", "rod", "disc", "ring", "sphere", "rigid", "fixed")
 
@@ -82,8 +82,15 @@ def cross(a: sp.MatrixBase, b: sp.MatrixBase) -> sp.Expr:
     return a[0] * b[1] - a[1] * b[0]
 
 
-def _spin_cross(omega: sp.Expr, r: sp.MatrixBase) -> sp.ImmutableMatrix:
-    """``omega z_hat x r`` in the plane."""
+def spin_cross(omega: sp.Expr, r: sp.MatrixBase) -> sp.ImmutableMatrix:
+    """``omega z_hat x r`` in the plane: the velocity that turning at `omega` gives the
+    point at `r` from the axis.
+
+    Examples
+    --------
+    >>> spin_cross(2, sp.Matrix([0, -1])).T
+    Matrix([[2, 0]])
+    """
     return sp.ImmutableMatrix([-omega * r[1], omega * r[0]])
 
 
@@ -204,7 +211,7 @@ class Body:
         if self.inertia_about_pivot.is_zero:
             raise InputError(f"{self.name}.pivot", "a point mass pivoted at its own place "
                              "cannot move: put the pivot elsewhere or make the body fixed")
-        expected = _spin_cross(self.spin, self.position - pivot)
+        expected = spin_cross(self.spin, self.position - pivot)
         for axis, (v, w) in enumerate(zip(self.velocity, expected, strict=True)):
             if v != w and not _negligible(tidy(v - w), v, w):  # shown consistent
                 raise InputError(f"{self.name}.velocity", f"a pivoted body moves only by "
@@ -419,7 +426,7 @@ class Body:
         >>> b.point_velocity(sp.Matrix([0, 0])).T
         Matrix([[0, -1]])
         """
-        return sp.ImmutableMatrix(self.velocity + _spin_cross(self.spin, point - self.position))
+        return sp.ImmutableMatrix(self.velocity + spin_cross(self.spin, point - self.position))
 
     @property
     def contact_velocity(self) -> sp.ImmutableMatrix:
@@ -430,7 +437,7 @@ class Body:
         >>> Body.rigid(1, 1, (0, 2), velocity=(1, 0), spin=3).contact_velocity.T
         Matrix([[7, 0]])
         """
-        return sp.ImmutableMatrix(self.velocity - _spin_cross(self.spin, self.position))
+        return sp.ImmutableMatrix(self.velocity - spin_cross(self.spin, self.position))
 
     @property
     def momentum(self) -> sp.ImmutableMatrix:

@@ -23,7 +23,7 @@ from functools import cached_property
 import sympy as sp
 
 from rigidimpact import laws
-from rigidimpact.bodies import Body, cross
+from rigidimpact.bodies import Body, cross, spin_cross
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.notation import make_symbol
@@ -151,7 +151,7 @@ class Impact:
             else:  # the pivot through its offset from the centre (zero stays zero), and
                 # the velocity as the turn about it, in the same stand-ins
                 pivot = sp.ImmutableMatrix(position - vector(body.position - body.pivot, "D"))
-                velocity = _offset_turn(body.spin, position, pivot)
+                velocity = spin_cross(body.spin, position - pivot)
             bodies[k] = replace(body, position=position, velocity=velocity, pivot=pivot)
         return (bodies[0], bodies[1]), stand_ins
 
@@ -380,11 +380,4 @@ def _kicked(body: Body, impulse: sp.MatrixBase) -> Body:
 
 def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:
     """The centre's velocity of a body turning at `spin` about its pivot."""
-    return _offset_turn(spin, body.position, body.pivot)
-
-
-def _offset_turn(spin: sp.Expr, position: sp.MatrixBase,
-                 pivot: sp.MatrixBase) -> sp.ImmutableMatrix:
-    """The velocity of the point at `position` turning at `spin` about `pivot`."""
-    offset = position - pivot
-    return sp.ImmutableMatrix([-spin * offset[1], spin * offset[0]])
+    return spin_cross(spin, body.position - body.pivot)

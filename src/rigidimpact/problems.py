@@ -40,6 +40,7 @@ __all__ = [
     "Evaluation",
     "physics_warnings",
     "model_warnings",
+    "model_name",
     "PROBLEMS",
     "derive",
     "barbell_impact",
@@ -193,10 +194,7 @@ class Derivation:
         from rigidimpact.numeric import evaluate
 
         numbers = evaluate(self.results, self.checked(values, sources), dps)
-        model = "the model"
-        if self.solution is not None:
-            contact = self.solution.contact
-            model = f"{contact.law.capitalize()}'s restitution with a {contact.tangential} contact"
+        model = "the model" if self.solution is None else model_name(self.solution.contact)
         return Evaluation(numbers, physics_warnings(numbers, dps, model))
 
 
@@ -206,6 +204,18 @@ class Evaluation:
 
     numbers: Mapping[str, Any]
     warnings: tuple[str, ...] = ()
+
+
+def model_name(contact: Contact) -> str:
+    """The contact's laws in words, for messages.
+
+    Examples
+    --------
+    >>> model_name(Contact(tangential="stick"))
+    "Newton's restitution with a sticking contact"
+    """
+    tangential = {"stick": "sticking"}.get(contact.tangential, contact.tangential)
+    return f"{contact.law.capitalize()}'s restitution with a {tangential} contact"
 
 
 def model_warnings(contact: Contact) -> tuple[str, ...]:
@@ -250,10 +260,13 @@ def physics_warnings(numbers: Mapping[str, Any], dps: int | None = None,
         found.append(f"kinetic energy is created: the energy lost is {float(loss):.6g} of "
                      f"the energy before; {model} cannot honour the physics at these "
                      "values")
-    for key, value in numbers.items():
-        if (key == "impulse" or key.endswith("normal_impulse")) and value < -tolerance:
-            found.append(f"{key} is {float(value):.6g} < 0: the contact would have to pull; "
-                         f"{model} cannot honour the physics at these values")
+    # a scene's results carry the normal impulse twice (impulse, contact.normal_impulse)
+    keys = [k for k in numbers if k.endswith("normal_impulse")] or \
+        [k for k in numbers if k == "impulse"]
+    for key in keys:
+        if numbers[key] < -tolerance:
+            found.append(f"{key} is {float(numbers[key]):.6g} < 0: the contact would have "
+                         f"to pull; {model} cannot honour the physics at these values")
     return tuple(found)
 
 

@@ -32,7 +32,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact import expr as expressions
-from rigidimpact.bodies import SHAPES, Body
+from rigidimpact.bodies import SHAPES, Body, spin_cross
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.impact import Impact
@@ -250,18 +250,13 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
             if "velocity" in table:  # given: it must be the turn about the pivot
                 body = replace(body, pivot=pivot)
             else:  # the velocity follows from the spin
-                body = replace(body, pivot=pivot, velocity=_turn(body, pivot, spin))
+                turn = spin_cross(spin, body.position - sp.ImmutableMatrix(pivot))
+                body = replace(body, pivot=pivot, velocity=turn)
         return body
     except InputError as exc:
         # name the entry in the file, not only the body
         field_name = exc.field.split(".", 1)[-1] if "." in exc.field else exc.field
         raise InputError(f"{where}.{field_name}", exc.message) from None
-
-
-def _turn(body: Body, pivot: tuple, spin: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
-    """The velocity of the centre of a body turning at `spin` about `pivot`."""
-    offset = body.position - sp.ImmutableMatrix(pivot)
-    return (-spin * offset[1], spin * offset[0])
 
 
 def _shaped(table: Mapping[str, Any], where: str, shape: str, motion: tuple,

@@ -23,7 +23,7 @@ import sympy as sp
 
 from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
-from rigidimpact.problems import physics_warnings
+from rigidimpact.problems import model_name, physics_warnings
 from rigidimpact.scene import Scene
 from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
@@ -199,9 +199,7 @@ def run(scene: Scene) -> Outcome:
     details = {}
     energy = {"energy_loss_fraction": as_float(solution.energy_loss_fraction, values),
               "impulse": as_float(solution.normal_impulse, values)}
-    contact = scene.contact
-    warnings = physics_warnings(energy, None, f"{contact.law.capitalize()}'s restitution "
-                                f"with a {contact.tangential} contact")
+    warnings = physics_warnings(energy, None, model_name(scene.contact))
     if warnings:
         details["warnings"] = list(warnings)
     final: dict[str, float] = {}
