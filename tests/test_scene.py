@@ -108,14 +108,21 @@ def test_every_shipped_scene_derives_and_obeys_the_laws(path):
         for k in range(2):  # linear momentum of the pair
             diff = sum(b.momentum[k] for b in before) - sum(a.momentum[k] for a in after)
             assert sp.simplify(diff) == 0
-    elif supported[0].support == "pivot":  # the pair's angular momentum about the pivot
-        q = supported[0].pivot
+    for k, hinged in enumerate(before):
+        if hinged.support != "pivot":
+            continue
+        q = hinged.pivot
 
-        def about(body):
+        def about(body, q=q):
             return body.inertia * body.spin + body.mass * (
                 (body.position[0] - q[0]) * body.velocity[1]
                 - (body.position[1] - q[1]) * body.velocity[0])
-        assert sp.simplify(sum(map(about, before)) - sum(map(about, after))) == 0
+        if len(supported) == 1:  # the pair's angular momentum about the pivot is kept
+            assert sp.simplify(sum(map(about, before)) - sum(map(about, after))) == 0
+        # each hinged body turns by the moment about its pivot of the impulse it gets at O
+        given = sol.impulse if k == 1 else -sol.impulse
+        moment = -q[0] * given[1] + q[1] * given[0]
+        assert sp.simplify(about(after[k]) - about(hinged) - moment) == 0
     for b, a in zip(before, after, strict=True):  # angular momentum about O
         if b.support == "free":
             assert sp.simplify(b.angular_momentum - a.angular_momentum) == 0
@@ -160,3 +167,70 @@ restitution = "e"
     assert sp.simplify(rel_after + e * rel_before) == 0
     # the spin of a smooth disc struck through its centre cannot change (eq. 15)
     assert sol.first_after.spin == scene.bodies[0].spin
+
+
+CONTACTS_SCENE = '''
+[[bodies]]
+name = "ball"
+shape = "particle"
+mass = "1"
+velocity = ["2", "0"]
+
+[[bodies]]
+name = "block"
+shape = "rigid"
+mass = "2"
+inertia = "1"
+position = ["{x}", "{y}"]
+pivot = ["{px}", "{py}"]
+
+[[contacts]]
+name = "hit"
+bodies = ["ball", "block"]
+{point}
+restitution = "1/2"
+{impact}
+'''
+
+
+def _contacts_scene(x="1", y="1", px="1", py="3", point="", impact=""):
+    return CONTACTS_SCENE.format(x=x, y=y, px=px, py=py, point=point, impact=impact)
+
+
+def test_one_contacts_entry_names_its_result_keys():
+    results = parse_scene(_contacts_scene()).derivation().results
+    assert "hit.normal_impulse" in results and "hit.tangential_impulse" in results
+    assert "contact.normal_impulse" not in results
+
+
+def test_a_contact_point_moves_the_origin_of_positions_and_pivots():
+    # the same block and pivot seen from an origin 5 left and 2 below the contact point
+    at_origin = parse_scene(_contacts_scene()).derivation().results
+    shifted = parse_scene(_contacts_scene(x="6", y="3", px="6", py="5",
+                                          point='point = ["5", "2"]')).derivation().results
+    assert at_origin == shifted
+
+
+@pytest.mark.parametrize("impact, needle", [
+    ('[impact]\nrule = "all"', "impact.rule: must be one of"),
+    ('[impact]\nrule = "sequential"\norder = ["other"]', "impact.order"),
+    ('[impact]\nspeed = 1', "impact.speed: unknown field"),
+])
+def test_impact_table_is_checked(impact, needle):
+    with pytest.raises(InputError, match=needle):
+        parse_scene(_contacts_scene(impact=impact))
+
+
+def test_every_rule_accepted_for_one_contact():
+    expected = parse_scene(_contacts_scene()).derivation().results
+    for rule in ("simultaneous", "sequential", "compliant"):
+        text = _contacts_scene(impact=f'[impact]\nrule = "{rule}"\norder = ["hit"]')
+        assert parse_scene(text).derivation().results == expected
+
+
+def test_several_contacts_or_both_tables_are_refused():
+    text = _contacts_scene() + '\n[[contacts]]\nbodies = ["ball", "block"]\nrestitution = "1"\n'
+    with pytest.raises(InputError, match="2 contacts given"):
+        parse_scene(text)
+    with pytest.raises(InputError, match="either \\[contact\\] or \\[\\[contacts\\]\\]"):
+        parse_scene(_contacts_scene() + '\n[contact]\nrestitution = "1"\n')

@@ -149,8 +149,11 @@ def test_supported_scenes_are_checked(extra, needle):
 
 
 def test_refusals_for_supports():
-    with pytest.raises(InputError, match="at most one"):
-        Impact(Body.rigid(1, 1, (-1, 0), pivot=(-2, 0), spin=-1, velocity=(0, -1), name="a"),
+    with pytest.raises(InputError, match="two fixed bodies"):
+        Impact(Body.fixed("a"), Body.fixed("wall"), Contact())
+    with pytest.raises(InputError, match="not approaching"):  # O moves along the wall
+        Impact(Body.rigid(1, 1, (-1, 0), pivot=(-2, 0), spin=-1, velocity=(0, -1),
+                          name="a"),
                Body.fixed("wall"), Contact())
     with pytest.raises(InputError, match="cannot move"):
         Body.rigid(1, 0, (0, 0), pivot=(0, 0))
@@ -202,3 +205,44 @@ restitution = "0.8"
     before = sum(sp.N(hinge_momentum(b, pivot), 40) for b in scene.bodies)
     after = sum(sp.N(hinge_momentum(b, pivot), 40) for b in solution.after)
     assert abs(before - after) < 1e-35
+
+
+ELL, MASS, W0 = sp.symbols("ell M omega_0", positive=True)
+
+
+def _hanging_rod(name, top):
+    """A uniform rod with one end at O and the other on a pivot at (0, top)."""
+    spin = W0 if top > 0 else 0
+    return Body.rod(MASS, ELL, sp.pi / 2, top / 2, velocity=(spin * top / 2, 0), spin=spin,
+                    pivot=(0, top), name=name)
+
+
+def test_pivoted_rod_strikes_a_wall():
+    # by hand: one degree of freedom, so the end's normal velocity reverses scaled by e;
+    # P = (1 + e) M w0 l / 3 (effective mass I_q / l^2 = M/3), and the pivot supplies the
+    # rest of the centre's momentum change: -(1 + e) M w0 l / 6 along x
+    e = sp.Symbol("e", nonnegative=True)
+    rod = _hanging_rod("rod", ELL)
+    solution = Impact(rod, Body.fixed("wall"), Contact(restitution=e)).solve()
+    results = solution.results()
+    assert sp.simplify(results["rod.omega"] + e * W0) == 0
+    assert sp.simplify(results["impulse"] - (1 + e) * MASS * W0 * ELL / 3) == 0
+    assert sp.simplify(results["rod.pivot_impulse_x"] + (1 + e) * MASS * W0 * ELL / 6) == 0
+    assert results["rod.pivot_impulse_y"] == 0
+    assert sp.simplify(solution.energy_loss_fraction - (1 - e**2)) == 0
+
+
+def test_two_pivoted_rods_exchange_like_equal_masses():
+    # by hand: both ends have the effective mass M/3 along the normal, so the end speeds
+    # follow the equal-mass line collision: (1 - e)/2 and (1 + e)/2 of the striker's
+    e = sp.Symbol("e", nonnegative=True)
+    impact = Impact(_hanging_rod("a", ELL), _hanging_rod("b", -ELL), Contact(restitution=e))
+    solution = impact.solve()
+    results = solution.results()
+    assert sp.simplify(results["a.omega"] - (1 - e) * W0 / 2) == 0
+    assert sp.simplify(results["b.omega"] + (1 + e) * W0 / 2) == 0
+    assert [eq.label for eq in impact.equations()][:2] == [
+        "angular impulse on a about its pivot", "angular impulse on b about its pivot"]
+    # what is printed is what is solved: every printed law holds at the solution
+    for eq in impact.equations():
+        assert sp.simplify(eq.residual.subs(solution.values)) == 0

@@ -28,11 +28,11 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.geometry import cross, spin_cross
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Body", "join", "cross", "spin_cross", "as_vector"]
 
-SHAPES = ("particle", "barbell", "rod", "disc", "ring", "sphere", "rigid", "fixed")
 
 
 def _expr(value: Any, where: str) -> sp.Expr:
@@ -69,29 +69,6 @@ def as_vector(value: Any, where: str) -> sp.ImmutableMatrix:
     if len(items) != 2:
         raise InputError(where, f"expected two components [x, y], got {len(items)}")
     return sp.ImmutableMatrix([_expr(c, f"{where}[{i}]") for i, c in enumerate(items)])
-
-
-def cross(a: sp.MatrixBase, b: sp.MatrixBase) -> sp.Expr:
-    """The z component of ``a x b`` for planar vectors.
-
-    Examples
-    --------
-    >>> cross(sp.Matrix([1, 0]), sp.Matrix([0, 1]))
-    1
-    """
-    return a[0] * b[1] - a[1] * b[0]
-
-
-def spin_cross(omega: sp.Expr, r: sp.MatrixBase) -> sp.ImmutableMatrix:
-    """``omega z_hat x r`` in the plane: the velocity that turning at `omega` gives the
-    point at `r` from the axis.
-
-    Examples
-    --------
-    >>> spin_cross(2, sp.Matrix([0, -1])).T
-    Matrix([[2, 0]])
-    """
-    return sp.ImmutableMatrix([-omega * r[1], omega * r[0]])
 
 
 def _negligible(difference: sp.Expr, *scale: sp.Expr) -> bool:
@@ -155,7 +132,8 @@ class Body:
     spin : sympy.Expr
         Angular velocity about z, counter-clockwise positive.
     shape : str
-        One of ``particle, barbell, rod, disc, ring, sphere, rigid``.
+        The shape's name (:data:`rigidimpact.shapes.SHAPES` lists those a scene may
+        use); ``"fixed"`` marks an immovable body.
     dimensions : tuple of (str, expr)
         The sizes the shape was built from, for display and simulation.
     parts : tuple of Part
@@ -184,9 +162,9 @@ class Body:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
             raise InputError("name", f"must be an identifier, got {self.name!r}")
-        if self.shape not in SHAPES:
-            raise InputError(f"{self.name}.shape", f"unknown shape {self.shape!r}; "
-                             f"expected one of {', '.join(SHAPES)}")
+        if not isinstance(self.shape, str) or not self.shape.isidentifier():
+            raise InputError(f"{self.name}.shape", f"must be a shape's name (see "
+                             f"rigidimpact.shapes), got {self.shape!r}")
         fix = object.__setattr__
         fix(self, "mass", _must_be_positive(_expr(self.mass, f"{self.name}.mass"),
                                             f"{self.name}.mass"))

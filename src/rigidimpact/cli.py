@@ -107,9 +107,11 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     print(f"{d.title}  [{d.problem}]")
     for line in d.setup:
         print(f"  {line}")
-    print("\nLaws (paper's equation numbers):")
+    numbered = any(eq.paper for eq in d.equations)
+    print("\nLaws (paper's equation numbers):" if numbered else "\nLaws:")
     for eq in d.equations:
-        print(f"  {eq.paper:<14} {eq.label}:\n      {eq.lhs} = {eq.rhs}")
+        number = f"{eq.paper:<14} " if numbered else ""
+        print(f"  {number}{eq.label}:\n      {eq.lhs} = {eq.rhs}")
     print(f"\nSolved for {', '.join(map(str, d.unknowns))}:")
     for key, value in d.results.items():
         print(f"  {key} = {value}")

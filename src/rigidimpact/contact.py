@@ -28,13 +28,14 @@ import sympy as sp
 
 from rigidimpact.bodies import _expr, as_vector
 from rigidimpact.errors import InputError
+from rigidimpact.geometry import frame_of
+from rigidimpact.laws import RESTITUTION_LAWS, TANGENTIAL_LAWS, ContactLaw
 from rigidimpact.rewrite import tidy
 from rigidimpact.roles import Role
 
 __all__ = ["Contact", "RESTITUTION_LAWS", "TANGENTIAL"]
 
-RESTITUTION_LAWS = ("newton",)  # kinematic; Poisson and energetic laws may join later
-TANGENTIAL = ("smooth", "stick")
+TANGENTIAL = tuple(TANGENTIAL_LAWS)
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,8 @@ class Contact:
         contact points leave with equal tangential velocities.
     law : {"newton"}
         The restitution law.
+    name : str
+        Names the contact in result keys (``contact.normal_impulse``).
 
     Examples
     --------
@@ -63,8 +66,11 @@ class Contact:
     restitution: Any = 0
     tangential: str = "smooth"
     law: str = "newton"
+    name: str = "contact"
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.isidentifier():
+            raise InputError("contact.name", f"must be an identifier, got {self.name!r}")
         normal = as_vector(self.normal, "contact.normal")
         if all(c.is_zero for c in normal):
             raise InputError("contact.normal", "must not be the zero vector")
@@ -74,7 +80,7 @@ class Contact:
         if e.is_negative or (e - 1).is_positive or role.allows(e) is False:
             raise InputError("contact.restitution", role.describe(e))
         object.__setattr__(self, "restitution", e)
-        if self.tangential not in TANGENTIAL:
+        if self.tangential not in TANGENTIAL_LAWS:
             raise InputError("contact.tangential", f"must be one of {', '.join(TANGENTIAL)}, "
                              f"got {self.tangential!r}")
         if self.law not in RESTITUTION_LAWS:
@@ -83,8 +89,20 @@ class Contact:
 
     def __repr__(self) -> str:
         n = self.normal
+        extra = "" if self.name == "contact" else f", name={self.name!r}"
         return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
-                f"tangential={self.tangential!r}, law={self.law!r})")
+                f"tangential={self.tangential!r}, law={self.law!r}{extra})")
+
+    @property
+    def laws(self) -> tuple[ContactLaw, ContactLaw]:
+        """The restitution law and the tangential law, as objects.
+
+        Examples
+        --------
+        >>> Contact(restitution=1).laws
+        (NewtonRestitution(1), Smooth())
+        """
+        return RESTITUTION_LAWS[self.law](self.restitution), TANGENTIAL_LAWS[self.tangential]()
 
     @cached_property
     def frame(self) -> sp.ImmutableMatrix:
@@ -102,5 +120,4 @@ class Contact:
         """
         n = self.normal
         length = sp.sqrt(tidy(n[0] ** 2 + n[1] ** 2))  # tidy sees cos^2 + sin^2 = 1
-        nx, ny = tidy(n[0] / length), tidy(n[1] / length)
-        return sp.ImmutableMatrix([[nx, ny], [-ny, nx]])
+        return frame_of(sp.ImmutableMatrix([tidy(n[0] / length), tidy(n[1] / length)]))

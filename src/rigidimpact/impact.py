@@ -23,9 +23,11 @@ from functools import cached_property
 import sympy as sp
 
 from rigidimpact import laws
-from rigidimpact.bodies import Body, cross, spin_cross
+from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
+from rigidimpact.geometry import spin_cross
+from rigidimpact.impulse import ImpulseProblem
 from rigidimpact.notation import make_symbol
 from rigidimpact.rewrite import tidy
 from rigidimpact.solution import Solution
@@ -65,6 +67,9 @@ class Impact:
     unknown_names : pair of (vx, vy, omega) names, optional
         Names for the final velocity components in the contact frame; the default is
         the paper's section 3 notation ``V_1fx, V_1fy, omega_1fz, ...``.
+    numbers : tuple of (law, number) pairs, optional
+        Equation numbers of a published source, by law (see
+        :data:`rigidimpact.problems.PAPER_NUMBERS`); generic impacts have none.
 
     Examples
     --------
@@ -78,12 +83,14 @@ class Impact:
     second: Body
     contact: Contact
     unknown_names: tuple[tuple[str, str, str], tuple[str, str, str]] = DEFAULT_UNKNOWNS
+    numbers: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self) -> None:
         if self.first.name == self.second.name:
             raise InputError("bodies", f"the two bodies share the name {self.first.name!r}")
-        if self.first.support != "free" and self.second.support != "free":
-            raise InputError("bodies", "at most one of the two bodies may be pivoted or fixed")
+        if self.first.support == "fixed" and self.second.support == "fixed":
+            raise InputError("bodies", "two fixed bodies cannot collide: at least one must "
+                             "move")
         approach = self.approach_speed
         if approach.is_nonpositive:
             raise InputError("bodies", f"the bodies are not approaching at O (normal approach "
@@ -190,16 +197,26 @@ class Impact:
                 states.append(body.with_motion((vx, vy), spin))
         return states[0], states[1]
 
+    @cached_property
+    def _impulse_unknowns(self) -> tuple[sp.Symbol, ...]:
+        """The contact impulse's components, unknowns of their own when both bodies are
+        supported (no conservation law then holds without them)."""
+        if self.first.support == "free" or self.second.support == "free":
+            return ()
+        names = ("P_n", "P_t") if self.contact.tangential == "stick" else ("P_n",)
+        return tuple(make_symbol(n, real=True) for n in names)
+
     @property
     def unknowns(self) -> tuple[sp.Symbol, ...]:
-        """The final velocity components and spins to solve for."""
+        """The final velocity components and spins to solve for (and the contact
+        impulse when both bodies are supported)."""
         found: list[sp.Symbol] = []
         for body in self.after:
             if body.support == "free":
                 found += [body.velocity[0], body.velocity[1]]
             if body.support != "fixed" and isinstance(body.spin, sp.Symbol):
                 found.append(body.spin)
-        return tuple(found)
+        return tuple(found) + self._impulse_unknowns
 
     def equations(self) -> tuple[laws.Equation, ...]:
         """The laws that fix the unknowns, in the order the paper gives them (with a
@@ -210,68 +227,79 @@ class Impact:
         >>> from rigidimpact.bodies import Body
         >>> imp = Impact(Body.particle(1, (1, 0), "p"), Body.rod(1, 2, 1, 1, name="r"),
         ...              Contact())
-        >>> [eq.paper for eq in imp.equations()]
-        ['(1), (12)', '(13)', '(13)', '(2), (14)', '(3), (4)']
+        >>> [eq.law for eq in imp.equations()]  # doctest: +NORMALIZE_WHITESPACE
+        ['normal momentum', 'tangential momentum', 'tangential momentum',
+         'angular momentum', 'restitution']
         """
         stand_ins = self._local[1]
         local = self._local_equations()
+        numbers = dict(self.numbers)
+        if numbers:
+            local = tuple(replace(eq, paper=numbers.get(eq.law, eq.paper)) for eq in local)
         return tuple(eq.xreplace(stand_ins) for eq in local) if stand_ins else local
 
-    def _local_equations(self) -> tuple[laws.Equation, ...]:
-        """The laws in the contact frame, stand-ins and all."""
-        (first, second), (first_after, second_after) = self.before, self.after
-        supported = [b for b in (first, second) if b.support != "free"]
-        if supported:
-            return self._supported_equations(supported[0])
-        equations = [laws.normal_momentum(first, first_after, second, second_after)]
-        if self.contact.tangential == "smooth":
-            equations += [laws.tangential_momentum(first, first_after),
-                          laws.tangential_momentum(second, second_after)]
-        else:
-            equations.append(
-                laws.pair_tangential_momentum(first, first_after, second, second_after))
-        # a point mass at O has no angular momentum about O: its law reads 0 = 0
-        equations += [laws.angular_momentum(b, a) for b, a in
-                      ((first, first_after), (second, second_after)) if not b.inertia.is_zero]
-        equations.append(laws.restitution(first, first_after, second, second_after,
-                                          self.contact.restitution))
-        if self.contact.tangential == "stick":
-            equations.append(laws.no_slip(first_after, second_after))
-        return tuple(equations)
+    def _contact_laws(self) -> tuple[laws.ContactLaw, laws.ContactLaw]:
+        """The contact's restitution and tangential laws (e as 50-digit numbers in
+        numeric mode)."""
+        restitution, tangential = self.contact.laws
+        if self.numeric:
+            restitution = laws.RESTITUTION_LAWS[self.contact.law](
+                self.contact.restitution.evalf(NUMERIC_DIGITS))
+        return restitution, tangential
 
-    def _supported_equations(self, support: Body) -> tuple[laws.Equation, ...]:
-        """The laws when one body is pivoted or fixed: the support's reaction impulse is
-        unknown, so the pair's linear momentum is not kept. With a pivot, the pair's
-        angular momentum about the pivot is (the reaction has no moment there); the free
-        body keeps its own angular momentum about O and, on a smooth contact, its
-        tangential momentum."""
+    def _local_equations(self) -> tuple[laws.Equation, ...]:
+        """The laws in the contact frame, stand-ins and all: the momentum laws that hold
+        for these supports, then the contact's own laws (printed as they are imposed)."""
+        before, after = self.before, self.after
+        restitution, tangential = self._contact_laws()
+        linear, angular = self._momentum_laws()
+        smooth = tangential.name == "smooth"
+        return (*linear, *(tangential.equations(before, after) if smooth else ()), *angular,
+                *restitution.equations(before, after),
+                *(() if smooth else tangential.equations(before, after)))
+
+    def _momentum_laws(self) -> tuple[list[laws.Equation], list[laws.Equation]]:
+        """Which momenta the impact keeps, by the bodies' supports (linear, angular).
+
+        Two free bodies keep the pair's linear momentum and each its angular momentum
+        about O. With one body pivoted or fixed the support's reaction is unknown, so
+        the pair's linear momentum is not kept: with a pivot, the pair's angular
+        momentum about the pivot is (the reaction has no moment there), and the free
+        body keeps its own angular momentum about O. With both supported nothing is
+        kept: each pivoted body turns by the moment of the contact impulse about its
+        pivot, with the impulse among the unknowns.
+        """
         (first, second), (first_after, second_after) = self.before, self.after
-        free, free_after = ((first, first_after) if support is second
-                            else (second, second_after))
-        equations = []
-        if support.support == "pivot":
-            equations.append(laws.angular_momentum_about_pivot(
-                (first, second), (first_after, second_after), support))
-        if self.contact.tangential == "smooth":
-            equations.append(laws.tangential_momentum(free, free_after))
-        if not free.inertia.is_zero:
-            equations.append(laws.angular_momentum(free, free_after))
-        equations.append(laws.restitution(first, first_after, second, second_after,
-                                          self.contact.restitution))
-        if self.contact.tangential == "stick":
-            equations.append(laws.no_slip(first_after, second_after))
-        return tuple(equations)
+        pair = ((first, first_after), (second, second_after))
+        if self._impulse_unknowns:
+            impulse = sp.Matrix([*self._impulse_unknowns, 0][:2])
+            return [laws.impulse_momentum(b, a, sign * impulse)
+                    for (b, a), sign in zip(pair, (-1, 1), strict=True)
+                    if b.support == "pivot"], []
+        free = [(b, a) for b, a in pair if b.support == "free"]
+        angular = [laws.angular_momentum(b, a) for b, a in free if not b.inertia.is_zero]
+        supported = [b for b, _ in pair if b.support != "free"]
+        if supported:
+            pivot = ([laws.angular_momentum_about_pivot((first, second),
+                                                        (first_after, second_after),
+                                                        supported[0])]
+                     if supported[0].support == "pivot" else [])
+            return pivot, angular
+        linear = [laws.normal_momentum(first, first_after, second, second_after)]
+        if self.contact.tangential != "smooth":
+            linear.append(
+                laws.pair_tangential_momentum(first, first_after, second, second_after))
+        return linear, angular
 
     def solve(self) -> Solution:
-        """Solve the laws for the final motion, by way of the impulse at O.
+        """Solve for the impulse at O in the generalized-impulse core, then the motion.
 
-        The momentum laws (12)-(14) say that each body's velocity changes by P/m and its
-        spin by ``(r x P)/I``, where P is the impulse at O and r = -R the contact
-        point's offset from the centre. Substituting these into the contact laws
-        (restitution, and no slip when sticking) leaves one linear equation for the
-        normal impulse (two with the tangential one); solving it and substituting back
-        solves every law at once, with results far more compact than eliminating all
-        six velocities together.
+        The core (:class:`~rigidimpact.impulse.ImpulseProblem`) gives each body's motion
+        after an impulse P at O: ``u+ = u- + M^-1 J^T P``. The contact's laws, imposed
+        on those motions exactly as they are printed, are linear in P (one equation for
+        the normal impulse, one for the tangential); solving them and substituting back
+        satisfies every printed law at once, with results far more compact than
+        eliminating all six velocities together.
 
         Returns
         -------
@@ -285,43 +313,40 @@ class Impact:
         >>> sol.results()["b.vx"]
         1/2
         """
-        (first, second), e = self.before, self.contact.restitution
-        if self.numeric:
-            e = e.evalf(NUMERIC_DIGITS)
-        normal, tangent = sp.Dummy("P_n", real=True), sp.Dummy("P_t", real=True)
-        sticking = self.contact.tangential == "stick"
-        impulse = sp.Matrix([normal, tangent if sticking else 0])
-        first_kicked = _kicked(first, -impulse)
-        second_kicked = _kicked(second, impulse)
-        conditions = [laws.restitution(first, first_kicked, second, second_kicked, e)]
-        if sticking:
-            conditions.append(laws.no_slip(first_kicked, second_kicked))
-        impulses = [normal, tangent] if sticking else [normal]
-        matrix, rhs = sp.linear_eq_to_matrix([c.residual for c in conditions], impulses)
+        before = self.before
+        core = ImpulseProblem(before)
+        impulses = [sp.Dummy("P_n", real=True), sp.Dummy("P_t", real=True)]
+        impulse = sp.Matrix(impulses)
+        kicked = core.bodies_after(impulse)
+        conditions = [c for law in self._contact_laws()
+                      for c in law.conditions(before, kicked, impulse)]
+        matrix, rhs = sp.linear_eq_to_matrix(conditions, impulses)
         if matrix.det().is_zero:
-            raise InputError("bodies", "the impact equations are singular for these bodies")
+            raise InputError("bodies", "the impact equations are singular for these bodies: "
+                             "the contact laws do not fix the impulse")
         solved = {j: tidy(x) for j, x in zip(impulses, matrix.LUsolve(rhs), strict=True)}
         values = {}
-        for state, kicked in ((self.after[0], first_kicked), (self.after[1], second_kicked)):
+        for state, moved in zip(self.after, kicked, strict=True):
             if state.support == "free":
-                values[state.velocity[0]] = tidy(kicked.velocity[0].subs(solved))
-                values[state.velocity[1]] = tidy(kicked.velocity[1].subs(solved))
+                values[state.velocity[0]] = tidy(moved.velocity[0].subs(solved))
+                values[state.velocity[1]] = tidy(moved.velocity[1].subs(solved))
             if state.support != "fixed" and isinstance(state.spin, sp.Symbol):
-                values[state.spin] = tidy(sp.sympify(kicked.spin).subs(solved))
-        local_impulse = sp.ImmutableMatrix([solved[normal],
-                                            solved[tangent] if sticking else 0])
-        return self._solution(values, local_impulse)
+                values[state.spin] = tidy(sp.sympify(moved.spin).subs(solved))
+        for unknown, j in zip(self._impulse_unknowns, impulses, strict=False):
+            values[unknown] = solved[j]
+        local_impulse = sp.ImmutableMatrix([solved[j] for j in impulses])
+        lost = tidy(-core.work(local_impulse, core.velocity_before,
+                               core.velocity_after(local_impulse)))
+        return self._solution(values, local_impulse, lost)
 
-    def _solution(self, values: dict, local_impulse: sp.ImmutableMatrix) -> Solution:
+    def _solution(self, values: dict, local_impulse: sp.ImmutableMatrix,
+                  lost: sp.Expr) -> Solution:
         """The self-contained solution: final motion rotated back to the scene frame once,
         energies from the work of the impulse in the contact frame, stand-ins put back."""
         stand_ins = self._local[1]
         (first, second), after = self.before, self.after
         moved = [a.with_motion(a.velocity.subs(values), sp.sympify(a.spin).subs(values))
                  if a.support != "fixed" else a for a in after]
-        closing_before = second.contact_velocity - first.contact_velocity
-        closing_after = moved[1].contact_velocity - moved[0].contact_velocity
-        lost = tidy(-local_impulse.dot(closing_before + closing_after) / 2)
         back = self.frame.T  # contact frame -> scene frame
         finals = []
         for k, (original, local) in enumerate(zip((self.first, self.second), moved,
@@ -356,26 +381,6 @@ class Impact:
                              local_impulse[1].xreplace(stand_ins)),
             kinetic_energy_before=energy_before, energy_lost=lost,
             energy_loss_fraction=fraction, approach_speed=self.approach_speed)
-
-
-def _kicked(body: Body, impulse: sp.MatrixBase) -> Body:
-    """The body after receiving `impulse` at O.
-
-    A free body changes its momentum by the impulse and its angular momentum about its
-    centre by the impulse's moment; a pivoted one only turns, by the impulse's moment
-    about the pivot over its inertia there (the reaction takes the rest); a fixed one
-    does not move.
-    """
-    if body.support == "fixed":
-        return body
-    if body.support == "pivot":
-        spin = body.spin + cross(-body.pivot, impulse) / body.inertia_about_pivot
-        return body.with_motion(_turning(spin, body), spin)
-    velocity = body.velocity + impulse / body.mass
-    if body.inertia.is_zero:
-        return body.with_motion(velocity, body.spin)
-    spin = body.spin + cross(-body.position, impulse) / body.inertia
-    return body.with_motion(velocity, spin)
 
 
 def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:

@@ -2,25 +2,28 @@
 
 Each function takes bodies in the contact frame (x along the normal) before and after
 the impact and returns an :class:`Equation` ``lhs = rhs`` that keeps what it says and
-which equation of Mungan (Eur. J. Phys. 28, 2007) it is, so a derivation can be shown
-step by step.
+which law it is, so a derivation can be shown step by step. The laws are generic: the
+equation numbers of Mungan (Eur. J. Phys. 28, 2007) are attached by the paper's own
+problems (:data:`rigidimpact.problems.PAPER_NUMBERS`), not here.
 
 Examples
 --------
->>> from rigidimpact.bodies import Body, cross
+>>> from rigidimpact.bodies import Body
 >>> ball = Body.particle(2, velocity=(3, 0))
 >>> after = ball.with_motion((1, 0), 0)
->>> tangential_momentum(ball, after)
-Equation(label='tangential momentum of ball is unchanged', paper='(13)', lhs=0, rhs=0)
+>>> tangential_momentum(ball, after)  # doctest: +NORMALIZE_WHITESPACE
+Equation(label='tangential momentum of ball is unchanged', paper='', lhs=0, rhs=0,
+         law='tangential momentum')
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import sympy as sp
 
-from rigidimpact.bodies import Body, cross
+from rigidimpact.bodies import Body
+from rigidimpact.geometry import cross
 
 __all__ = [
     "Equation",
@@ -31,12 +34,20 @@ __all__ = [
     "angular_momentum_about_pivot",
     "restitution",
     "no_slip",
+    "impulse_momentum",
+    "ContactLaw",
+    "NewtonRestitution",
+    "Smooth",
+    "Stick",
+    "RESTITUTION_LAWS",
+    "TANGENTIAL_LAWS",
 ]
 
 
 @dataclass(frozen=True)
 class Equation:
-    """``lhs = rhs``, with what it states and the paper's equation number(s).
+    """``lhs = rhs``, with what it states, the paper's equation number(s) where a
+    paper's problem gives them, and which law it is.
 
     Examples
     --------
@@ -50,6 +61,7 @@ class Equation:
     paper: str
     lhs: sp.Expr
     rhs: sp.Expr
+    law: str = ""  # which law this is, so a problem from a paper can number it
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "lhs", sp.sympify(self.lhs, strict=True))
@@ -73,8 +85,8 @@ class Equation:
         >>> Equation("demo", "", x, 1).subs(x, 2).lhs
         2
         """
-        return Equation(self.label, self.paper, self.lhs.subs(*args, **kwargs),
-                        self.rhs.subs(*args, **kwargs))
+        return replace(self, lhs=self.lhs.subs(*args, **kwargs),
+                       rhs=self.rhs.subs(*args, **kwargs))
 
     def xreplace(self, rule: dict) -> Equation:
         """The same law with `rule` replacing subexpressions exactly on both sides.
@@ -85,8 +97,7 @@ class Equation:
         >>> Equation("demo", "", x, 1).xreplace({x: 2}).lhs
         2
         """
-        return Equation(self.label, self.paper, self.lhs.xreplace(rule),
-                        self.rhs.xreplace(rule))
+        return replace(self, lhs=self.lhs.xreplace(rule), rhs=self.rhs.xreplace(rule))
 
 
 def normal_momentum(first: Body, first_after: Body, second: Body,
@@ -101,16 +112,17 @@ def normal_momentum(first: Body, first_after: Body, second: Body,
     """
     return Equation(
         "linear momentum along the normal",
-        "(1), (12)",
+        "",
         first.momentum[0] + second.momentum[0],
         first_after.momentum[0] + second_after.momentum[0],
+        "normal momentum",
     )
 
 
 def tangential_momentum(before: Body, after: Body) -> Equation:
     """A smooth contact gives no tangential impulse: each body keeps V_y, eq. (13)."""
-    return Equation(f"tangential momentum of {before.name} is unchanged", "(13)",
-                    before.velocity[1], after.velocity[1])
+    return Equation(f"tangential momentum of {before.name} is unchanged", "",
+                    before.velocity[1], after.velocity[1], "tangential momentum")
 
 
 def pair_tangential_momentum(first: Body, first_after: Body, second: Body,
@@ -125,9 +137,10 @@ def pair_tangential_momentum(first: Body, first_after: Body, second: Body,
     """
     return Equation(
         "tangential momentum of the pair",
-        "(13), summed",
+        "",
         first.momentum[1] + second.momentum[1],
         first_after.momentum[1] + second_after.momentum[1],
+        "pair tangential momentum",
     )
 
 
@@ -142,8 +155,8 @@ def angular_momentum(before: Body, after: Body) -> Equation:
     >>> angular_momentum(b, b.with_motion((0, 0), sp.Symbol("w"))).as_sympy()
     Eq(-1, w)
     """
-    return Equation(f"angular momentum of {before.name} about O", "(2), (14)",
-                    before.angular_momentum, after.angular_momentum)
+    return Equation(f"angular momentum of {before.name} about O", "",
+                    before.angular_momentum, after.angular_momentum, "angular momentum")
 
 
 def angular_momentum_about_pivot(before: tuple[Body, Body], after: tuple[Body, Body],
@@ -171,9 +184,10 @@ def angular_momentum_about_pivot(before: tuple[Body, Body], after: tuple[Body, B
             return sp.Integer(0)
         return body.inertia * body.spin + body.mass * cross(body.position - q, body.velocity)
 
-    return Equation(f"angular momentum of the pair about {hinged.name}'s pivot", "-",
+    return Equation(f"angular momentum of the pair about {hinged.name}'s pivot", "",
                     sum((about_pivot(b) for b in before), sp.Integer(0)),
-                    sum((about_pivot(b) for b in after), sp.Integer(0)))
+                    sum((about_pivot(b) for b in after), sp.Integer(0)),
+                    "angular momentum about the pivot")
 
 
 def restitution(first: Body, first_after: Body, second: Body, second_after: Body,
@@ -190,9 +204,10 @@ def restitution(first: Body, first_after: Body, second: Body, second_after: Body
     """
     return Equation(
         "restitution along the normal",
-        "(3), (4)",
+        "",
         second_after.contact_velocity[0] - first_after.contact_velocity[0],
         -e * (second.contact_velocity[0] - first.contact_velocity[0]),
+        "restitution",
     )
 
 
@@ -207,7 +222,116 @@ def no_slip(first_after: Body, second_after: Body) -> Equation:
     """
     return Equation(
         "sticking: no tangential slip at O afterwards",
-        "(8)-(9), fig. 2",
+        "",
         second_after.contact_velocity[1] - first_after.contact_velocity[1],
         sp.Integer(0),
+        "no slip",
     )
+
+
+def impulse_momentum(before: Body, after: Body, impulse: sp.MatrixBase) -> Equation:
+    """A supported body's turn changes by the moment of the impulse it receives at O.
+
+    About a pivot q the reaction has no moment, so ``I_q (omega_f - omega_i) = (O - q) x
+    P``; this is the law printed when no conservation law holds (both bodies supported),
+    with the contact impulse P among the unknowns.
+
+    Examples
+    --------
+    >>> rod = Body.rod(3, 2, sp.pi / 2, -1, pivot=(0, -2), name="rod")
+    >>> w, P = sp.symbols("w P")
+    >>> impulse_momentum(rod, rod.with_motion((-w, 0), w), sp.Matrix([P, 0])).as_sympy()
+    Eq(4*w, -2*P)
+    """
+    return Equation(f"angular impulse on {before.name} about its pivot", "",
+                    before.inertia_about_pivot * (after.spin - before.spin),
+                    cross(-before.pivot, impulse), "angular impulse about the pivot")
+
+
+# ---- contact laws: each gives the equations a derivation prints and the conditions the
+# solver imposes on the impulse P = (P_n, P_t), built from those same equations
+
+class ContactLaw:
+    """A law acting at the contact, as printed and as solved.
+
+    ``equations(before, after)`` are the labelled laws over the unknown motion after;
+    ``conditions(before, kicked, impulse)`` are the residuals the impulse must zero,
+    where `kicked` are the bodies after receiving the impulse, so the solver imposes the
+    printed law itself. A new law is one subclass here and its entry in
+    :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`.
+    """
+
+    name = ""
+
+    def equations(self, before: tuple[Body, Body],
+                  after: tuple[Body, Body]) -> tuple[Equation, ...]:
+        raise NotImplementedError
+
+    def conditions(self, before: tuple[Body, Body], kicked: tuple[Body, Body],
+                   impulse: sp.MatrixBase) -> list[sp.Expr]:
+        return [eq.residual for eq in self.equations(before, kicked)]
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
+
+
+@dataclass(frozen=True, repr=False)
+class NewtonRestitution(ContactLaw):
+    """Newton's kinematic law: the normal closing speed reverses, scaled by e.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(1, (0, 0), "b")
+    >>> NewtonRestitution(1).equations((a, b), (a, b))[0].as_sympy()
+    Eq(-2, 2)
+    """
+
+    e: sp.Expr
+    name = "newton"
+
+    def equations(self, before, after):
+        return (restitution(before[0], after[0], before[1], after[1], self.e),)
+
+    def __repr__(self) -> str:
+        return f"NewtonRestitution({self.e})"
+
+
+class Smooth(ContactLaw):
+    """No tangential impulse; printed as each free body keeping its tangential momentum
+    (the paper's eq. 13), imposed as ``P_t = 0``.
+
+    Examples
+    --------
+    >>> a = Body.particle(1, (2, 1), "a")
+    >>> Smooth().equations((a, Body.fixed()), (a, Body.fixed()))[0].residual
+    0
+    """
+
+    name = "smooth"
+
+    def equations(self, before, after):
+        return tuple(tangential_momentum(b, a) for b, a in zip(before, after, strict=True)
+                     if b.support == "free")
+
+    def conditions(self, before, kicked, impulse):
+        return [impulse[1]]
+
+
+class Stick(ContactLaw):
+    """The touching points leave with the same tangential velocity.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 1), "a"), Body.particle(1, (0, 3), "b")
+    >>> Stick().equations((a, b), (a, b))[0].residual
+    2
+    """
+
+    name = "stick"
+
+    def equations(self, before, after):
+        return (no_slip(after[0], after[1]),)
+
+
+RESTITUTION_LAWS = {"newton": NewtonRestitution}
+TANGENTIAL_LAWS = {"smooth": Smooth, "stick": Stick}

@@ -54,6 +54,15 @@ __all__ = [
 
 m, M, L, theta, e, v_ix = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
 BALL_BARBELL_UNKNOWNS = (("v_fx", "v_fy", "omega"), ("V_x", "V_y", "omega_z"))
+# Mungan's equation numbers for the generic laws, attached to the paper's own problems only
+PAPER_NUMBERS = (
+    ("normal momentum", "(1), (12)"),
+    ("tangential momentum", "(13)"),
+    ("pair tangential momentum", "(13), summed"),
+    ("angular momentum", "(2), (14)"),
+    ("restitution", "(3), (4)"),
+    ("no slip", "(8)-(9), fig. 2"),
+)
 
 
 @dataclass(frozen=True)
@@ -282,7 +291,7 @@ def barbell_impact(restitution: sp.Expr = e, tangential: str = "smooth") -> Impa
     ball = Body.particle(m, velocity=(v_ix, 0), name="ball")
     bar = Body.barbell(M, L, theta)
     return Impact(ball, bar, Contact(restitution=restitution, tangential=tangential),
-                  BALL_BARBELL_UNKNOWNS)
+                  BALL_BARBELL_UNKNOWNS, PAPER_NUMBERS)
 
 
 def _timed(build: Callable[[], Derivation]) -> Callable[[], Derivation]:
@@ -470,7 +479,7 @@ def discs() -> Derivation:
     v1x, v1y, v2x, v2y = (symbol(n) for n in names)
     first = Body.disc(mass, radius, side=-1, velocity=(v1x, v1y), name="disc1")
     second = Body.disc(mass, radius, side=1, velocity=(v2x, v2y), name="disc2")
-    impact = Impact(first, second, Contact(restitution=e))
+    impact = Impact(first, second, Contact(restitution=e), numbers=PAPER_NUMBERS)
     solution = impact.solve()
     res = solution.results()
 
@@ -503,7 +512,8 @@ def two_body_impact(restitution: sp.Expr = e) -> Impact:
         bodies.append(Body.rigid(s["m_{k}"], s["I_{k}"], (s["R_{k}x"], s["R_{k}y"]),
                                  velocity=(s["V_{k}ix"], s["V_{k}iy"]),
                                  spin=s["omega_{k}iz"], name=f"body{k}"))
-    return Impact(bodies[0], bodies[1], Contact(restitution=restitution))
+    return Impact(bodies[0], bodies[1], Contact(restitution=restitution),
+                  numbers=PAPER_NUMBERS)
 
 
 @_timed

@@ -32,13 +32,15 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact import expr as expressions
-from rigidimpact.bodies import SHAPES, Body, spin_cross
+from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
+from rigidimpact.geometry import spin_cross
 from rigidimpact.impact import Impact
 from rigidimpact.notation import SYMBOLS, make_symbol
 from rigidimpact.problems import Derivation, model_warnings
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
+from rigidimpact.shapes import SHAPES, Fields
 
 __all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
 
@@ -192,30 +194,10 @@ def _values_table(table: Mapping[str, Any],
     return values
 
 
-_BODY_KEYS = {
-    "particle": {"mass"},  # a point has no spin that an impact could change or use
-    "barbell": {"mass", "half_length", "angle", "struck"},
-    "rod": {"mass", "length", "angle", "struck_at"},
-    "disc": {"mass", "radius", "position"},
-    "ring": {"mass", "radius", "position"},
-    "sphere": {"mass", "radius", "position"},
-    "rigid": {"mass", "inertia", "position"},
-    "fixed": set(),
-}
-_REQUIRED = {
-    "particle": ("mass",),
-    "barbell": ("mass", "half_length", "angle"),
-    "rod": ("mass", "length", "angle", "struck_at"),
-    "disc": ("mass", "radius"),
-    "ring": ("mass", "radius"),
-    "sphere": ("mass", "radius"),
-    "rigid": ("mass", "inertia", "position"),
-    "fixed": (),
-}
-
-
 def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
-          symbols: Mapping[str, sp.Symbol]) -> Body:
+          symbols: Mapping[str, sp.Symbol], origin: tuple = (0, 0)) -> Body:
+    """One body from its table; positions and the pivot, given from the origin of the
+    scene, are moved to the contact point at `origin`."""
     where = f"bodies[{index}]"
     if not isinstance(table, dict):
         raise InputError(where, "each [[bodies]] entry must be a table")
@@ -226,27 +208,29 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     if shape not in SHAPES:
         raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
                          f"{', '.join(SHAPES)}")
-    allowed = _BODY_KEYS[shape] | {"name", "shape"}
-    if shape != "fixed":  # a fixed body does not move
+    kind = SHAPES[shape]
+    allowed = set(kind.fields) | {"name", "shape"}
+    if kind.moves:
         allowed |= {"velocity", "pivot"}
-    if shape not in ("particle", "fixed"):
+    if kind.spins:
         allowed |= {"spin"}
     for key in table:
         if key not in allowed:
             raise InputError(f"{where}.{key}", f"not a field of a {shape}; allowed: "
                              f"{', '.join(sorted(allowed))}")
-    for key in _REQUIRED[shape]:
+    for key in kind.required:
         if key not in table:
             raise InputError(f"{where}.{key}", f"required for a {shape}")
 
-    if shape == "fixed":
-        return Body.fixed(name)
     velocity = _vector(table.get("velocity", [0, 0]), f"{where}.velocity", symbols)
     spin = parse_expression(table["spin"], f"{where}.spin", symbols) if "spin" in table else 0
+    given = Fields(table, lambda key: parse_expression(table[key], f"{where}.{key}", symbols),
+                   lambda key: _from_contact(table, key, where, symbols, origin), name,
+                   velocity, spin, side * normal)
     try:
-        body = _shaped(table, where, shape, (name, velocity, spin), side * normal, symbols)
+        body = kind.build(given)
         if "pivot" in table:
-            pivot = _vector(table["pivot"], f"{where}.pivot", symbols)
+            pivot = _from_contact(table, "pivot", where, symbols, origin)
             if "velocity" in table:  # given: it must be the turn about the pivot
                 body = replace(body, pivot=pivot)
             else:  # the velocity follows from the spin
@@ -259,32 +243,52 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
         raise InputError(f"{where}.{field_name}", exc.message) from None
 
 
-def _shaped(table: Mapping[str, Any], where: str, shape: str, motion: tuple,
-            outward: sp.MatrixBase, symbols: Mapping[str, sp.Symbol]) -> Body:
-    """The body of a shape from its fields; `outward` points from O to a round body's
-    centre when the table gives no position."""
-    name, velocity, spin = motion
+def _from_contact(table: Mapping[str, Any], key: str, where: str,
+                  symbols: Mapping[str, sp.Symbol], origin: tuple) -> tuple:
+    """A point of the scene (a centre, a pivot) as seen from the contact point."""
+    x, y = _vector(table[key], f"{where}.{key}", symbols)
+    return (x - origin[0], y - origin[1])
 
-    def expr(key: str) -> sp.Expr:
-        return parse_expression(table[key], f"{where}.{key}", symbols)
 
-    if shape == "particle":
-        return Body.particle(expr("mass"), velocity, name)
-    if shape == "barbell":
-        return Body.barbell(expr("mass"), expr("half_length"), expr("angle"), velocity,
-                            spin, name, table.get("struck", "A"))
-    if shape == "rod":
-        return Body.rod(expr("mass"), expr("length"), expr("angle"), expr("struck_at"),
-                        velocity, spin, name)
-    if shape == "rigid":
-        return Body.rigid(expr("mass"), expr("inertia"),
-                          _vector(table["position"], f"{where}.position", symbols),
-                          velocity, spin, name)
-    radius = expr("radius")
-    position = (_vector(table["position"], f"{where}.position", symbols)
-                if "position" in table else tuple(radius * outward))
-    maker = {"disc": Body.disc, "ring": Body.ring, "sphere": Body.sphere}[shape]
-    return maker(expr("mass"), radius, position, 1, velocity, spin, name)  # place given
+CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential")
+IMPACT_RULES = ("simultaneous", "sequential", "compliant")
+
+
+def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
+    """The one contact, from ``[contact]`` or a single ``[[contacts]]`` entry, and the
+    place to name in messages."""
+    if "contact" in data and "contacts" in data:
+        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
+    if "contacts" in data:
+        entries = data["contacts"]
+        if not isinstance(entries, list) or not entries:
+            raise InputError("contacts", "[[contacts]] must hold at least one table")
+        if len(entries) > 1:
+            raise InputError("contacts", f"{len(entries)} contacts given: this version solves "
+                             "one contact per scene")
+        if not isinstance(entries[0], dict):
+            raise InputError("contacts[0]", "each [[contacts]] entry must be a table")
+        return entries[0], "contacts[0]"
+    table = data.get("contact")
+    if not isinstance(table, dict):
+        raise InputError("contact", "a [contact] table (or one [[contacts]] entry) is required")
+    return table, "contact"
+
+
+def _impact_table(table: Mapping[str, Any], contact_name: str) -> None:
+    """Check ``[impact]``: with one contact every rule gives the same answer."""
+    for key in table:
+        if key not in ("rule", "order"):
+            raise InputError(f"impact.{key}", "unknown field; expected rule, order")
+    rule = table.get("rule", "simultaneous")
+    if rule not in IMPACT_RULES:
+        raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
+                         f"{rule!r}")
+    order = table.get("order", [contact_name])
+    if not isinstance(order, list) or any(item != contact_name for item in order) or \
+            len(order) != 1:
+        raise InputError("impact.order", f"must list the scene's contacts by name, here "
+                         f"[\"{contact_name}\"]")
 
 
 def parse_scene(text: str, name: str = "scene") -> Scene:
@@ -299,7 +303,8 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", f"malformed TOML: {exc}") from None
-    allowed = {"title", "symbols", "values", "bodies", "contact", "simulate"}
+    allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
+               "simulate"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section; expected {', '.join(sorted(allowed))}")
@@ -309,20 +314,24 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
     values = _values_table(_table(data, "values", "name = number"), symbols)
 
-    contact_table = data.get("contact")
-    if not isinstance(contact_table, dict):
-        raise InputError("contact", "a [contact] table is required")
+    contact_table, place = _contact_table(data)
     for key in contact_table:
-        if key not in ("bodies", "normal", "restitution", "tangential", "law"):
-            raise InputError(f"contact.{key}", "unknown field; expected bodies, normal, "
-                             "restitution, tangential")
-    normal = _vector(contact_table.get("normal", [1, 0]), "contact.normal", symbols)
+        if key not in CONTACT_FIELDS:
+            raise InputError(f"{place}.{key}", f"unknown field; expected "
+                             f"{', '.join(CONTACT_FIELDS)}")
+    normal = _vector(contact_table.get("normal", [1, 0]), f"{place}.normal", symbols)
     if "restitution" not in contact_table:
-        raise InputError("contact.restitution", "required: Newton's coefficient e in [0, 1]")
-    restitution = parse_expression(contact_table["restitution"], "contact.restitution",
+        raise InputError(f"{place}.restitution", "required: the coefficient e in [0, 1]")
+    restitution = parse_expression(contact_table["restitution"], f"{place}.restitution",
                                    symbols)
+    contact_name = contact_table.get("name", "contact")
+    if not isinstance(contact_name, str) or not contact_name.isidentifier():
+        raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
     contact = Contact(normal, restitution, contact_table.get("tangential", "smooth"),
-                      contact_table.get("law", "newton"))
+                      contact_table.get("law", "newton"), contact_name)
+    origin = (_vector(contact_table["point"], f"{place}.point", symbols)
+              if "point" in contact_table else (0, 0))
+    _impact_table(_table(data, "impact", "settings"), contact_name)
     unit = contact.frame.row(0).T
 
     tables = data.get("bodies")
@@ -342,13 +351,14 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     order = contact_table.get("bodies", list(by_name))
     if (not isinstance(order, list) or len(order) != 2
             or not all(isinstance(x, str) for x in order) or order[0] == order[1]):
-        raise InputError("contact.bodies", "must name the two bodies, e.g. [\"ball\", \"bar\"]")
+        raise InputError(f"{place}.bodies", "must name the two bodies, e.g. "
+                         "[\"ball\", \"bar\"]")
     bodies = []
     for side, body_name in zip((-1, 1), order, strict=True):
         if body_name not in by_name:
-            raise InputError("contact.bodies", f"no body named {body_name!r}")
+            raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
         index, table = by_name[body_name]
-        bodies.append(_body(table, index, side, unit, symbols))
+        bodies.append(_body(table, index, side, unit, symbols, origin))
 
     simulate = _table(data, "simulate", "settings")
     scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)

@@ -144,7 +144,7 @@ class Solution:
 
     @cached_property
     def contact_velocities_after(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
-        """Velocities of the two material points at O just after (eq. 11)."""
+        """Velocities of the two material points at O just after (eq. 11), scene frame."""
         return (self.after[0].contact_velocity.applyfunc(tidy),
                 self.after[1].contact_velocity.applyfunc(tidy))
 
@@ -175,8 +175,8 @@ class Solution:
         if self.contact.tangential == "stick":
             results["impulse_t"] = self.tangential_impulse
         results["energy_loss_fraction"] = self.energy_loss_fraction
-        results["contact.normal_impulse"] = self.normal_impulse
-        results["contact.tangential_impulse"] = self.tangential_impulse
+        results[f"{self.contact.name}.normal_impulse"] = self.normal_impulse
+        results[f"{self.contact.name}.tangential_impulse"] = self.tangential_impulse
         for body in self.before:
             if body.support == "pivot":
                 reaction = self.pivot_impulse(body)

@@ -43,6 +43,7 @@ from scipy.optimize import brentq
 from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
 from rigidimpact.scene import Scene
+from rigidimpact.shapes import is_round
 from rigidimpact.simulate.numbers import as_array, as_float, scene_values
 from rigidimpact.simulate.planner import Plan
 
@@ -194,7 +195,7 @@ def _build(body: Body, slot: int, values: Mapping, plan: Plan) -> tuple[_Part, l
     # that point does not turn with the material, so a normal force there has no torque
     # about the centre when the normal passes through it
     return (_Part(body.name, "rigid", slot, mass, inertia, contact=-position,
-                  round=body.shape in ("disc", "ring", "sphere")),
+                  round=is_round(body.shape)),
             [*position, 0.0, *velocity, spin])
 
 

@@ -34,10 +34,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from rigidimpact.shapes import is_round, is_segment
+
 __all__ = ["Flyer", "Meeting", "first_contact", "reach_interval", "segment_gap"]
 
-SEGMENTS = ("barbell", "rod")
-ROUND = ("disc", "ring", "sphere")
 END_TOLERANCE = 1e-9  # relative distance from a rod end at which the end sphere is named
 REACH_TOLERANCE = 1e-12  # a ball this close outside the rod's circle (relative) is at its end
 
@@ -217,14 +217,14 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
     >>> first_contact(Flyer("b", "particle", (0, 0), (0.5, 0), 0), disc) is None
     True
     """
-    if body.shape in ROUND:
+    if is_round(body.shape):
         p0, u = ball._p - body._p, ball._v - body._v
         window = reach_interval(p0, u, body.radius)
         if window is None or window[0] == window[1] or window[0] > horizon:
             return None  # a straight path that leaves a circle never re-enters it
         t = window[0]
         return Meeting(t, "surface", tuple(float(c) for c in ball.at(t)[0]))
-    if body.shape not in SEGMENTS or body.ends is None:
+    if not is_segment(body.shape) or body.ends is None:
         raise ValueError(f"no contact search for a point against a {body.shape}")
     g, dg, p0, u, n0, half = segment_gap(ball, body)
     window = reach_interval(p0, u, half * (1 + REACH_TOLERANCE))

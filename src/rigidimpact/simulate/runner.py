@@ -25,7 +25,8 @@ from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
 from rigidimpact.problems import model_name, physics_warnings
 from rigidimpact.scene import Scene
-from rigidimpact.simulate.flight import SEGMENTS, Flyer, first_contact, reach_interval
+from rigidimpact.shapes import is_segment
+from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.planner import Plan, make_plan
 
@@ -140,7 +141,7 @@ def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], fl
     if hit is not None:
         event = {"kind": "restrike", "t": hit.t, "part": hit.part,
                  "point": [float(c) for c in hit.point]}
-        if other.shape in SEGMENTS:
+        if is_segment(other.shape):
             event["s"] = hit.s
         return [event], hit.t
     if other.ends is not None:
