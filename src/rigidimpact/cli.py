@@ -73,6 +73,32 @@ def _print_json(data: Any) -> None:
     print(json.dumps(_finite_json(data), indent=2, allow_nan=False))
 
 
+def _has_regimes(d: Any) -> bool:
+    return d.solution is not None and d.solution.contact.frictional
+
+
+def _regime_list(d: Any) -> list[tuple[str, tuple, Any]]:
+    """(name, conditions, solution) of each course a frictional impact can take."""
+    solution = d.solution
+    return list(solution.regimes) or [(solution.regime, (), solution)]
+
+
+def _regimes_json(d: Any) -> list[dict[str, Any]]:
+    return [{"name": name, "conditions": [str(c) for c in conditions],
+             "results": {k: _expr_json(v) for k, v in sol.results().items()}}
+            for name, conditions, sol in _regime_list(d)]
+
+
+def _print_regimes(d: Any) -> None:
+    """Each course of a frictional impact: its conditions and its impulse (Routh)."""
+    print("\nThe impulse by Routh's method, course by course:")
+    for name, conditions, sol in _regime_list(d):
+        print(f"  {name}:")
+        for condition in conditions:
+            print(f"      if {condition}")
+        print(f"      P_n = {sol.normal_impulse}\n      P_t = {sol.tangential_impulse}")
+
+
 def _cmd_derive(args: argparse.Namespace) -> int:
     from rigidimpact.latex import equation_latex, fragment, to_latex
 
@@ -92,6 +118,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "definitions": {k: _expr_json(v) for k, v in d.definitions.items()},
             "seconds": round(d.seconds, 4),
             "warnings": list(d.warnings),
+            **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
         })
         return 0
     if args.format == "latex":
@@ -112,6 +139,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     for eq in d.equations:
         number = f"{eq.paper:<14} " if numbered else ""
         print(f"  {number}{eq.label}:\n      {eq.lhs} = {eq.rhs}")
+    if _has_regimes(d):
+        _print_regimes(d)
     print(f"\nSolved for {', '.join(map(str, d.unknowns))}:")
     for key, value in d.results.items():
         print(f"  {key} = {value}")
@@ -203,12 +232,16 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:  # full-precision JSON number literals (mpmath values are not floats)
         body = [f"  {json.dumps(k)}: {literal(v)}" for k, v in result.numbers.items()]
+        if result.regime is not None:
+            body.append(f'  "regime": {json.dumps(result.regime)}')
         if result.warnings:
             body.append(f'  "warnings": {json.dumps(list(result.warnings))}')
         print("{\n" + ",\n".join(body) + "\n}")
     else:
         for key, value in result.numbers.items():
             print(f"{key} = {literal(value)}")
+        if result.regime is not None:
+            print(f"regime = {result.regime}")
     return 0
 
 

@@ -47,12 +47,21 @@ class Contact:
     normal : 2-vector
         Direction of the line of impact (any nonzero length), from body 1 into body 2.
     restitution : expr
-        Newton's kinematic coefficient e, in [0, 1].
-    tangential : {"smooth", "stick"}
+        The restitution law's coefficient e, in [0, 1].
+    tangential : {"smooth", "stick", "coulomb", "rough"}
         Smooth: the impulse is purely normal. Stick: a tangential impulse makes the
-        contact points leave with equal tangential velocities.
-    law : {"newton"}
-        The restitution law.
+        contact points leave with equal tangential velocities. Coulomb: friction with
+        coefficient `friction`, solved exactly by Routh's method (slip, stick, slip
+        reversal). Rough: the tangential velocity of the touching points reverses,
+        scaled by `tangential_restitution`, unless that needs more than Coulomb's
+        friction allows (Walton's law).
+    law : {"newton", "poisson", "energetic"}
+        The restitution law: kinematic (Newton), kinetic (Poisson) or energetic
+        (Stronge). On a straight impulse path (smooth contacts) the three agree.
+    friction : expr, optional
+        Coulomb's coefficient mu >= 0, with "coulomb" (required) and "rough".
+    tangential_restitution : expr, optional
+        beta in [-1, 1], with "rough" (required).
     name : str
         Names the contact in result keys (``contact.normal_impulse``).
 
@@ -67,6 +76,8 @@ class Contact:
     tangential: str = "smooth"
     law: str = "newton"
     name: str = "contact"
+    friction: Any = None
+    tangential_restitution: Any = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
@@ -86,10 +97,47 @@ class Contact:
         if self.law not in RESTITUTION_LAWS:
             raise InputError("contact.law", f"must be one of {', '.join(RESTITUTION_LAWS)}, "
                              f"got {self.law!r}")
+        if self.law != "newton" and self.tangential == "stick":
+            raise InputError("contact.law", f"a sticking contact is an algebraic law with "
+                             f"Newton's e; for the {self.law} law use tangential = "
+                             f"\"coulomb\" with a friction coefficient")
+        self._coefficient("friction", "Coulomb's friction coefficient", 0, None,
+                          needed=self.tangential == "coulomb",
+                          allowed=self.tangential in ("coulomb", "rough"))
+        self._coefficient("tangential_restitution", "the tangential restitution coefficient",
+                          -1, 1, needed=self.tangential == "rough",
+                          allowed=self.tangential == "rough")
+
+    def _coefficient(self, key: str, what: str, low: Any, high: Any, needed: bool,
+                     allowed: bool) -> None:
+        value = getattr(self, key)
+        where = f"{self.name}.{key}"
+        if value is None:
+            if needed:
+                raise InputError(where, f"required with tangential = {self.tangential!r}")
+            return
+        if not allowed:
+            raise InputError(where, f"not used with tangential = {self.tangential!r}")
+        value = _expr(value, where)
+        role = Role(where, what, value, low, high)
+        if ((value - low).is_negative or (high is not None and (value - high).is_positive)
+                or role.allows(value) is False):
+            raise InputError(where, role.describe(value))
+        object.__setattr__(self, key, value)
+
+    @property
+    def frictional(self) -> bool:
+        """Whether the tangential law is solved by Routh's method or Walton's law rather
+        than as linear conditions."""
+        return self.tangential in ("coulomb", "rough")
 
     def __repr__(self) -> str:
         n = self.normal
         extra = "" if self.name == "contact" else f", name={self.name!r}"
+        if self.friction is not None:
+            extra += f", friction={self.friction}"
+        if self.tangential_restitution is not None:
+            extra += f", tangential_restitution={self.tangential_restitution}"
         return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
                 f"tangential={self.tangential!r}, law={self.law!r}{extra})")
 
@@ -102,7 +150,8 @@ class Contact:
         >>> Contact(restitution=1).laws
         (NewtonRestitution(1), Smooth())
         """
-        return RESTITUTION_LAWS[self.law](self.restitution), TANGENTIAL_LAWS[self.tangential]()
+        return (RESTITUTION_LAWS[self.law](self.restitution),
+                TANGENTIAL_LAWS[self.tangential]())
 
     @cached_property
     def frame(self) -> sp.ImmutableMatrix:

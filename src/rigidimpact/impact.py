@@ -22,7 +22,7 @@ from functools import cached_property
 
 import sympy as sp
 
-from rigidimpact import laws
+from rigidimpact import laws, routh
 from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
@@ -315,6 +315,8 @@ class Impact:
         """
         before = self.before
         core = ImpulseProblem(before)
+        if self.contact.frictional:
+            return self._solve_frictional(core)
         impulses = [sp.Dummy("P_n", real=True), sp.Dummy("P_t", real=True)]
         impulse = sp.Matrix(impulses)
         kicked = core.bodies_after(impulse)
@@ -324,23 +326,46 @@ class Impact:
         if matrix.det().is_zero:
             raise InputError("bodies", "the impact equations are singular for these bodies: "
                              "the contact laws do not fix the impulse")
-        solved = {j: tidy(x) for j, x in zip(impulses, matrix.LUsolve(rhs), strict=True)}
+        normal, tangential = (tidy(x) for x in matrix.LUsolve(rhs))
+        return self._solved_by(core, (normal, tangential))
+
+    def _solved_by(self, core: ImpulseProblem, impulse: tuple[sp.Expr, sp.Expr],
+                   **extra) -> Solution:
+        """The solution that a known impulse at O gives."""
+        local_impulse = sp.ImmutableMatrix(impulse)
+        kicked = core.bodies_after(local_impulse)
         values = {}
         for state, moved in zip(self.after, kicked, strict=True):
             if state.support == "free":
-                values[state.velocity[0]] = tidy(moved.velocity[0].subs(solved))
-                values[state.velocity[1]] = tidy(moved.velocity[1].subs(solved))
+                values[state.velocity[0]] = tidy(moved.velocity[0])
+                values[state.velocity[1]] = tidy(moved.velocity[1])
             if state.support != "fixed" and isinstance(state.spin, sp.Symbol):
-                values[state.spin] = tidy(sp.sympify(moved.spin).subs(solved))
-        for unknown, j in zip(self._impulse_unknowns, impulses, strict=False):
-            values[unknown] = solved[j]
-        local_impulse = sp.ImmutableMatrix([solved[j] for j in impulses])
+                values[state.spin] = tidy(sp.sympify(moved.spin))
+        for unknown, component in zip(self._impulse_unknowns, impulse, strict=False):
+            values[unknown] = component
         lost = tidy(-core.work(local_impulse, core.velocity_before,
                                core.velocity_after(local_impulse)))
-        return self._solution(values, local_impulse, lost)
+        return self._solution(values, local_impulse, lost, **extra)
+
+    def _solve_frictional(self, core: ImpulseProblem) -> Solution:
+        """Friction: the impulse by Routh's method (Coulomb) or Walton's law (rough), one
+        solution per course the impact can take; with symbols, their ``Piecewise``."""
+        contact = self.contact
+        e, mu, beta = contact.restitution, contact.friction, contact.tangential_restitution
+        if self.numeric:
+            e, mu, beta = (None if x is None else x.evalf(NUMERIC_DIGITS) for x in (e, mu, beta))
+        if contact.tangential == "coulomb":
+            found = routh.regimes(core.W, core.velocity_before, mu, e, contact.law)
+        else:
+            found = routh.walton(core.W, core.velocity_before, beta, mu, e)
+        solutions = [self._solved_by(core, r.impulse, regime=r.name, path=r.path)
+                     for r in found]
+        if len(solutions) == 1:
+            return solutions[0]
+        return _piecewise(solutions, tuple(r.conditions for r in found))
 
     def _solution(self, values: dict, local_impulse: sp.ImmutableMatrix,
-                  lost: sp.Expr) -> Solution:
+                  lost: sp.Expr, **extra) -> Solution:
         """The self-contained solution: final motion rotated back to the scene frame once,
         energies from the work of the impulse in the contact frame, stand-ins put back."""
         stand_ins = self._local[1]
@@ -380,7 +405,37 @@ class Impact:
             contact_impulse=(local_impulse[0].xreplace(stand_ins),
                              local_impulse[1].xreplace(stand_ins)),
             kinetic_energy_before=energy_before, energy_lost=lost,
-            energy_loss_fraction=fraction, approach_speed=self.approach_speed)
+            energy_loss_fraction=fraction, approach_speed=self.approach_speed, **extra)
+
+
+def _piecewise(solutions: list[Solution], conditions: tuple[tuple, ...]) -> Solution:
+    """One solution whose every result is a ``Piecewise`` over the courses of the impact,
+    keeping each course's own solution and conditions."""
+    cases = [sp.And(*c) if c else sp.true for c in conditions]
+
+    def pw(pick) -> sp.Expr:
+        parts = [pick(s) for s in solutions]
+        if all(p == parts[0] for p in parts):
+            return parts[0]
+        return sp.Piecewise(*zip(parts, cases, strict=True))
+
+    first = solutions[0]
+    after = []
+    for k, body in enumerate(first.after):
+        if body.support == "fixed":
+            after.append(body)
+            continue
+        velocity = [pw(lambda s, k=k, i=i: s.after[k].velocity[i]) for i in (0, 1)]
+        after.append(replace(body, velocity=velocity, spin=pw(lambda s, k=k: s.after[k].spin)))
+    return replace(
+        first, after=(after[0], after[1]),
+        values={u: pw(lambda s, u=u: s.values[u]) for u in first.values},
+        contact_impulse=(pw(lambda s: s.contact_impulse[0]),
+                         pw(lambda s: s.contact_impulse[1])),
+        energy_lost=pw(lambda s: s.energy_lost),
+        energy_loss_fraction=pw(lambda s: s.energy_loss_fraction),
+        regime=None, path=(),
+        regimes=tuple((s.regime, c, s) for s, c in zip(solutions, conditions, strict=True)))
 
 
 def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:

@@ -39,6 +39,10 @@ __all__ = [
     "NewtonRestitution",
     "Smooth",
     "Stick",
+    "PoissonRestitution",
+    "EnergeticRestitution",
+    "Coulomb",
+    "Rough",
     "RESTITUTION_LAWS",
     "TANGENTIAL_LAWS",
 ]
@@ -333,5 +337,80 @@ class Stick(ContactLaw):
         return (no_slip(after[0], after[1]),)
 
 
-RESTITUTION_LAWS = {"newton": NewtonRestitution}
-TANGENTIAL_LAWS = {"smooth": Smooth, "stick": Stick}
+@dataclass(frozen=True, repr=False)
+class PoissonRestitution(NewtonRestitution):
+    """Poisson's kinetic law: the normal impulse of restitution is e times that of
+    compression. On a straight impulse path (a smooth contact) it reads as Newton's law,
+    and that is what is printed and imposed there; with friction the path bends and the
+    law is applied by Routh's method (:mod:`rigidimpact.routh`).
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(1, (0, 0), "b")
+    >>> PoissonRestitution(1).equations((a, b), (a, b))[0].label
+    "restitution along the normal (Poisson's law on a straight impulse path)"
+    """
+
+    name = "poisson"
+
+    def equations(self, before, after):
+        (equation,) = super().equations(before, after)
+        return (replace(equation, label=f"{equation.label} (Poisson's law on a straight "
+                                        "impulse path)"),)
+
+    def __repr__(self) -> str:
+        return f"PoissonRestitution({self.e})"
+
+
+@dataclass(frozen=True, repr=False)
+class EnergeticRestitution(NewtonRestitution):
+    """Stronge's energetic law: the work of the normal impulse in restitution is e^2
+    times minus its work in compression; on a straight impulse path it reads as Newton's.
+
+    Examples
+    --------
+    >>> EnergeticRestitution(1)
+    EnergeticRestitution(1)
+    """
+
+    name = "energetic"
+
+    def equations(self, before, after):
+        (equation,) = super().equations(before, after)
+        return (replace(equation, label=f"{equation.label} (the energetic law on a straight "
+                                        "impulse path)"),)
+
+    def __repr__(self) -> str:
+        return f"EnergeticRestitution({self.e})"
+
+
+class Coulomb(ContactLaw):
+    """Coulomb friction, |P_t| <= mu P_n, opposing slip: not a linear condition, so the
+    impulse comes from Routh's method and each course of the impact is printed as a
+    regime with its conditions (:mod:`rigidimpact.routh`).
+
+    Examples
+    --------
+    >>> Coulomb().equations((), ())
+    ()
+    """
+
+    name = "coulomb"
+
+    def equations(self, before, after):
+        return ()
+
+    def conditions(self, before, kicked, impulse):
+        raise TypeError("Coulomb friction is solved by Routh's method, not as conditions")
+
+
+class Rough(Coulomb):
+    """Walton's law: the tangential velocity of the touching points reverses, scaled by
+    beta, unless that needs more than Coulomb's friction allows."""
+
+    name = "rough"
+
+
+RESTITUTION_LAWS = {"newton": NewtonRestitution, "poisson": PoissonRestitution,
+                    "energetic": EnergeticRestitution}
+TANGENTIAL_LAWS = {"smooth": Smooth, "stick": Stick, "coulomb": Coulomb, "rough": Rough}

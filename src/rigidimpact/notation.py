@@ -87,6 +87,8 @@ _ASSUMPTIONS: dict[str, dict[str, bool]] = {
     "phi": {"real": True},
     "alpha": {"real": True},
     "psi": {"real": True},
+    "mu": {"nonnegative": True},  # Coulomb's friction coefficient
+    "beta": {"real": True},  # the tangential restitution coefficient, in [-1, 1]
 }
 
 SYMBOLS: Mapping[str, sp.Symbol] = MappingProxyType(

@@ -202,9 +202,20 @@ class Derivation:
         """
         from rigidimpact.numeric import evaluate
 
-        numbers = evaluate(self.results, self.checked(values, sources), dps)
-        model = "the model" if self.solution is None else model_name(self.solution.contact)
-        return Evaluation(numbers, physics_warnings(numbers, dps, model))
+        exact = self.checked(values, sources)
+        numbers = evaluate(self.results, exact, dps)
+        if self.solution is None:
+            return Evaluation(numbers, physics_warnings(numbers, dps, "the model"))
+        contact = self.solution.contact
+        model = model_name(contact)
+        regime = self.solution.regime_at({self.symbols[k]: v for k, v in exact.items()})
+        if regime is not None:
+            model += f" (regime {regime}"
+            if contact.law == "newton" and "reversal" in regime:
+                model += ": slip reversed during the impact, the Kane-Levinson paradox; " \
+                         "Poisson's or the energetic law would not create energy"
+            model += ")"
+        return Evaluation(numbers, physics_warnings(numbers, dps, model), regime)
 
 
 @dataclass(frozen=True)
@@ -213,6 +224,7 @@ class Evaluation:
 
     numbers: Mapping[str, Any]
     warnings: tuple[str, ...] = ()
+    regime: str | None = None  # with friction: the course the impact took
 
 
 def model_name(contact: Contact) -> str:
@@ -223,8 +235,10 @@ def model_name(contact: Contact) -> str:
     >>> model_name(Contact(tangential="stick"))
     "Newton's restitution with a sticking contact"
     """
-    tangential = {"stick": "sticking"}.get(contact.tangential, contact.tangential)
-    return f"{contact.law.capitalize()}'s restitution with a {tangential} contact"
+    tangential = {"stick": "sticking", "coulomb": "Coulomb-friction"}.get(
+        contact.tangential, contact.tangential)
+    law = {"newton": "Newton's", "poisson": "Poisson's", "energetic": "the energetic"}
+    return f"{law[contact.law]} restitution with a {tangential} contact"
 
 
 def model_warnings(contact: Contact) -> tuple[str, ...]:
@@ -246,6 +260,12 @@ def model_warnings(contact: Contact) -> tuple[str, ...]:
         return ("Newton's restitution with a sticking contact is not energy-consistent: for "
                 "e > 0 it creates kinetic energy for some data (check that "
                 "energy_loss_fraction >= 0 at your values; evaluate warns when it is not)",)
+    if contact.tangential == "coulomb" and contact.law == "newton" \
+            and not contact.restitution.is_zero:
+        return ("Newton's restitution with Coulomb friction is not energy-consistent: when "
+                "slip reverses during the impact it can create kinetic energy (the "
+                "Kane-Levinson paradox; Poisson's and the energetic law do not); evaluate "
+                "warns where it does",)
     return ()
 
 

@@ -167,4 +167,11 @@ def roles_of(bodies: Iterable[Any], contacts: Iterable[Any]) -> tuple[Role, ...]
         name = getattr(contact, "name", "contact")
         roles.append(Role(f"{name}.restitution", "the restitution coefficient",
                           contact.restitution, 0, 1))
+        if getattr(contact, "friction", None) is not None:
+            roles.append(Role(f"{name}.friction", "Coulomb's friction coefficient",
+                              contact.friction, 0))
+        if getattr(contact, "tangential_restitution", None) is not None:
+            roles.append(Role(f"{name}.tangential_restitution",
+                              "the tangential restitution coefficient",
+                              contact.tangential_restitution, -1, 1))
     return tuple(roles)

@@ -133,8 +133,12 @@ class Scene:
         solution = impact.solve()
         first, second = self.bodies
         setup = tuple(_described(b) for b in (first, second))
-        setup += (f"contact: {self.contact.tangential}, normal ({self.contact.normal[0]}, "
-                  f"{self.contact.normal[1]}), restitution {self.contact.restitution}",)
+        c = self.contact
+        friction = "" if c.friction is None else f", friction {c.friction}"
+        if c.tangential_restitution is not None:
+            friction += f", tangential restitution {c.tangential_restitution}"
+        setup += (f"contact: {c.tangential}{friction}, normal ({c.normal[0]}, {c.normal[1]}), "
+                  f"{c.law} restitution {c.restitution}",)
         return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
                           solution.results(), solution=solution,
                           seconds=time.perf_counter() - start,
@@ -250,7 +254,8 @@ def _from_contact(table: Mapping[str, Any], key: str, where: str,
     return (x - origin[0], y - origin[1])
 
 
-CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential")
+CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
+                  "friction", "tangential_restitution")
 IMPACT_RULES = ("simultaneous", "sequential", "compliant")
 
 
@@ -327,8 +332,10 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     contact_name = contact_table.get("name", "contact")
     if not isinstance(contact_name, str) or not contact_name.isidentifier():
         raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
+    coefficients = {key: parse_expression(contact_table[key], f"{place}.{key}", symbols)
+                    for key in ("friction", "tangential_restitution") if key in contact_table}
     contact = Contact(normal, restitution, contact_table.get("tangential", "smooth"),
-                      contact_table.get("law", "newton"), contact_name)
+                      contact_table.get("law", "newton"), contact_name, **coefficients)
     origin = (_vector(contact_table["point"], f"{place}.point", symbols)
               if "point" in contact_table else (0, 0))
     _impact_table(_table(data, "impact", "settings"), contact_name)

@@ -21,6 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import sympy as sp
 
@@ -62,6 +63,15 @@ class Solution:
         ``(K_i - K_f) / K_i``, the paper's eq. (7) for the barbell.
     approach_speed : Expr
         How fast the touching points closed along the normal.
+    regime : str or None
+        With friction and numbers, the course the impact took (``slip``,
+        ``slip-stick``, ``slip-reversal``, ...).
+    regimes : tuple of (name, conditions, Solution)
+        With friction and symbols, every course the impact can take, each with the
+        conditions under which it does and its own solution; the fields above are then
+        ``Piecewise`` over them.
+    path : tuple of (P_n, P_t)
+        The impulse at each event of a frictional impact (Routh's diagram).
     """
 
     before: tuple[Body, Body]
@@ -76,6 +86,28 @@ class Solution:
     energy_lost: sp.Expr
     energy_loss_fraction: sp.Expr
     approach_speed: sp.Expr
+    regime: str | None = None
+    regimes: tuple[tuple[str, tuple[sp.Basic, ...], Solution], ...] = ()
+    path: tuple[tuple[sp.Expr, sp.Expr], ...] = ()
+
+    def regime_at(self, values: Mapping[sp.Symbol, Any]) -> str | None:
+        """The course the impact takes at these values (None without friction).
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> from rigidimpact.contact import Contact
+        >>> from rigidimpact.impact import Impact
+        >>> Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+        ...        Contact()).solve().regime_at({}) is None
+        True
+        """
+        if not self.regimes:
+            return self.regime
+        for name, conditions, _ in self.regimes:
+            if all(bool(c.subs(values)) for c in conditions):
+                return name
+        return None
 
     def __repr__(self) -> str:
         return (f"Solution({self.before[0].name!r}, {self.before[1].name!r}, "
