@@ -211,9 +211,10 @@ class Derivation:
         regime = self.solution.regime_at({self.symbols[k]: v for k, v in exact.items()})
         if regime is not None:
             model += f" (regime {regime}"
-            if contact.law == "newton" and "reversal" in regime:
-                model += ": slip reversed during the impact, the Kane-Levinson paradox; " \
-                         "Poisson's or the energetic law would not create energy"
+            if contact.law == "newton" and ("reversal" in regime or "stick" in regime):
+                model += ": slip stopped or reversed during the impact, where Newton's " \
+                         "kinematic law can create energy (the Kane-Levinson paradox); " \
+                         "Poisson's or the energetic law would not"
             model += ")"
         return Evaluation(numbers, physics_warnings(numbers, dps, model), regime)
 
@@ -263,7 +264,7 @@ def model_warnings(contact: Contact) -> tuple[str, ...]:
     if contact.tangential == "coulomb" and contact.law == "newton" \
             and not contact.restitution.is_zero:
         return ("Newton's restitution with Coulomb friction is not energy-consistent: when "
-                "slip reverses during the impact it can create kinetic energy (the "
+                "slip stops or reverses during the impact it can create kinetic energy (the "
                 "Kane-Levinson paradox; Poisson's and the energetic law do not); evaluate "
                 "warns where it does",)
     return ()
