@@ -17,8 +17,8 @@ from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.impact import Impact
 from rigidimpact.impulse import ImpulseProblem
-from rigidimpact.problems import derive
 from rigidimpact.notation import symbol
+from rigidimpact.problems import derive
 
 SEED = 1305
 

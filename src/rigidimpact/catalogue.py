@@ -33,6 +33,7 @@ __all__ = ["hinged_rod", "nailed_stick", "free_stick", "bar_on_wall", "centre_of
 m, M, l, v, e = (symbol(n) for n in ("m", "M", "l", "v", "e"))  # noqa: E741
 d, alpha = sp.Symbol("d", positive=True), sp.Symbol("alpha", positive=True)
 HALF_PI = sp.pi / 2
+TWO_FIFTHS, THREE_FIFTHS = sp.Rational(2, 5), sp.Rational(3, 5)
 
 
 def hinged_rod() -> Solution:
@@ -138,8 +139,8 @@ def rocking_block() -> Solution:
                   Contact(normal=(0, -1), restitution=0, tangential="stick")).solve()
 
 
-def rod_on_rough_floor(law: str, friction: sp.Expr = sp.Rational(2, 5),
-                       tangential: sp.Expr = sp.Rational(3, 5)) -> Solution:
+def rod_on_rough_floor(law: str, friction: sp.Expr = TWO_FIFTHS,
+                       tangential: sp.Expr = THREE_FIFTHS) -> Solution:
     """A slender rod (mass 1, half-length 1) at 45 degrees strikes a rough floor with its
     lower end moving at (tangential, normal) = (0.6, -1), no spin; mu = 0.4, e = 1.
 
