@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import math
 import random
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,6 +23,7 @@ from rigidimpact.notation import symbol
 from rigidimpact.problems import derive
 
 SEED = 1305
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def rod_on_floor(tangential: float = 0.6) -> tuple[Body, Body]:
@@ -250,3 +253,22 @@ def test_symbolic_rod_gives_regimes_with_conditions():
     assert names == ["slip-stick", "slip-reversal"]  # slip throughout cannot happen here
     assert solution.regime_at({mu: sp.Rational(2, 5)}) == "slip-reversal"
     assert solution.regime_at({mu: 1}) == "slip-stick"  # mu >= 3/5 = |W_tn| / W_tt
+
+
+def test_routh_command_prints_the_path_and_draws_the_diagram(tmp_path, capsys):
+    from rigidimpact.cli import main
+
+    scene = str(ROOT / "derivations" / "rod-rough-floor.toml")
+    assert main(["routh", scene, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["regime"] == "slip-reversal"
+    # the path: slip along the cone's edge until the sticking line, then back the other
+    # way: the first leg has P_t/P_n = +mu, the second -mu
+    (n0, t0), (n1, t1), (n2, t2) = data["path"]
+    assert (n0, t0) == (0.0, 0.0)
+    assert t1 / n1 == pytest.approx(0.4) and (t2 - t1) / (n2 - n1) == pytest.approx(-0.4)
+    picture = tmp_path / "routh.png"
+    assert main(["routh", scene, "--set", "mu=0.8", "--plot", str(picture)]) == 0
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(["routh", str(ROOT / "derivations" / "hinged-rod.toml")]) == 2
+    assert "Coulomb" in capsys.readouterr().err

@@ -245,6 +245,45 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_routh(args: argparse.Namespace) -> int:
+    """The impulse path of a Coulomb contact at the scene's values, as numbers or a PNG."""
+    from rigidimpact.routh import diagram
+    from rigidimpact.scene import load_scene
+
+    scene = load_scene(args.scene)
+    if args.plot:
+        _check_plot_path(Path(args.plot))
+    values = {s.name: v for s, v in scene.values.items()}
+    sources = {name: f"values.{name}" for name in values}
+    for setting in args.set:
+        name, eq, text = setting.partition("=")
+        if not eq or not name.strip():
+            raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
+        values[name.strip()], sources[name.strip()] = text, f"--set {name.strip()}"
+    derivation = scene.derivation()
+    exact = derivation.checked(values, sources)
+    found = diagram(scene.impact(), {derivation.symbols[k]: v for k, v in exact.items()})
+    if args.plot:
+        from rigidimpact.atomic import write_file
+        from rigidimpact.plots import routh_diagram
+
+        figure = routh_diagram(found, scene.title)
+        write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
+                   "--plot")
+    path = [[float(a), float(b)] for a, b in found.regime.path]
+    if args.json:
+        _print_json({"regime": found.regime.name, "law": found.law, "mu": float(found.mu),
+                     "e": float(found.e), "path": path,
+                     "W": [[float(x) for x in row] for row in found.W.tolist()],
+                     "v_before": [float(x) for x in found.v_before]})
+    elif not args.plot:
+        print(f"regime: {found.regime.name} ({found.law} restitution, e = "
+              f"{float(found.e):g}, mu = {float(found.mu):g})")
+        for p_n, p_t in path:
+            print(f"  P_n = {p_n:.10g}  P_t = {p_t:.10g}")
+    return 0
+
+
 def _cmd_stability(args: argparse.Namespace) -> int:
     from rigidimpact.stability import run_suite
 
@@ -444,6 +483,14 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dps", type=int, help="mpmath with this many significant digits")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_evaluate)
+
+    p = sub.add_parser("routh", help="Routh's diagram of a scene's frictional contact")
+    p.add_argument("scene", metavar="SCENE")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a value for a symbol (repeat); a scene's [values] are defaults")
+    p.add_argument("--plot", metavar="FILE", help="draw the diagram to a PNG file")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(run=_cmd_routh)
 
     p = sub.add_parser("critical-angle", help="the re-strike analysis of section 2")
     p.add_argument("--e", default="0", metavar="E", help="restitution in [0, 1] (default 0)")

@@ -25,7 +25,7 @@ from rigidimpact.problems import derive  # noqa: E402
 
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
-    "convergence", "naive_vs_stable", "FIGSIZE", "DPI"]
+    "convergence", "naive_vs_stable", "routh_diagram", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -358,6 +358,59 @@ def impulse_vs_offset(offsets: np.ndarray, impulses: dict[str, np.ndarray]) -> F
     ax.set_ylabel(r"normal impulse $J$ (N s)")
     ax.set_title("General smooth impact: an off-centre hit gives a smaller impulse")
     ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
+    """The impulse plane of one frictional impact (Routh's construction).
+
+    Normal impulse across, tangential impulse up: the friction cone ``|P_t| = mu P_n``,
+    the compression line (where the normal velocity is zero: compression ends where the
+    path crosses it), the sticking line (where the tangential velocity is zero: slip
+    stops there), and the path the impulse takes, with its events marked.
+
+    Examples
+    --------
+    >>> from rigidimpact.bodies import Body
+    >>> from rigidimpact.contact import Contact
+    >>> from rigidimpact.impact import Impact
+    >>> from rigidimpact.routh import diagram
+    >>> d = diagram(Impact(Body.particle(1, (1, 1), "ball"), Body.fixed("floor"),
+    ...             Contact(restitution=1, tangential="coulomb", friction=0.25)), {})
+    >>> len(routh_diagram(d).axes[0].lines)
+    5
+    """
+    W = np.array(diagram.W.evalf(), dtype=float)
+    v = np.array([float(x) for x in diagram.v_before])
+    mu = float(diagram.mu)
+    path = np.array([[float(a), float(b)] for a, b in diagram.regime.path])
+    right = 1.25 * max(path[:, 0].max(), 1e-12)
+    p_n = np.linspace(0.0, right, 200)
+    fig, ax = plt.subplots(figsize=(6.0, 4.5), dpi=DPI)
+    ax.plot(p_n, mu * p_n, color="grey", lw=0.8, label=rf"friction cone $|P_t| = \mu P_n$, "
+            rf"$\mu = {mu:g}$")
+    ax.plot(p_n, -mu * p_n, color="grey", lw=0.8)
+    # v_n = 0 and v_t = 0 are straight lines in the impulse plane: v = v- + W P
+    for row, style, label in ((0, "--", "compression ends ($v_n = 0$)"),
+                              (1, ":", "sticking line ($v_t = 0$)")):
+        colour = "C1" if row == 0 else "C2"
+        if abs(W[row, 1]) > 1e-12 * abs(W).max():
+            ax.plot(p_n, -(v[row] + W[row, 0] * p_n) / W[row, 1], style, color=colour,
+                    label=label)
+        else:  # the line stands upright at the normal impulse that zeroes the velocity
+            ax.axvline(-v[row] / W[row, 0], ls=style, color=colour, label=label)
+    ax.plot(path[:, 0], path[:, 1], "o-", color="C0", lw=2,
+            label=f"impulse path: {diagram.regime.name}")
+    span = max(mu * right, abs(path[:, 1]).max(), 1e-12)
+    ax.set_ylim(-1.4 * span, 1.4 * span)
+    ax.set_xlim(0.0, right)
+    ax.set_xlabel(r"normal impulse $P_n$ (N s)")
+    ax.set_ylabel(r"tangential impulse $P_t$ (N s)")
+    ax.set_title(f"{title}\n{diagram.law} restitution, e = {float(diagram.e):g}",
+                 fontsize="medium")
+    ax.legend(fontsize="small", loc="best")
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig

@@ -40,7 +40,8 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
 
-__all__ = ["Regime", "regimes", "walton", "LAWS", "SLIP", "STICK", "REVERSAL"]
+__all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
+           "REVERSAL"]
 
 LAWS = ("newton", "poisson", "energetic")
 SLIP, STICK, REVERSAL = "slip", "slip-stick", "slip-reversal"
@@ -299,3 +300,62 @@ def walton(W: sp.MatrixBase, v_before: sp.MatrixBase, beta: sp.Expr, mu: sp.Expr
         raise InputError("contact", "no course of the impact fits these values: the "
                          "contact jams (the normal velocity would fall while slipping)")
     return decided
+
+
+@dataclass(frozen=True)
+class Diagram:
+    """What Routh's diagram of one frictional impact shows, as exact numbers.
+
+    Attributes: the contact-space matrix ``W``, the velocity before, ``mu``, ``e``, the
+    restitution ``law`` and the regime taken (with its impulse path).
+    """
+
+    W: sp.Matrix
+    v_before: sp.Matrix
+    mu: sp.Expr
+    e: sp.Expr
+    law: str
+    regime: Regime
+
+
+def diagram(impact, values: dict) -> Diagram:
+    """Routh's diagram of a frictional impact at numbers for its symbols.
+
+    Parameters
+    ----------
+    impact : Impact
+        With a ``coulomb`` contact.
+    values : mapping of Symbol to number
+        Exact numbers for every symbol of the impact.
+
+    Examples
+    --------
+    >>> from rigidimpact.bodies import Body
+    >>> from rigidimpact.contact import Contact
+    >>> from rigidimpact.impact import Impact
+    >>> ball = Body.particle(1, (1, 1), "ball")
+    >>> d = diagram(Impact(ball, Body.fixed("floor"), Contact(restitution=1,
+    ...             tangential="coulomb", friction=sp.Rational(1, 4))), {})
+    >>> d.regime.name, d.regime.path[-1]
+    ('slip', (2, 1/2))
+    """
+    from rigidimpact.impulse import ImpulseProblem
+
+    contact = impact.contact
+    if contact.tangential != "coulomb":
+        raise InputError("contact.tangential", "Routh's diagram is drawn for a Coulomb "
+                         "contact (tangential = \"coulomb\")")
+    core = ImpulseProblem(impact.before)
+
+    def at(x):
+        return sp.sympify(x).xreplace(impact._local[1]).xreplace(values)
+
+    W = core.W.applyfunc(at)
+    v = core.velocity_before.applyfunc(at)
+    mu, e = at(contact.friction), at(contact.restitution)
+    leftover = set().union(W.free_symbols, v.free_symbols, mu.free_symbols, e.free_symbols)
+    if leftover:
+        names = ", ".join(sorted(str(s) for s in leftover))
+        raise InputError("values", f"Routh's diagram needs numbers for {names}")
+    (regime,) = regimes(W, v, mu, e, contact.law)
+    return Diagram(W, v, mu, e, contact.law, regime)
