@@ -347,8 +347,10 @@ def diagram(impact, values: dict) -> Diagram:
                          "contact (tangential = \"coulomb\")")
     core = ImpulseProblem(impact.before)
 
+    numbers = {k: sp.sympify(v) for k, v in values.items()}
+
     def at(x):
-        return sp.sympify(x).xreplace(impact._local[1]).xreplace(values)
+        return sp.sympify(x).xreplace(impact._local[1]).xreplace(numbers)
 
     W = core.W.applyfunc(at)
     v = core.velocity_before.applyfunc(at)
