@@ -175,9 +175,6 @@ class Body:
         fix(self, "spin", _expr(self.spin, f"{self.name}.spin"))
         fix(self, "dimensions", tuple((k, _expr(v, f"{self.name}.{k}"))
                                       for k, v in self.dimensions))
-        if self.inertia.is_zero and not all(c.is_zero for c in self.position):
-            raise InputError(f"{self.name}.position", "a point mass must sit at the contact "
-                             "point O, or it cannot be touched there")
         if self.pivot is not None:
             self._check_pivot()
 

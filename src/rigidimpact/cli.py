@@ -119,6 +119,9 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "seconds": round(d.seconds, 4),
             "warnings": list(d.warnings),
             **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
+            **({"outcomes": [{"rule": o.rule, "order": list(o.order), "acted": list(o.acted),
+                              "results": {k: _expr_json(v) for k, v in o.results().items()}}
+                             for o in d.outcomes]} if d.outcomes else {}),
         })
         return 0
     if args.format == "latex":
@@ -134,6 +137,16 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     print(f"{d.title}  [{d.problem}]")
     for line in d.setup:
         print(f"  {line}")
+    if d.outcomes:
+        from rigidimpact.collision import RULE_LAWS
+
+        print(f"\nLaws: {RULE_LAWS[d.outcomes[0].rule]}")
+        for outcome in d.outcomes:
+            print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
+            for key, value in outcome.results().items():
+                print(f"  {key} = {value}")
+        print(f"\n({d.seconds:.2f} s)")
+        return 0
     numbered = any(eq.paper for eq in d.equations)
     print("\nLaws (paper's equation numbers):" if numbered else "\nLaws:")
     for eq in d.equations:
@@ -204,7 +217,6 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None):
         derivation, values, sources = _derivation(target), {}, {}
     else:
         scene = load_scene(target)
-        derivation = scene.derivation()
         values = {s.name: v for s, v in scene.values.items()}
         sources = {name: f"values.{name}" for name in values}
     for setting in settings:
@@ -213,7 +225,39 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None):
         if not eq or not name:
             raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
         values[name], sources[name] = text, f"--set {name}"
+    if target not in PROBLEMS and scene.several:
+        return _several_evaluation(scene, values, sources, dps)
+    if target not in PROBLEMS:
+        derivation = scene.derivation()
     return derivation.evaluate(values, dps, sources)
+
+
+def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None):
+    """Several contacts are solved with numbers: check them, solve, report each rule."""
+    import sympy as sp
+
+    from rigidimpact.expr import parse_expression
+    from rigidimpact.problems import Evaluation, physics_warnings
+    from rigidimpact.roles import check_assumptions, check_roles
+
+    exact = {}
+    for name, raw in values.items():
+        if name not in scene.symbols:
+            raise InputError(sources[name], f"unknown symbol {name!r}")
+        symbol = scene.symbols[name]
+        number = raw if isinstance(raw, sp.Basic) else parse_expression(raw, sources[name], {})
+        exact[symbol] = check_assumptions(symbol, number, sources[name])
+    check_roles(scene.roles, exact, {s: sources[s.name] for s in exact})
+    derivation = scene.derivation_at(exact)
+    numbers = derivation.evaluate({}, dps).numbers
+    outcomes = derivation.outcomes
+    extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}
+    if len(outcomes) > 1:
+        extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
+                            "results": {k: float(v) for k, v in o.results().items()}}
+                           for o in outcomes]
+    warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule")
+    return Evaluation(numbers, warnings, None, extra)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
@@ -234,6 +278,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         body = [f"  {json.dumps(k)}: {literal(v)}" for k, v in result.numbers.items()]
         if result.regime is not None:
             body.append(f'  "regime": {json.dumps(result.regime)}')
+        body += [f"  {json.dumps(k)}: {json.dumps(_finite_json(v))}"
+                 for k, v in result.extra.items()]
         if result.warnings:
             body.append(f'  "warnings": {json.dumps(list(result.warnings))}')
         print("{\n" + ",\n".join(body) + "\n}")
@@ -242,6 +288,13 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             print(f"{key} = {literal(value)}")
         if result.regime is not None:
             print(f"regime = {result.regime}")
+        if result.extra:
+            print(f"rule = {result.extra['rule']}; contacts that acted: "
+                  f"{', '.join(result.extra['acted']) or 'none'}")
+            for row in result.extra.get("orders", ()):
+                shown = ", ".join(f"{k} = {v:.10g}" for k, v in row["results"].items()
+                                  if not k.endswith("tangential_impulse"))
+                print(f"  order {', '.join(row['order'])}: {shown}")
     return 0
 
 

@@ -88,6 +88,11 @@ class Impact:
     def __post_init__(self) -> None:
         if self.first.name == self.second.name:
             raise InputError("bodies", f"the two bodies share the name {self.first.name!r}")
+        for body in (self.first, self.second):
+            if body.inertia.is_zero and body.support != "fixed" and \
+                    not all(c.is_zero for c in body.position):
+                raise InputError(f"{body.name}.position", "a point mass must sit at the "
+                                 "contact point O, or it cannot be touched there")
         if self.first.support == "fixed" and self.second.support == "fixed":
             raise InputError("bodies", "two fixed bodies cannot collide: at least one must "
                              "move")

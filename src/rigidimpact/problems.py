@@ -93,6 +93,9 @@ class Derivation:
         Wall time the derivation took.
     warnings : tuple of str
         What the model cannot honour in general (see :func:`model_warnings`).
+    outcomes : tuple of collision.Outcome
+        With several contacts: each rule's (or order's) outcome; `results` are the
+        first's.
     """
 
     problem: str
@@ -106,6 +109,7 @@ class Derivation:
     solution: Solution | None = field(default=None, repr=False)
     seconds: float = 0.0
     warnings: tuple[str, ...] = ()
+    outcomes: tuple = ()  # several contacts: what each rule (or order) made of them
 
     @property
     def symbols(self) -> dict[str, sp.Symbol]:
@@ -226,6 +230,7 @@ class Evaluation:
     numbers: Mapping[str, Any]
     warnings: tuple[str, ...] = ()
     regime: str | None = None  # with friction: the course the impact took
+    extra: Mapping[str, Any] = field(default_factory=dict)  # several contacts: acted, orders
 
 
 def model_name(contact: Contact) -> str:

@@ -33,14 +33,16 @@ import sympy as sp
 
 from rigidimpact import expr as expressions
 from rigidimpact.bodies import Body
+from rigidimpact.collision import Collision, Outcome, Touch
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.geometry import spin_cross
 from rigidimpact.impact import Impact
 from rigidimpact.notation import SYMBOLS, make_symbol
 from rigidimpact.problems import Derivation, model_warnings
+from rigidimpact.rewrite import tidy
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
-from rigidimpact.shapes import SHAPES, Fields
+from rigidimpact.shapes import SHAPES, Fields, is_round
 
 __all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
 
@@ -92,19 +94,49 @@ class Scene:
     title: str
     symbols: Mapping[str, sp.Symbol]
     values: Mapping[sp.Symbol, sp.Expr]
-    bodies: tuple[Body, Body]
+    bodies: tuple[Body, ...]
     contact: Contact
     simulate: Mapping[str, Any] = field(default_factory=dict)
     name: str = "scene"
+    contacts: tuple[Contact, ...] = ()
+    touches: tuple[Touch, ...] = ()
+    rule: str = "simultaneous"
+    order: tuple[str, ...] | None = None
+
+    @property
+    def several(self) -> bool:
+        """Whether the scene has several contacts (solved by :mod:`rigidimpact.collision`)."""
+        return len(self.touches) > 1
 
     @property
     def roles(self) -> tuple[Role, ...]:
         """What bounds the scene's data by role (see :mod:`rigidimpact.roles`)."""
-        return roles_of(self.bodies, (self.contact,))
+        return roles_of(self.bodies, self.contacts or (self.contact,))
 
     def impact(self) -> Impact:
-        """The scene's impact."""
+        """The scene's impact (one contact)."""
+        if self.several:
+            raise InputError("contacts", "this scene has several contacts: derive and "
+                             "evaluate solve it; this command follows one contact")
         return Impact(self.bodies[0], self.bodies[1], self.contact)
+
+    def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
+        """The scene's several contacts with numbers for its symbols."""
+        return Collision.from_values(self.bodies, self.touches,
+                                     dict(self.values if values is None else values))
+
+    def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Outcome, ...]:
+        """What the scene's rule makes of its several contacts (every order when a
+        sequential rule has none)."""
+        collision = self.collision(values)
+        if self.rule == "compliant":
+            raise InputError("impact.rule", "the compliant rule for several contacts is not "
+                             "built yet; use simultaneous or sequential")
+        if self.rule == "simultaneous":
+            return (collision.simultaneous(),)
+        if self.order is not None:
+            return (collision.sequential(self.order),)
+        return collision.every_order()
 
     def derivation(self) -> Derivation:
         """Solve the scene's impact symbolically.
@@ -129,6 +161,8 @@ class Scene:
         v_ix*(e + 1)/2
         """
         start = time.perf_counter()
+        if self.several:
+            return self._several_derivation(start)
         impact = self.impact()
         solution = impact.solve()
         first, second = self.bodies
@@ -143,6 +177,26 @@ class Scene:
                           solution.results(), solution=solution,
                           seconds=time.perf_counter() - start,
                           warnings=model_warnings(self.contact))
+
+
+    def _several_derivation(self, start: float,
+                            values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
+        outcomes = self.outcomes(values)
+        setup = tuple(_described(b) for b in self.bodies)
+        setup += tuple(f"contact {t.name}: {t.first} -> {t.second} at ({t.point[0]}, "
+                       f"{t.point[1]}), normal ({t.normal[0]}, {t.normal[1]}), {t.law} "
+                       f"restitution {t.restitution}" for t in self.touches)
+        setup += (f"rule: {self.rule}" + ("" if self.order is None
+                                          else f", order {', '.join(self.order)}"),)
+        return Derivation(self.name, self.title, setup, (), (), outcomes[0].results(),
+                          seconds=time.perf_counter() - start, outcomes=outcomes)
+
+    def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
+        """With several contacts, the derivation at these numbers (they are solved with
+        numbers); with one contact, the symbolic derivation."""
+        if not self.several:
+            return self.derivation()
+        return self._several_derivation(time.perf_counter(), values)
 
 
 def _described(b: Body) -> str:
@@ -199,7 +253,8 @@ def _values_table(table: Mapping[str, Any],
 
 
 def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
-          symbols: Mapping[str, sp.Symbol], origin: tuple = (0, 0)) -> Body:
+          symbols: Mapping[str, sp.Symbol], origin: tuple = (0, 0),
+          world: bool = False) -> Body:
     """One body from its table; positions and the pivot, given from the origin of the
     scene, are moved to the contact point at `origin`."""
     where = f"bodies[{index}]"
@@ -230,7 +285,7 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     spin = parse_expression(table["spin"], f"{where}.spin", symbols) if "spin" in table else 0
     given = Fields(table, lambda key: parse_expression(table[key], f"{where}.{key}", symbols),
                    lambda key: _from_contact(table, key, where, symbols, origin), name,
-                   velocity, spin, side * normal)
+                   velocity, spin, side * normal, world)
     try:
         body = kind.build(given)
         if "pivot" in table:
@@ -259,6 +314,101 @@ CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "ta
 IMPACT_RULES = ("simultaneous", "sequential", "compliant")
 
 
+def _body_tables(data: Mapping[str, Any]) -> dict[str, tuple[int, dict]]:
+    """The ``[[bodies]]`` tables by name, with their index in the file."""
+    tables = data.get("bodies")
+    if not isinstance(tables, list) or len(tables) < 2:
+        raise InputError("bodies", "at least two [[bodies]] entries are required")
+    by_name: dict[str, tuple[int, dict]] = {}
+    for index, table in enumerate(tables):
+        if not isinstance(table, dict):
+            raise InputError(f"bodies[{index}]", "each [[bodies]] entry must be a table")
+        body_name = table.get("name")
+        if not isinstance(body_name, str) or not body_name.isidentifier():
+            raise InputError(f"bodies[{index}].name", "required: an identifier such as "
+                             "\"ball\"")
+        if body_name in by_name:
+            raise InputError(f"bodies[{index}].name", f"two bodies are named {body_name!r}")
+        by_name[body_name] = (index, table)
+    return by_name
+
+
+def _pair(table: Mapping[str, Any], place: str, default: list[str]) -> list[str]:
+    """The two body names a contact joins, first on the -x side of its normal."""
+    order = table.get("bodies", default)
+    if (not isinstance(order, list) or len(order) != 2
+            or not all(isinstance(x, str) for x in order) or order[0] == order[1]):
+        raise InputError(f"{place}.bodies", "must name the two bodies, e.g. "
+                         "[\"ball\", \"bar\"]")
+    return order
+
+
+def _read_contact(table: Mapping[str, Any], place: str,
+                  symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, tuple]:
+    """A contact's laws and its point (the origin offset for one contact)."""
+    for key in table:
+        if key not in CONTACT_FIELDS:
+            raise InputError(f"{place}.{key}", f"unknown field; expected "
+                             f"{', '.join(CONTACT_FIELDS)}")
+    normal = _vector(table.get("normal", [1, 0]), f"{place}.normal", symbols)
+    if "restitution" not in table:
+        raise InputError(f"{place}.restitution", "required: the coefficient e in [0, 1]")
+    restitution = parse_expression(table["restitution"], f"{place}.restitution", symbols)
+    contact_name = table.get("name", "contact")
+    if not isinstance(contact_name, str) or not contact_name.isidentifier():
+        raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
+    coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
+                    for key in ("friction", "tangential_restitution") if key in table}
+    contact = Contact(normal, restitution, table.get("tangential", "smooth"),
+                      table.get("law", "newton"), contact_name, **coefficients)
+    origin = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
+        else (sp.Integer(0), sp.Integer(0))
+    return contact, origin
+
+
+def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
+    """A scene with several contacts: bodies from the world origin, one rule for all."""
+    entries = data["contacts"]
+    contacts, touches = [], []
+    for k, table in enumerate(entries):
+        place = f"contacts[{k}]"
+        if not isinstance(table, dict):
+            raise InputError(place, "each [[contacts]] entry must be a table")
+        if "name" not in table:
+            raise InputError(f"{place}.name", "required with several contacts")
+        contact, point = _read_contact(table, place, symbols)
+        if contact.tangential != "smooth":
+            raise InputError(f"{place}.tangential", "several contacts are smooth in this "
+                             "version")
+        if contact.name in (c.name for c in contacts):
+            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
+        first, second = _pair(table, place, [])
+        for body_name in (first, second):
+            if body_name not in by_name:
+                raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
+        contacts.append(contact)
+        touches.append(Touch(contact.name, first, second, point, contact.normal,
+                             contact.restitution, contact.law))
+    rule, order = _impact_table(_table(data, "impact", "settings"), [c.name for c in contacts])
+    bodies = []
+    for index, table in by_name.values():
+        bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
+    for touch in touches:  # round bodies touch at their radius
+        for body in bodies:
+            if body.name in (touch.first, touch.second) and is_round(body.shape):
+                radius = dict(body.dimensions)["radius"]
+                gap = body.position - touch.point
+                if tidy(gap[0] ** 2 + gap[1] ** 2 - radius**2).is_zero is False:
+                    raise InputError(f"{touch.name}.point", f"{body.name} is round: the "
+                                     f"contact must lie at its radius {radius} from its "
+                                     "centre")
+    scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
+                  contacts=tuple(contacts), touches=tuple(touches), rule=rule, order=order)
+    if values:
+        check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
+    return scene
+
+
 def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
     """The one contact, from ``[contact]`` or a single ``[[contacts]]`` entry, and the
     place to name in messages."""
@@ -280,8 +430,11 @@ def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
     return table, "contact"
 
 
-def _impact_table(table: Mapping[str, Any], contact_name: str) -> None:
-    """Check ``[impact]``: with one contact every rule gives the same answer."""
+def _impact_table(table: Mapping[str, Any],
+                  names: list[str]) -> tuple[str, tuple[str, ...] | None]:
+    """Check ``[impact]`` and return its rule and order (None: every order).
+
+    With one contact every rule gives the same answer."""
     for key in table:
         if key not in ("rule", "order"):
             raise InputError(f"impact.{key}", "unknown field; expected rule, order")
@@ -289,11 +442,15 @@ def _impact_table(table: Mapping[str, Any], contact_name: str) -> None:
     if rule not in IMPACT_RULES:
         raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
                          f"{rule!r}")
-    order = table.get("order", [contact_name])
-    if not isinstance(order, list) or any(item != contact_name for item in order) or \
-            len(order) != 1:
-        raise InputError("impact.order", f"must list the scene's contacts by name, here "
-                         f"[\"{contact_name}\"]")
+    if "order" not in table:
+        return rule, None
+    order = table["order"]
+    if not isinstance(order, list) or sorted(map(str, order)) != sorted(names) or \
+            len(order) != len(names):
+        listed = ", ".join(f'"{n}"' for n in names)
+        raise InputError("impact.order", f"must list the scene's contacts by name, each "
+                         f"once: [{listed}]")
+    return rule, tuple(order)
 
 
 def parse_scene(text: str, name: str = "scene") -> Scene:
@@ -319,47 +476,18 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
     values = _values_table(_table(data, "values", "name = number"), symbols)
 
+    by_name = _body_tables(data)
+    simulate = _table(data, "simulate", "settings")
+    if isinstance(data.get("contacts"), list) and len(data["contacts"]) > 1:
+        return _several(data, title, symbols, values, by_name, simulate, name)
     contact_table, place = _contact_table(data)
-    for key in contact_table:
-        if key not in CONTACT_FIELDS:
-            raise InputError(f"{place}.{key}", f"unknown field; expected "
-                             f"{', '.join(CONTACT_FIELDS)}")
-    normal = _vector(contact_table.get("normal", [1, 0]), f"{place}.normal", symbols)
-    if "restitution" not in contact_table:
-        raise InputError(f"{place}.restitution", "required: the coefficient e in [0, 1]")
-    restitution = parse_expression(contact_table["restitution"], f"{place}.restitution",
-                                   symbols)
-    contact_name = contact_table.get("name", "contact")
-    if not isinstance(contact_name, str) or not contact_name.isidentifier():
-        raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
-    coefficients = {key: parse_expression(contact_table[key], f"{place}.{key}", symbols)
-                    for key in ("friction", "tangential_restitution") if key in contact_table}
-    contact = Contact(normal, restitution, contact_table.get("tangential", "smooth"),
-                      contact_table.get("law", "newton"), contact_name, **coefficients)
-    origin = (_vector(contact_table["point"], f"{place}.point", symbols)
-              if "point" in contact_table else (0, 0))
-    _impact_table(_table(data, "impact", "settings"), contact_name)
+    contact, origin = _read_contact(contact_table, place, symbols)
+    _impact_table(_table(data, "impact", "settings"), [contact.name])
     unit = contact.frame.row(0).T
-
-    tables = data.get("bodies")
-    if not isinstance(tables, list) or len(tables) != 2:
-        raise InputError("bodies", "exactly two [[bodies]] entries are required")
-    by_name: dict[str, tuple[int, dict]] = {}
-    for index, table in enumerate(tables):
-        if not isinstance(table, dict):
-            raise InputError(f"bodies[{index}]", "each [[bodies]] entry must be a table")
-        body_name = table.get("name")
-        if not isinstance(body_name, str) or not body_name.isidentifier():
-            raise InputError(f"bodies[{index}].name", "required: an identifier such as "
-                             "\"ball\"")
-        if body_name in by_name:
-            raise InputError(f"bodies[{index}].name", f"two bodies are named {body_name!r}")
-        by_name[body_name] = (index, table)
-    order = contact_table.get("bodies", list(by_name))
-    if (not isinstance(order, list) or len(order) != 2
-            or not all(isinstance(x, str) for x in order) or order[0] == order[1]):
-        raise InputError(f"{place}.bodies", "must name the two bodies, e.g. "
-                         "[\"ball\", \"bar\"]")
+    if len(by_name) != 2:
+        raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
+                         "contact")
+    order = _pair(contact_table, place, list(by_name))
     bodies = []
     for side, body_name in zip((-1, 1), order, strict=True):
         if body_name not in by_name:
@@ -367,7 +495,6 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
         index, table = by_name[body_name]
         bodies.append(_body(table, index, side, unit, symbols, origin))
 
-    simulate = _table(data, "simulate", "settings")
     scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)
     _check_scene(scene)
     return scene

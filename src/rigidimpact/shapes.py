@@ -42,6 +42,9 @@ class Fields:
     outward : 2-vector
         The unit vector from O toward where a round body's centre goes when the table
         gives no position (along the normal, to the body's own side).
+    world : bool
+        With several contacts, positions are from the world origin and are not tied to
+        one contact point: a round body must then give its `position`.
     """
 
     table: Mapping[str, Any]
@@ -51,6 +54,7 @@ class Fields:
     velocity: tuple
     spin: sp.Expr
     outward: sp.MatrixBase
+    world: bool = False
 
 
 class Shape:
@@ -121,10 +125,16 @@ class _Round(Shape):
     """A body that touches along the normal at its radius."""
 
     fields, required, round = ("mass", "radius", "position"), ("mass", "radius"), True
+    factor: ClassVar[sp.Expr]  # central inertia over m r^2
 
     @classmethod
     def build(cls, given: Fields) -> Body:
         radius = given.expr("radius")
+        if given.world:  # from the world origin: the contacts check the radius
+            mass = given.expr("mass")
+            return Body(given.name, mass, cls.factor * mass * radius**2,
+                        given.vector("position"), given.velocity, given.spin, cls.name,
+                        (("radius", radius),))
         position = (given.vector("position") if "position" in given.table
                     else tuple(radius * given.outward))
         maker = getattr(Body, cls.name)
@@ -135,19 +145,19 @@ class _Round(Shape):
 class Disc(_Round):
     """A uniform disc (central inertia m r^2 / 2)."""
 
-    name = "disc"
+    name, factor = "disc", sp.Rational(1, 2)
 
 
 class Ring(_Round):
     """A thin ring (central inertia m r^2)."""
 
-    name = "ring"
+    name, factor = "ring", sp.Integer(1)
 
 
 class Sphere(_Round):
     """A uniform solid sphere moving in the plane (central inertia 2 m r^2 / 5)."""
 
-    name = "sphere"
+    name, factor = "sphere", sp.Rational(2, 5)
 
 
 class Fixed(Shape):

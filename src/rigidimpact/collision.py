@@ -1,0 +1,406 @@
+"""Several smooth contacts closing at the same instant, under a stated rule.
+
+The bodies are placed in one world frame (origin O); each contact has its own point and
+normal. The generalized-impulse core extends row by row: the Jacobian J maps the
+generalized velocities u to the normal closing velocity of every contact (second minus
+first along the contact's normal), and ``W = J M^-1 J^T`` couples the contacts. Three
+rules say how the contacts act together:
+
+- ``simultaneous``: all at once, with Newton's or Poisson's law at every contact, solved
+  as a linear complementarity problem so that no contact pulls: each contact either
+  pushes (P >= 0) and meets its law, or is released (P = 0) and separates at least as
+  fast as the law asks. The result says which contacts acted.
+- ``sequential``: one contact at a time in a given order, each a two-body impact with
+  Newton's e, passes repeated in that order until no contact still approaches.
+- every order: with ``sequential`` and no order given, each order is run and reported.
+
+The numbers are exact (rationals stay rationals), so the rules can be compared exactly.
+
+Examples
+--------
+>>> from rigidimpact.bodies import Body
+>>> balls = [Body.rigid(1, 1, (2 * k, 0), (1 if k == 0 else 0, 0), name=f"b{k}")
+...          for k in range(3)]
+>>> touching = [Touch("left", "b0", "b1", (1, 0), (1, 0), 1),
+...             Touch("right", "b1", "b2", (3, 0), (1, 0), 1)]
+>>> problem = Collision(tuple(balls), tuple(touching))
+>>> [problem.simultaneous().results()[f"b{k}.vx"] for k in range(3)]
+[-1/3, 2/3, 2/3]
+>>> [problem.sequential(("left", "right")).results()[f"b{k}.vx"] for k in range(3)]
+[0, 0, 1]
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from functools import cached_property
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.bodies import Body, as_vector
+from rigidimpact.errors import InputError
+from rigidimpact.geometry import cross, spin_cross
+from rigidimpact.rewrite import tidy
+
+__all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain"]
+
+RULES = ("simultaneous", "sequential", "compliant")
+MAX_PASSES = 1000  # sequential passes before the rule is declared endless
+# a sequence of one-at-a-time impacts can go on forever while converging (inelastic
+# collapse); it is cut where every closing speed left is this small next to the first
+SETTLED = sp.Rational(1, 10**40)
+MAX_ORDERS = 720  # every order of up to six contacts
+RULE_LAWS = {
+    "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
+                    "restitution law at each contact that acts and no contact pulling "
+                    "(v+ = v- + W P, a complementarity problem)",
+    "sequential": "every contact smooth; one contact at a time in the order given, each a "
+                  "two-body impact with Newton's e, repeated until no contact approaches",
+}
+
+
+@dataclass(frozen=True)
+class Touch:
+    """One smooth contact of several: where, along which normal, with which law.
+
+    Parameters
+    ----------
+    name : str
+    first, second : str
+        Body names; the normal points from the first into the second.
+    point, normal : 2-vectors
+        World frame; the normal need not be of unit length.
+    restitution : expr
+    law : {"newton", "poisson"}
+    """
+
+    name: str
+    first: str
+    second: str
+    point: Any
+    normal: Any
+    restitution: Any
+    law: str = "newton"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
+        normal = as_vector(self.normal, f"{self.name}.normal")
+        length = sp.sqrt(tidy(normal[0] ** 2 + normal[1] ** 2))
+        if length.is_zero:
+            raise InputError(f"{self.name}.normal", "must not be the zero vector")
+        object.__setattr__(self, "normal", normal.applyfunc(lambda c: tidy(c / length)))
+        e = sp.sympify(self.restitution)
+        if e.is_number and not 0 <= e <= 1:
+            raise InputError(f"{self.name}.restitution", f"must lie in [0, 1], got {e}")
+        object.__setattr__(self, "restitution", e)
+        if self.law not in ("newton", "poisson"):
+            raise InputError(f"{self.name}.law", "several contacts take Newton's or "
+                             f"Poisson's law, got {self.law!r}")
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What one rule made of the collision: the bodies after, every contact's impulse,
+    which contacts acted, the energies."""
+
+    rule: str
+    order: tuple[str, ...]
+    before: tuple[Body, ...]
+    after: tuple[Body, ...]
+    impulses: dict[str, sp.Expr]
+    acted: tuple[str, ...]
+    passes: int = 1  # sequential: passes in which a contact acted
+
+    @property
+    def kinetic_energy_before(self) -> sp.Expr:
+        return sum((b.kinetic_energy for b in self.before), sp.Integer(0))
+
+    @property
+    def energy_loss_fraction(self) -> sp.Expr:
+        """``(K_i - K_f) / K_i``; negative when the rule created energy."""
+        after = sum((b.kinetic_energy for b in self.after), sp.Integer(0))
+        return tidy(1 - after / self.kinetic_energy_before)
+
+    @property
+    def label(self) -> str:
+        """``simultaneous`` or ``sequential left, right``."""
+        return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
+
+    def results(self) -> dict[str, sp.Expr]:
+        """Results under the scene keys: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
+        ``CONTACT.normal_impulse``, ``CONTACT.tangential_impulse``, ``impulse`` (the
+        first contact's) and ``energy_loss_fraction``."""
+        results: dict[str, sp.Expr] = {}
+        for body in self.after:
+            if body.support == "fixed":
+                continue
+            results[f"{body.name}.vx"] = tidy(body.velocity[0])
+            results[f"{body.name}.vy"] = tidy(body.velocity[1])
+            results[f"{body.name}.omega"] = tidy(sp.sympify(body.spin))
+        first = next(iter(self.impulses))
+        results["impulse"] = self.impulses[first]
+        results["energy_loss_fraction"] = self.energy_loss_fraction
+        for name, impulse in self.impulses.items():
+            results[f"{name}.normal_impulse"] = impulse
+            results[f"{name}.tangential_impulse"] = sp.Integer(0)
+        return results
+
+
+@dataclass(frozen=True)
+class Collision:
+    """Bodies in the world frame and the smooth contacts that close together.
+
+    Parameters
+    ----------
+    bodies : tuple of Body
+        Positions (and pivots) from the world origin.
+    touches : tuple of Touch
+    """
+
+    bodies: tuple[Body, ...]
+    touches: tuple[Touch, ...]
+
+    def __post_init__(self) -> None:
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise InputError("bodies", "two bodies share a name")
+        if len({t.name for t in self.touches}) != len(self.touches):
+            raise InputError("contacts", "two contacts share a name")
+        for touch in self.touches:
+            for side in (touch.first, touch.second):
+                if side not in names:
+                    raise InputError(f"{touch.name}.bodies", f"no body named {side!r}")
+            if touch.first == touch.second:
+                raise InputError(f"{touch.name}.bodies", "a contact needs two bodies")
+            for side in (touch.first, touch.second):
+                body = self._body(side)
+                if body.inertia.is_zero and body.support != "fixed" and \
+                        any(not c.is_zero for c in body.position - touch.point):
+                    raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
+                                     "contact must be where it is")
+        free = self.W.free_symbols | self.velocity_before.free_symbols | set().union(
+            *(sp.sympify(t.restitution).free_symbols for t in self.touches))
+        if free:
+            raise InputError("values", "several contacts are solved with numbers: give "
+                             f"[values] for {', '.join(sorted(map(str, free)))}")
+        if all(v >= 0 for v in self.velocity_before):
+            raise InputError("bodies", "no contact is approaching: there is no impact")
+
+    @classmethod
+    def from_values(cls, bodies: Sequence[Body], touches: Sequence[Touch],
+                    values: dict) -> Collision:
+        """The collision with numbers put in for its symbols.
+
+        Examples
+        --------
+        >>> x = sp.Symbol("x")
+        >>> c = Collision.from_values([Body.rigid(1, 0, (0, 0), (x, 0), name="a"),
+        ...                            Body.fixed("wall")],
+        ...                           [Touch("hit", "a", "wall", (0, 0), (1, 0), 1)], {x: 2})
+        >>> c.simultaneous().results()["a.vx"]
+        -2
+        """
+        def number(v):
+            return sp.sympify(v).xreplace(values)
+
+        def vector(v):
+            return None if v is None else sp.ImmutableMatrix(v).xreplace(values)
+
+        bodies = tuple(b if b.support == "fixed" else replace(
+            b, mass=number(b.mass), inertia=number(b.inertia), position=vector(b.position),
+            velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
+            for b in bodies)
+        touches = tuple(replace(t, point=vector(t.point), normal=vector(t.normal),
+                                restitution=number(t.restitution)) for t in touches)
+        return cls(bodies, touches)
+
+    def _body(self, name: str) -> Body:
+        return next(b for b in self.bodies if b.name == name)
+
+    @cached_property
+    def coordinates(self) -> tuple[tuple[str, str, sp.Expr], ...]:
+        """(body, kind, mass-matrix entry) of each generalized velocity."""
+        found = []
+        for body in self.bodies:
+            if body.support == "pivot":
+                found.append((body.name, "omega", body.inertia_about_pivot))
+            elif body.support == "free":
+                found += [(body.name, "vx", body.mass), (body.name, "vy", body.mass)]
+                if not body.inertia.is_zero:
+                    found.append((body.name, "omega", body.inertia))
+        return tuple(found)
+
+    @cached_property
+    def J(self) -> sp.Matrix:
+        """One row per contact: its normal closing velocity as a function of u."""
+        rows = []
+        for touch in self.touches:
+            row = []
+            for name, kind, _ in self.coordinates:
+                sign = -1 if name == touch.first else 1 if name == touch.second else 0
+                body = self._body(name)
+                if sign == 0:
+                    row.append(sp.Integer(0))
+                elif kind == "vx":
+                    row.append(sign * touch.normal[0])
+                elif kind == "vy":
+                    row.append(sign * touch.normal[1])
+                else:  # n . (z x (p - axis)) = (p - axis) x n
+                    axis = body.pivot if body.support == "pivot" else body.position
+                    row.append(sign * cross(touch.point - axis, touch.normal))
+            rows.append(row)
+        return sp.Matrix(rows)
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        return sp.diag(*[1 / entry for _, _, entry in self.coordinates])
+
+    @cached_property
+    def W(self) -> sp.Matrix:
+        """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
+        return (self.J * self.M_inverse * self.J.T).applyfunc(sp.nsimplify)
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        values = []
+        for name, kind, _ in self.coordinates:
+            body = self._body(name)
+            values.append({"vx": body.velocity[0], "vy": body.velocity[1]}.get(kind, body.spin))
+        return sp.Matrix(values)
+
+    @cached_property
+    def velocity_before(self) -> sp.Matrix:
+        """Normal closing velocity of every contact before (negative: approaching)."""
+        return (self.J * self.u_before).applyfunc(tidy)
+
+    def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
+        values = {(name, kind): u[k] for k, (name, kind, _) in enumerate(self.coordinates)}
+        after = []
+        for body in self.bodies:
+            if body.support == "fixed":
+                after.append(body)
+                continue
+            spin = values.get((body.name, "omega"), body.spin)
+            if body.support == "pivot":
+                after.append(body.with_motion(spin_cross(spin, body.position - body.pivot),
+                                              spin))
+            else:
+                after.append(body.with_motion((values[(body.name, "vx")],
+                                               values[(body.name, "vy")]), spin))
+        return tuple(after)
+
+    def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        return (u + self.M_inverse * self.J.T * impulses).applyfunc(tidy)
+
+    def simultaneous(self) -> Outcome:
+        """All contacts at once, no contact pulling (a complementarity problem).
+
+        Newton's law: every acting contact leaves at ``-e`` times its closing velocity
+        before, every released one at least that fast. Poisson's law: the compression
+        impulses solve the same problem with target zero, and each is scaled by 1 + e.
+        Active sets are tried from the largest down; for a positive-definite W exactly
+        one fits.
+        """
+        v = self.velocity_before
+        e = sp.Matrix([t.restitution for t in self.touches])
+        poisson = all(t.law == "poisson" for t in self.touches)
+        if not poisson and any(t.law == "poisson" for t in self.touches):
+            raise InputError("contacts", "give every contact the same law to act together")
+        target = sp.zeros(len(v), 1) if poisson else \
+            sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
+        impulses = self._complementarity(v, target)
+        if poisson:
+            impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
+        u = self._kick(self.u_before, impulses)
+        return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
+                       tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
+                             if p > 0))
+
+    def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
+        n = len(v)
+        for size in range(n, 0, -1):
+            for active in itertools.combinations(range(n), size):
+                block = self.W.extract(list(active), list(active))
+                if block.det() == 0:
+                    continue
+                rhs = sp.Matrix([target[i] - v[i] for i in active])
+                solved = block.LUsolve(rhs).applyfunc(tidy)
+                impulses = sp.zeros(n, 1)
+                for k, i in enumerate(active):
+                    impulses[i] = solved[k]
+                after = v + self.W * impulses
+                if all(p >= 0 for p in solved) and all(
+                        after[i] - target[i] >= 0 for i in range(n) if i not in active):
+                    return impulses
+        return sp.zeros(n, 1)
+
+    def sequential(self, order: Sequence[str]) -> Outcome:
+        """One contact at a time in `order`, passes repeated until none approaches.
+
+        With e < 1 the passes can go on forever while the closing speeds shrink
+        geometrically (a stack coming to rest): they stop once every closing speed left
+        is below 1e-40 of the largest before, so such results are exact to that size.
+        """
+        index = {t.name: k for k, t in enumerate(self.touches)}
+        unknown = [name for name in order if name not in index]
+        if unknown or sorted(order) != sorted(index):
+            raise InputError("impact.order", f"must list every contact once: "
+                             f"{', '.join(index)}")
+        u, total = self.u_before, sp.zeros(len(index), 1)
+        scale = max(abs(v) for v in self.velocity_before)
+        passes, acted_now = 0, True
+        while acted_now:  # a pass in which no contact acted ends the rule
+            if passes == MAX_PASSES:
+                raise InputError("impact.rule", f"the sequential rule did not settle in "
+                                 f"{MAX_PASSES} passes (e = 1 chains can ring forever)")
+            passes, acted_now = passes + 1, False
+            for name in order:
+                k = index[name]
+                closing = tidy((self.J[k, :] * u)[0])
+                if closing >= 0 or -closing <= SETTLED * scale:
+                    continue
+                touch = self.touches[k]
+                impulse = tidy(-(1 + touch.restitution) * closing / self.W[k, k])
+                kick = sp.zeros(len(index), 1)
+                kick[k] = impulse
+                u = self._kick(u, kick)
+                total[k] += impulse
+                acted_now = True
+        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+                       self._named(total.applyfunc(tidy)),
+                       tuple(t.name for t, p in zip(self.touches, total, strict=True) if p > 0),
+                       passes - 1)
+
+    def every_order(self) -> tuple[Outcome, ...]:
+        """The sequential rule in every order of the contacts."""
+        names = [t.name for t in self.touches]
+        orders = list(itertools.permutations(names))
+        if len(orders) > MAX_ORDERS:
+            raise InputError("impact.order", f"{len(names)} contacts have {len(orders)} "
+                             "orders: give one")
+        return tuple(self.sequential(order) for order in orders)
+
+    def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
+        return {t.name: impulses[k] for k, t in enumerate(self.touches)}
+
+
+def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
+    """Newton's cradle: n equal balls (mass 1, radius 1/2) in a line, touching, the first
+    moving at `speed` into the rest.
+
+    Examples
+    --------
+    >>> [chain(3).simultaneous().results()[f"ball{k}.vx"] for k in range(3)]
+    [-1/3, 2/3, 2/3]
+    """
+    if n < 2:
+        raise InputError("n", "a chain needs two balls or more")
+    bodies = tuple(Body.rigid(1, sp.Rational(1, 10), (k, 0), (speed if k == 0 else 0, 0),
+                              name=f"ball{k}") for k in range(n))
+    touches = tuple(Touch(f"c{k}", f"ball{k}", f"ball{k + 1}", (sp.Rational(2 * k + 1, 2), 0),
+                          (1, 0), restitution) for k in range(n - 1))
+    return Collision(bodies, touches)

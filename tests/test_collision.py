@@ -1,0 +1,191 @@
+"""Several contacts at once: exact results by hand, the rules' energy, every order."""
+
+from __future__ import annotations
+
+import random
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from rigidimpact.bodies import Body
+from rigidimpact.collision import Collision, Touch, chain
+from rigidimpact.errors import InputError
+from rigidimpact.scene import load_scene, parse_scene
+
+HALF = sp.Rational(1, 2)
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def velocities(outcome, names, axis=0):
+    return [outcome.results()[f"{n}.v{'xy'[axis]}"] for n in names]
+
+
+def test_three_balls_in_a_line():
+    # all at once: W = [[2, -1], [-1, 2]], v- = (-1, 0), targets (1, 0) give P = (4/3, 2/3);
+    # one at a time, left then right: 1 -> 0, the middle passes it on
+    problem = chain(3)
+    names = ["ball0", "ball1", "ball2"]
+    assert velocities(problem.simultaneous(), names) == [-sp.Rational(1, 3),
+                                                         sp.Rational(2, 3), sp.Rational(2, 3)]
+    assert velocities(problem.sequential(("c0", "c1")), names) == [0, 0, 1]
+    assert problem.simultaneous().acted == ("c0", "c1")
+
+
+def test_striker_on_two_touching_balls_at_30_degrees():
+    # by hand: symmetric impulses P along n = (cos 30, +-sin 30); Newton e = 1 at each:
+    # P - (1 - 2 P cos 30) cos 30 = cos 30, so P = 4 cos 30 / 5 and the striker leaves at
+    # 1 - 2 P cos 30 = -1/5; the two struck balls part along y, so their own contact idles
+    c, s = sp.sqrt(3) / 2, HALF
+    bodies = (Body.rigid(1, 1, (0, 0), (1, 0), name="striker"),
+              Body.rigid(1, 1, (2 * c, 2 * s), name="upper"),
+              Body.rigid(1, 1, (2 * c, -2 * s), name="lower"))
+    touches = (Touch("up", "striker", "upper", (c, s), (c, s), 1),
+               Touch("down", "striker", "lower", (c, -s), (c, -s), 1),
+               Touch("pair", "lower", "upper", (2 * c, 0), (0, 1), 1))
+    outcome = Collision(bodies, touches).simultaneous()
+    assert outcome.results()["striker.vx"] == -sp.Rational(1, 5)
+    assert outcome.impulses["up"] == outcome.impulses["down"] == sp.Rational(4, 5) * c
+    assert outcome.acted == ("up", "down")
+
+
+def rod_on_floor() -> Collision:
+    rod = Body.rigid(1, sp.Rational(1, 3), (0, 0), (0, -1), HALF, name="rod")
+    floor = Body.fixed("floor")
+    return Collision((rod, floor), (Touch("left", "rod", "floor", (-1, 0), (0, -1), 1),
+                                    Touch("right", "rod", "floor", (1, 0), (0, -1), 1)))
+
+
+def test_rod_landing_flat():
+    # by hand: ends approach at 1.5 (left) and 0.5 (right); all at once each reverses:
+    # v - w = 1.5, v + w = 0.5 gives (1, -1/2); one at a time (W = 4 at each end) the
+    # passes end at (1, 1/2) whichever end goes first
+    problem = rod_on_floor()
+    at_once = problem.simultaneous().results()
+    assert (at_once["rod.vy"], at_once["rod.omega"]) == (1, -HALF)
+    for outcome in problem.every_order():
+        r = outcome.results()
+        assert (r["rod.vy"], r["rod.omega"]) == (1, HALF), outcome.label
+
+
+def test_two_balls_dropped_on_a_floor():
+    # by hand: the lower ball (mass 10) reverses on the floor, then meets the upper ball
+    # (mass 1) still falling at 1: with e = 1 the upper leaves at (9 + 20)/11 = 29/11
+    lower = Body.rigid(10, 1, (0, 1), (0, -1), name="lower")
+    upper = Body.rigid(1, 1, (0, 3), (0, -1), name="upper")
+    problem = Collision((lower, upper, Body.fixed("floor")),
+                        (Touch("ground", "lower", "floor", (0, 0), (0, -1), 1),
+                         Touch("between", "upper", "lower", (0, 2), (0, -1), 1)))
+    for outcome in problem.every_order():
+        assert outcome.results()["upper.vy"] == sp.Rational(29, 11), outcome.label
+
+
+@pytest.mark.parametrize("n", [2, 3, 4, 5, 6])
+def test_newtons_cradle_one_at_a_time_passes_the_speed_on(n):
+    problem = chain(n)
+    order = tuple(f"c{k}" for k in range(n - 1))
+    names = [f"ball{k}" for k in range(n)]
+    assert velocities(problem.sequential(order), names) == [0] * (n - 1) + [1]
+    # all at once, momentum and energy are kept (e = 1), but the speed spreads
+    outcome = problem.simultaneous()
+    assert sum(velocities(outcome, names)) == 1
+    assert outcome.energy_loss_fraction == 0
+    if n > 2:
+        assert velocities(outcome, names) != [0] * (n - 1) + [1]
+
+
+def random_cluster(generator: random.Random) -> Collision:
+    """Three or four equal discs around a struck one, at random angles, all touching it."""
+    def q(lo, hi):
+        return sp.Rational(generator.randint(lo, hi), 10)
+
+    units = [(1, 0), (sp.Rational(4, 5), sp.Rational(3, 5)), (sp.Rational(3, 5),
+             sp.Rational(4, 5)), (sp.Rational(12, 13), -sp.Rational(5, 13)),
+             (sp.Rational(3, 5), -sp.Rational(4, 5))]  # rational unit vectors, exact
+    picked = generator.sample(units, generator.choice([2, 3]))
+    bodies = [Body.rigid(q(5, 30), q(1, 10), (0, 0), (q(5, 20), q(-5, 5)), q(-5, 5),
+                         name="striker")]
+    touches = []
+    for k, unit in enumerate(picked):
+        direction = sp.Matrix(unit)
+        bodies.append(Body.rigid(q(5, 30), q(1, 10), tuple(2 * direction), name=f"d{k}"))
+        touches.append(Touch(f"t{k}", "striker", f"d{k}", tuple(direction), tuple(direction),
+                             q(0, 10)))
+    return Collision(tuple(bodies), tuple(touches))
+
+
+@pytest.mark.parametrize("case", range(8))
+def test_energy_by_rule(case):
+    # one at a time, every step is a smooth two-body impact with e <= 1: never a gain;
+    # all at once with Poisson's law the compression impulses are scaled by (1 + e) <= 2
+    generator = random.Random(40 + case)
+    problem = random_cluster(generator)
+    for outcome in problem.every_order():
+        assert outcome.energy_loss_fraction >= 0, outcome.label
+    outcome = problem.simultaneous()
+    assert all(p >= 0 for p in outcome.impulses.values())
+
+
+def test_refusals():
+    with pytest.raises(InputError, match="several contacts are solved with numbers"):
+        x = sp.Symbol("x")
+        Collision((Body.rigid(1, 1, (0, 0), (x, 0), name="a"), Body.fixed("w")),
+                  (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+    with pytest.raises(InputError, match="no contact is approaching"):
+        Collision((Body.rigid(1, 1, (0, 0), (-1, 0), name="a"), Body.fixed("w")),
+                  (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+    with pytest.raises(InputError, match="must list every contact"):
+        chain(3).sequential(("c0",))
+
+
+
+
+def test_cradle_scene_every_rule(capsys):
+    import json
+
+    from rigidimpact.cli import main
+
+    path = ROOT / "derivations" / "newtons-cradle.toml"
+    assert main(["evaluate", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert (data["first.vx"], data["middle.vx"], data["last.vx"]) == (0.0, 0.0, 1.0)
+    assert data["acted"] == ["left", "right"]
+    scene = load_scene(path)
+    at_once = replace(scene, rule="simultaneous").outcomes()[0].results()
+    assert [at_once[f"{n}.vx"] for n in ("first", "middle", "last")] == [
+        -sp.Rational(1, 3), sp.Rational(2, 3), sp.Rational(2, 3)]
+
+
+def test_every_order_is_reported(capsys):
+    import json
+
+    from rigidimpact.cli import main
+
+    path = ROOT / "derivations" / "two-ball-drop.toml"
+    assert main(["derive", str(path), "--json"]) == 0
+    outcomes = json.loads(capsys.readouterr().out)["outcomes"]
+    assert [o["order"] for o in outcomes] == [["ground", "between"], ["between", "ground"]]
+    assert all(o["results"]["upper.vy"]["sympy"] == "29/11" for o in outcomes)
+
+
+@pytest.mark.parametrize("change, needle", [
+    (('point = ["1", "0"]', 'point = ["1", "1"]'), "right.point: middle is round"),
+    (('name = "right"', 'name = "left"'), "two contacts are named"),
+    (('rule = "sequential"', 'rule = "compliant"'), "compliant rule for several"),
+    (('order = ["left", "right"]', 'order = ["left"]'), "impact.order"),
+    (('bodies = ["middle", "last"]', 'bodies = ["middle", "nobody"]'), "no body named"),
+])
+def test_several_contact_scenes_are_checked(change, needle):
+    text = (ROOT / "derivations" / "newtons-cradle.toml").read_text()
+    assert change[0] in text
+    with pytest.raises(InputError, match=needle):
+        parse_scene(text.replace(change[0], change[1], 1)).outcomes()
+
+
+def test_simulate_refuses_several_contacts_in_one_line(capsys):
+    from rigidimpact.cli import main
+
+    assert main(["simulate", str(ROOT / "derivations" / "newtons-cradle.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "several contacts" in err and err.count("\n") == 1
