@@ -74,8 +74,14 @@ def test_strings_are_never_taken_as_expressions():
 
 
 def test_point_mass_must_sit_at_the_contact_point():
+    # a body is placed freely (several contacts use a world frame); an impact at O
+    # refuses a point mass elsewhere, since nothing could touch it there
+    from rigidimpact.contact import Contact
+    from rigidimpact.impact import Impact
+
+    lump = Body.rigid(1, 0, (1, 0), velocity=(1, 0), name="lump")
     with pytest.raises(InputError, match="contact point"):
-        Body.rigid(1, 0, (1, 0))
+        Impact(lump, Body.fixed("wall"), Contact())
 
 
 def test_rod_contact_must_lie_on_the_rod():
