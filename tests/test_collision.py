@@ -172,7 +172,7 @@ def test_every_order_is_reported(capsys):
 @pytest.mark.parametrize("change, needle", [
     (('point = ["1", "0"]', 'point = ["1", "1"]'), "right.point: middle is round"),
     (('name = "right"', 'name = "left"'), "two contacts are named"),
-    (('rule = "sequential"', 'rule = "compliant"'), "compliant rule for several"),
+    (('rule = "sequential"', 'rule = "compliant"\nstiffness = -1'), "impact.stiffness"),
     (('order = ["left", "right"]', 'order = ["left"]'), "impact.order"),
     (('bodies = ["middle", "last"]', 'bodies = ["middle", "nobody"]'), "no body named"),
 ])
@@ -189,3 +189,55 @@ def test_simulate_refuses_several_contacts_in_one_line(capsys):
     assert main(["simulate", str(ROOT / "derivations" / "newtons-cradle.toml")]) == 2
     err = capsys.readouterr().err
     assert "several contacts" in err and err.count("\n") == 1
+
+
+def test_compliant_contacts_keep_momentum_and_obey_e():
+    # two balls: one contact, so the linear spring-dashpot gives back Newton's e exactly
+    # (its damping is chosen from e); three balls: momentum kept, energy kept for e = 1
+    for e in (1, sp.Rational(1, 2)):
+        outcome = chain(2, restitution=e).compliant()
+        r = outcome.results()
+        assert float(r["ball1.vx"] - r["ball0.vx"]) == pytest.approx(float(e), abs=1e-7)
+    outcome = chain(3).compliant()
+    speeds = [float(outcome.results()[f"ball{k}.vx"]) for k in range(3)]
+    assert sum(speeds) == pytest.approx(1, abs=1e-8)
+    assert float(outcome.energy_loss_fraction) == pytest.approx(0, abs=1e-7)
+
+
+def test_compliant_size_of_stiffness_does_not_matter_only_ratios():
+    # scaling: equal stiffnesses k make time run as 1/sqrt(k) and change nothing else
+    for hertz in (False, True):
+        soft = chain(3).compliant(1e4, hertz)
+        hard = chain(3).compliant(1e8, hertz)
+        for k in range(3):
+            assert float(soft.results()[f"ball{k}.vx"]) == pytest.approx(
+                float(hard.results()[f"ball{k}.vx"]), abs=1e-6)
+
+
+@pytest.mark.parametrize("ratio", [1e2, 1e4, 1e6])
+def test_compliant_tends_to_the_sequential_rule_as_one_contact_stiffens(ratio):
+    # the stated limit: a contact far stiffer than the next acts first and completely
+    outcome = chain(3).compliant([1e6 * ratio, 1e6])
+    speeds = [float(outcome.results()[f"ball{k}.vx"]) for k in range(3)]
+    assert speeds == pytest.approx([0, 0, 1], abs=3 / ratio**0.5)
+
+
+def test_compliant_rule_from_a_scene(capsys):
+    import json
+
+    from rigidimpact.cli import main
+
+    text = (ROOT / "derivations" / "newtons-cradle.toml").read_text().replace(
+        'rule = "sequential"', 'rule = "compliant"\nstiffness = [1e10, 1e6]').replace(
+        'order = ["left", "right"] # leave out to see every order', '')
+    path = ROOT / "build" / "test-cradle-compliant.toml"
+    path.parent.mkdir(exist_ok=True)
+    path.write_text(text)
+    try:
+        assert main(["evaluate", str(path), "--json"]) == 0
+    finally:
+        path.unlink()
+    data = json.loads(capsys.readouterr().out)
+    assert data["rule"] == "compliant"
+    assert [data[f"{n}.vx"] for n in ("first", "middle", "last")] == pytest.approx(
+        [0, 0, 1], abs=0.03)

@@ -102,6 +102,7 @@ class Scene:
     touches: tuple[Touch, ...] = ()
     rule: str = "simultaneous"
     order: tuple[str, ...] | None = None
+    compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
 
     @property
     def several(self) -> bool:
@@ -130,8 +131,8 @@ class Scene:
         sequential rule has none)."""
         collision = self.collision(values)
         if self.rule == "compliant":
-            raise InputError("impact.rule", "the compliant rule for several contacts is not "
-                             "built yet; use simultaneous or sequential")
+            stiffness, hertz = self.compliance
+            return (collision.compliant(stiffness, hertz),)
         if self.rule == "simultaneous":
             return (collision.simultaneous(),)
         if self.order is not None:
@@ -389,7 +390,9 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
         contacts.append(contact)
         touches.append(Touch(contact.name, first, second, point, contact.normal,
                              contact.restitution, contact.law))
-    rule, order = _impact_table(_table(data, "impact", "settings"), [c.name for c in contacts])
+    impact_table = _table(data, "impact", "settings")
+    rule, order = _impact_table(impact_table, [c.name for c in contacts])
+    compliance = _compliance(impact_table, len(contacts))
     bodies = []
     for index, table in by_name.values():
         bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
@@ -403,10 +406,26 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
                                      f"contact must lie at its radius {radius} from its "
                                      "centre")
     scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
-                  contacts=tuple(contacts), touches=tuple(touches), rule=rule, order=order)
+                  contacts=tuple(contacts), touches=tuple(touches), rule=rule, order=order,
+                  compliance=compliance)
     if values:
         check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
     return scene
+
+
+def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...], bool]:
+    """``[impact]`` stiffness (one number, or one per contact in their order) and model."""
+    raw = table.get("stiffness", 1e6)
+    values = raw if isinstance(raw, list) else [raw] * count
+    if len(values) != count or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and 1e-3 <= v <= 1e16
+            for v in values):
+        raise InputError("impact.stiffness", f"one number in [1e-3, 1e16] (N/m), or a list "
+                         f"of {count}, one per contact")
+    model = table.get("model", "linear")
+    if model not in ("linear", "hertz"):
+        raise InputError("impact.model", f"must be linear or hertz, got {model!r}")
+    return tuple(float(v) for v in values), model == "hertz"
 
 
 def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
@@ -436,8 +455,9 @@ def _impact_table(table: Mapping[str, Any],
 
     With one contact every rule gives the same answer."""
     for key in table:
-        if key not in ("rule", "order"):
-            raise InputError(f"impact.{key}", "unknown field; expected rule, order")
+        if key not in ("rule", "order", "stiffness", "model"):
+            raise InputError(f"impact.{key}", "unknown field; expected rule, order, "
+                             "stiffness, model")
     rule = table.get("rule", "simultaneous")
     if rule not in IMPACT_RULES:
         raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
