@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test lint notebooks bench clean
+.PHONY: run test lint notebooks bench lab clean
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -32,6 +32,16 @@ $(VENV)/.peers-stamp: $(STAMP)
 bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench
 	$(PY) -m pytest -m slow
+
+$(VENV)/.lab-stamp: $(STAMP)
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,lab]'
+	touch $@
+
+# root (a container) must say so to Jupyter; anyone else needs no flag
+LAB_FLAGS ?= $(if $(filter 0,$(shell id -u)),--allow-root)
+
+lab: $(VENV)/.lab-stamp  ## open the notebooks in JupyterLab (installed on first use)
+	$(PY) -m jupyter lab $(LAB_FLAGS) notebooks/
 
 clean:
 	rm -rf $(BUILD) .pytest_cache .ruff_cache .hypothesis

@@ -190,3 +190,16 @@ def test_simulate_plot_of_a_rigid_run_and_a_bad_plot_name(tmp_path, capsys):
                  str(tmp_path / "x.pdf")]) == 2
     assert "--plot" in capsys.readouterr().err
     assert not (tmp_path / "x.pdf").exists()
+
+
+def test_simulate_animates_the_restrike_to_a_gif(tmp_path, capsys):
+    from PIL import Image
+
+    movie = tmp_path / "restrike.gif"
+    scene = str(Path(__file__).resolve().parents[1] / "derivations" / "restrike.toml")
+    assert main(["simulate", scene, "--animate", str(movie), "--json"]) == 0
+    with Image.open(movie) as image:
+        assert image.n_frames == 60  # a fixed frame count: the same run, the same film
+    assert not [p for p in tmp_path.iterdir() if p.name != "restrike.gif"]  # no leftovers
+    assert main(["simulate", scene, "--animate", str(tmp_path / "film.txt")]) == 2
+    assert "--animate: expected a .gif or .mp4" in capsys.readouterr().err

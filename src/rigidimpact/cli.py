@@ -416,6 +416,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     if args.plot:
         _check_plot_path(Path(args.plot))
+    if args.animate:
+        _check_plot_path(Path(args.animate), (".gif", ".mp4"), "--animate")
     if args.explain:
         print(explain(scene))
         if not args.json and not args.plot:
@@ -425,6 +427,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.plot:
         _plot_outcome(scene, outcome, Path(args.plot))
+    if args.animate:
+        _animate_outcome(scene, outcome, Path(args.animate))
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -439,16 +443,43 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_plot_path(path: Path) -> None:
-    if path.suffix.lower() != ".png":
-        raise InputError("--plot", f"expected a .png file name, got {str(path)!r}")
+def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),
+                     option: str = "--plot") -> None:
+    if path.suffix.lower() not in suffixes:
+        raise InputError(option, f"expected a {' or '.join(suffixes)} file name, got "
+                         f"{str(path)!r}")
+    if path.suffix.lower() == ".mp4":
+        from matplotlib.animation import FFMpegWriter
+
+        if not FFMpegWriter.isAvailable():
+            raise InputError(option, "MP4 needs ffmpeg, which is not installed; give a "
+                             ".gif file name")
     if path.is_dir():
-        raise InputError("--plot", f"{str(path)!r} is a folder; give a file name")
+        raise InputError(option, f"{str(path)!r} is a folder; give a file name")
     if not path.parent.is_dir():
-        raise InputError("--plot", f"no such folder: {str(path.parent)!r}")
+        raise InputError(option, f"no such folder: {str(path.parent)!r}")
     if not os.access(path.parent, os.W_OK | os.X_OK):
-        raise InputError("--plot", f"cannot write in {str(path.parent)!r} (permission "
+        raise InputError(option, f"cannot write in {str(path.parent)!r} (permission "
                          "denied)")
+
+
+def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
+    """Animate a run to a GIF (Pillow) or MP4 (ffmpeg), written whole or not at all."""
+    import numpy as np
+    from matplotlib.animation import FFMpegWriter, PillowWriter
+
+    from rigidimpact.atomic import write_file
+    from rigidimpact.plots import animation
+
+    track = outcome.trajectory
+    movie = animation(np.asarray(track.t), track.points(), scene.title)
+    mp4 = path.suffix.lower() == ".mp4"
+    writer = FFMpegWriter(fps=20) if mp4 else PillowWriter(fps=20)
+
+    def save(temporary: Path) -> None:
+        movie.save(str(temporary), writer=writer)
+
+    write_file(path, save, "--animate")
 
 
 def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
@@ -556,6 +587,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("scene", metavar="SCENE")
     p.add_argument("--explain", action="store_true", help="print the plan")
     p.add_argument("--plot", metavar="FILE", help="draw the trajectories to a PNG file")
+    p.add_argument("--animate", metavar="FILE",
+                   help="animate the motion to a GIF (or MP4 where ffmpeg exists)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_simulate)
 

@@ -24,60 +24,18 @@ import sympy as sp
 
 from rigidimpact.atomic import replace_folder
 from rigidimpact.laws import Equation
-from rigidimpact.notation import SYMBOLS, latex_name, latex_names
+from rigidimpact.notation import (
+    PRINTER_SETTINGS,
+    SYMBOLS,
+    escape_text,
+    latex_name,
+    result_lhs,
+    to_latex,
+)
 from rigidimpact.problems import Derivation
 
 __all__ = ["to_latex", "result_lhs", "equation_latex", "fragment", "fragments", "document",
            "write_export", "PRINTER_SETTINGS"]
-
-# fixed printer settings: changing any of these changes every golden file
-PRINTER_SETTINGS = {
-    "mul_symbol": None,
-    "fold_short_frac": False,
-    "inv_trig_style": "abbreviated",
-    "long_frac_ratio": None,
-}
-
-_LHS = {
-    "energy_loss_fraction": r"\frac{\Delta K_{\mathrm{lost}}}{K_i}",
-    "impulse": "J",
-    "impulse_t": "J_t",
-}
-_COMPONENT = {"vx": "V_x", "vy": "V_y", "omega": r"\omega"}
-
-
-def to_latex(expr: sp.Basic) -> str:
-    """LaTeX for an expression, symbols in the paper's notation.
-
-    Examples
-    --------
-    >>> from rigidimpact.notation import symbol
-    >>> to_latex(symbol("omega_z") * symbol("L"))
-    'L \\\\omega_{z}'
-    """
-    return sp.latex(expr, symbol_names=latex_names(expr), **PRINTER_SETTINGS)
-
-
-def result_lhs(key: str) -> str:
-    """The left-hand side for a result key: ``V_1fx`` -> ``V_{1fx}``, ``ball.vx`` ->
-    ``V_x^{(\\mathrm{ball})}``.
-
-    Examples
-    --------
-    >>> result_lhs("ball.omega")
-    '\\\\omega^{(\\\\mathrm{ball})}'
-    >>> result_lhs("v_fx")
-    'v_{fx}'
-    """
-    if key in _LHS:
-        return _LHS[key]
-    body, dot, component = key.partition(".")
-    if dot:
-        return rf"{_COMPONENT.get(component, component)}^{{(\mathrm{{{_escape(body)}}})}}"
-    if key in SYMBOLS:
-        return latex_name(SYMBOLS[key])
-    return latex_name(sp.Symbol(key))
-
 
 def equation_latex(equation: Equation) -> str:
     """``lhs = rhs`` with the paper's equation number as a tag.
@@ -119,14 +77,6 @@ def fragments(derivation: Derivation) -> dict[str, str]:
             for key in derivation.results}
 
 
-def _escape(text: str) -> str:
-    for char, repl in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"),
-                       ("$", r"\$"), ("#", r"\#"), ("_", r"\_"), ("{", r"\{"),
-                       ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}")):
-        text = text.replace(char, repl)
-    return text
-
-
 def _prose(text: str) -> str:
     """Plain text with the problem's symbol names set as mathematics."""
     out = []
@@ -134,7 +84,7 @@ def _prose(text: str) -> str:
         if token in SYMBOLS and token not in ("a", "b", "d", "l"):
             out.append(f"${latex_name(SYMBOLS[token])}$")
         else:
-            out.append(_escape(token))
+            out.append(escape_text(token))
     return "".join(out)
 
 
@@ -174,7 +124,7 @@ def _section(derivation: Derivation, checks: Iterable) -> str:
     if rows:
         parts.append("\\paragraph{Checked against the paper.}\n\\begin{tabular}{lll}\n"
                      "check & paper & status \\\\ \\hline\n"
-                     + "".join(f"{_escape(c.id)} & {_escape(c.paper)} & {c.status} \\\\\n"
+                     + "".join(f"{escape_text(c.id)} & {escape_text(c.paper)} & {c.status} \\\\\n"
                                for c in rows)
                      + "\\end{tabular}\n")
     return "\n".join(parts)

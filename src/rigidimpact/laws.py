@@ -76,6 +76,21 @@ class Equation:
         """``lhs - rhs``, zero when the equation holds."""
         return self.lhs - self.rhs
 
+    def _repr_latex_(self) -> str:
+        r"""Typeset in Jupyter, in the paper's notation, with what the law says.
+
+        Examples
+        --------
+        >>> from rigidimpact.notation import symbol
+        >>> print(Equation("restitution", "(4)", symbol("V_x"), 0)._repr_latex_())
+        $\displaystyle V_{x} = 0 \qquad \text{restitution (4)}$
+        """
+        from rigidimpact.notation import escape_text, to_latex
+
+        note = escape_text(self.label + (f" {self.paper}" if self.paper else ""))
+        return (rf"$\displaystyle {to_latex(self.lhs)} = {to_latex(self.rhs)} \qquad "
+                rf"\text{{{note}}}$")
+
     def as_sympy(self) -> sp.Equality:
         """The equation as an unevaluated SymPy ``Eq``."""
         return sp.Eq(self.lhs, self.rhs, evaluate=False)

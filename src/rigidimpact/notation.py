@@ -22,7 +22,8 @@ from types import MappingProxyType
 
 import sympy as sp
 
-__all__ = ["SYMBOLS", "symbol", "make_symbol", "latex_name", "latex_names", "GREEK"]
+__all__ = ["SYMBOLS", "symbol", "make_symbol", "latex_name", "latex_names", "GREEK",
+           "PRINTER_SETTINGS", "to_latex", "result_lhs", "escape_text", "aligned"]
 
 GREEK = frozenset(
     "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
@@ -174,3 +175,80 @@ def latex_names(expr: sp.Basic) -> dict[sp.Symbol, str]:
     ['m', 'v_{ix}']
     """
     return {s: latex_name(s) for s in expr.free_symbols if isinstance(s, sp.Symbol)}
+
+
+# fixed printer settings: changing any of these changes every golden file
+PRINTER_SETTINGS = {
+    "mul_symbol": None,
+    "fold_short_frac": False,
+    "inv_trig_style": "abbreviated",
+    "long_frac_ratio": None,
+}
+
+_LHS = {
+    "energy_loss_fraction": r"\frac{\Delta K_{\mathrm{lost}}}{K_i}",
+    "impulse": "J",
+    "impulse_t": "J_t",
+}
+_COMPONENT = {"vx": "V_x", "vy": "V_y", "omega": r"\omega"}
+
+
+def to_latex(expr: sp.Basic) -> str:
+    """LaTeX for an expression, symbols in the paper's notation.
+
+    Examples
+    --------
+    >>> from rigidimpact.notation import symbol
+    >>> to_latex(symbol("omega_z") * symbol("L"))
+    'L \\\\omega_{z}'
+    """
+    return sp.latex(expr, symbol_names=latex_names(expr), **PRINTER_SETTINGS)
+
+
+def result_lhs(key: str) -> str:
+    """The left-hand side for a result key: ``V_1fx`` -> ``V_{1fx}``, ``ball.vx`` ->
+    ``V_x^{(\\mathrm{ball})}``.
+
+    Examples
+    --------
+    >>> result_lhs("ball.omega")
+    '\\\\omega^{(\\\\mathrm{ball})}'
+    >>> result_lhs("v_fx")
+    'v_{fx}'
+    """
+    if key in _LHS:
+        return _LHS[key]
+    body, dot, component = key.partition(".")
+    if dot:
+        return rf"{_COMPONENT.get(component, component)}^{{(\mathrm{{{escape_text(body)}}})}}"
+    if key in SYMBOLS:
+        return latex_name(SYMBOLS[key])
+    return latex_name(sp.Symbol(key))
+
+
+def escape_text(text: str) -> str:
+    """Text made safe inside LaTeX (its special characters escaped).
+
+    Examples
+    --------
+    >>> escape_text("a_b")
+    'a\\\\_b'
+    """
+    for char, repl in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"),
+                       ("$", r"\$"), ("#", r"\#"), ("_", r"\_"), ("{", r"\{"),
+                       ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}")):
+        text = text.replace(char, repl)
+    return text
+
+
+def aligned(rows: list[tuple[str, str, str]]) -> str:
+    r"""Display math for Jupyter: one ``lhs = rhs`` per row with a note, aligned at ``=``.
+
+    Examples
+    --------
+    >>> print(aligned([("x", "1", "a note"), ("y", "2", "")]))
+    $$\begin{aligned} x &= 1 && \text{a note} \\ y &= 2 \end{aligned}$$
+    """
+    lines = [rf"{lhs} &= {rhs}" + (rf" && \text{{{escape_text(note)}}}" if note else "")
+             for lhs, rhs, note in rows]
+    return r"$$\begin{aligned} " + r" \\ ".join(lines) + r" \end{aligned}$$"

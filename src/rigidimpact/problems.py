@@ -107,9 +107,24 @@ class Derivation:
     named: Mapping[str, sp.Expr] = field(default_factory=dict)
     definitions: Mapping[str, sp.Expr] = field(default_factory=dict)
     solution: Solution | None = field(default=None, repr=False)
-    seconds: float = 0.0
+    seconds: float = field(default=0.0, repr=False, compare=False)  # a timing: not shown
     warnings: tuple[str, ...] = ()
     outcomes: tuple = ()  # several contacts: what each rule (or order) made of them
+
+    def _repr_latex_(self) -> str:
+        r"""The laws and the results, typeset in the paper's notation (Jupyter).
+
+        Examples
+        --------
+        >>> print(derive("discs")._repr_latex_()[:42])
+        $$\begin{aligned} V_{1ix} m + V_{2ix} m &=
+        """
+        from rigidimpact.notation import aligned, result_lhs, to_latex
+
+        rows = [(to_latex(eq.lhs), to_latex(eq.rhs),
+                 eq.label + (f" {eq.paper}" if eq.paper else "")) for eq in self.equations]
+        rows += [(result_lhs(key), to_latex(value), "") for key, value in self.results.items()]
+        return aligned(rows)
 
     @property
     def symbols(self) -> dict[str, sp.Symbol]:

@@ -113,6 +113,22 @@ class Solution:
         return (f"Solution({self.before[0].name!r}, {self.before[1].name!r}, "
                 f"unknowns={[str(u) for u in self.unknowns]})")
 
+    def _repr_latex_(self) -> str:
+        r"""The results, typeset in the paper's notation (Jupyter).
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> from rigidimpact.contact import Contact
+        >>> from rigidimpact.impact import Impact
+        >>> print(Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+        ...       Contact(restitution=1)).solve()._repr_latex_()[:41])
+        $$\begin{aligned} V_x^{(\mathrm{a})} &= 0
+        """
+        from rigidimpact.notation import aligned, result_lhs, to_latex
+
+        return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
+
     @property
     def first_after(self) -> Body:
         """The first body just after the impact (scene frame)."""
