@@ -134,6 +134,18 @@ class Outcome:
         """``simultaneous`` or ``sequential left, right``."""
         return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
 
+    def _repr_latex_(self) -> str:
+        r"""The rule's results, typeset (Jupyter).
+
+        Examples
+        --------
+        >>> print(chain(2).simultaneous()._repr_latex_()[:45])
+        $$\begin{aligned} V_x^{(\mathrm{ball0})} &= 0
+        """
+        from rigidimpact.notation import aligned, result_lhs, to_latex
+
+        return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
+
     def results(self) -> dict[str, sp.Expr]:
         """Results under the scene keys: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
         ``CONTACT.normal_impulse``, ``CONTACT.tangential_impulse``, ``impulse`` (the
