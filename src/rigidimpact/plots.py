@@ -430,9 +430,14 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
 
     Examples
     --------
+    >>> import tempfile
+    >>> from PIL import Image
     >>> t = np.linspace(0, 1, 11)
     >>> anim = animation(t, {"ball": np.c_[t, 0 * t]}, "demo", frames=4)
-    >>> anim._save_count if hasattr(anim, "_save_count") else 4
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     anim.save(f"{folder}/demo.gif", writer="pillow")
+    ...     with Image.open(f"{folder}/demo.gif") as film:
+    ...         film.n_frames
     4
     """
     from matplotlib.animation import FuncAnimation
