@@ -177,12 +177,16 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
     panels = 2 if velocity is not None else 1
     fig, axes = plt.subplots(1, panels, figsize=FIGSIZE, dpi=DPI, squeeze=False)
     ax = axes[0][0]
-    for name, xy in points.items():
-        ax.plot(xy[:, 0], xy[:, 1], "-", lw=1.2, label=name)
-        ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4)
+    styles = ("-", "--", ":", "-.")
+    for k, (name, xy) in enumerate(points.items()):
+        # the first body (the striker) is drawn on top, dashed ones beneath: tracks that
+        # start at the same point stay visible
+        ax.plot(xy[:, 0], xy[:, 1], styles[k % len(styles)], lw=2.2 if k == 0 else 1.4,
+                zorder=3 if k == 0 else 2, label=name)
+        ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4, zorder=4)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)
     if velocity is not None:
@@ -190,8 +194,8 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         bx = axes[0][1]
         bx.plot(times, v[:, 0], label=f"{name}: $v_x$")
         bx.plot(times, v[:, 1], label=f"{name}: $v_y$")
-        bx.set_xlabel("time t")
-        bx.set_ylabel("velocity")
+        bx.set_xlabel("time t (s)")
+        bx.set_ylabel("velocity (m/s)")
         bx.legend(fontsize="small")
         bx.grid(alpha=0.3)
     fig.suptitle(title, fontsize="medium")

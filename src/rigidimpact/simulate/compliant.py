@@ -54,6 +54,8 @@ SETTLE_PERIODS = 3  # after the last contact, watch this many of the slowest per
 MAX_SEGMENTS = 2000  # contact changes (or instant impacts) before giving up
 MAX_STEPS = 200_000  # an estimate above this is refused: the run would take minutes
 STEPS_PER_PERIOD = 4  # explicit methods step at most a quarter of the fastest period
+SAMPLES_PER_PERIOD = 40  # plot samples per fastest period, from the dense output
+MAX_SAMPLES = 4000  # per segment between events
 
 
 # ---- the model ------------------------------------------------------------------------
@@ -493,12 +495,17 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         sol = solve_ivp(rhs, (t, stop), y, method=integrator["method"],
                         rtol=integrator["rtol"], atol=atol,
                         events=[lets_go] if touching else [touches],
-                        max_step=_max_step(parts, y, fast, touching or springs, explicit))
+                        max_step=_max_step(parts, y, fast, touching or springs, explicit),
+                        dense_output=True)
         if sol.status == -1:
             raise InputError("simulate", f"the integrator failed: {sol.message}")
         steps += len(sol.t) - 1
-        times += list(sol.t[1:])
-        states += list(sol.y.T[1:])
+        # samples for plots from the solver's own interpolant: smooth curves, not the
+        # (long) steps of an implicit method
+        count = int(min(SAMPLES_PER_PERIOD * (sol.t[-1] - sol.t[0]) / fast, MAX_SAMPLES))
+        fine = np.linspace(sol.t[0], sol.t[-1], max(count, 2))[1:-1]
+        times += [*fine, sol.t[-1]]
+        states += [*(sol.sol(fine).T if len(fine) else []), sol.y[:, -1]]
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         if sol.status != 1:
             if touching and t < horizon:
