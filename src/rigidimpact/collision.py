@@ -45,7 +45,8 @@ import sympy as sp
 from rigidimpact.bodies import Body, as_vector
 from rigidimpact.compliance import damping_ratio_for
 from rigidimpact.errors import InputError
-from rigidimpact.geometry import cross, spin_cross
+from rigidimpact.geometry import cross
+from rigidimpact.impulse import Coordinate, coordinates_of, moving
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain"]
@@ -238,17 +239,9 @@ class Collision:
         return next(b for b in self.bodies if b.name == name)
 
     @cached_property
-    def coordinates(self) -> tuple[tuple[str, str, sp.Expr], ...]:
-        """(body, kind, mass-matrix entry) of each generalized velocity."""
-        found = []
-        for body in self.bodies:
-            if body.support == "pivot":
-                found.append((body.name, "omega", body.inertia_about_pivot))
-            elif body.support == "free":
-                found += [(body.name, "vx", body.mass), (body.name, "vy", body.mass)]
-                if not body.inertia.is_zero:
-                    found.append((body.name, "omega", body.inertia))
-        return tuple(found)
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        """The generalized velocities (see :func:`rigidimpact.impulse.coordinates_of`)."""
+        return coordinates_of(self.bodies)
 
     @cached_property
     def J(self) -> sp.Matrix:
@@ -256,7 +249,8 @@ class Collision:
         rows = []
         for touch in self.touches:
             row = []
-            for name, kind, _ in self.coordinates:
+            for coordinate in self.coordinates:
+                name, kind = coordinate.body, coordinate.kind
                 sign = -1 if name == touch.first else 1 if name == touch.second else 0
                 body = self._body(name)
                 if sign == 0:
@@ -273,7 +267,7 @@ class Collision:
 
     @cached_property
     def M_inverse(self) -> sp.Matrix:
-        return sp.diag(*[1 / entry for _, _, entry in self.coordinates])
+        return sp.diag(*[1 / c.inertia for c in self.coordinates])
 
     @cached_property
     def W(self) -> sp.Matrix:
@@ -282,11 +276,7 @@ class Collision:
 
     @cached_property
     def u_before(self) -> sp.Matrix:
-        values = []
-        for name, kind, _ in self.coordinates:
-            body = self._body(name)
-            values.append({"vx": body.velocity[0], "vy": body.velocity[1]}.get(kind, body.spin))
-        return sp.Matrix(values)
+        return sp.Matrix([c.before for c in self.coordinates])
 
     @cached_property
     def velocity_before(self) -> sp.Matrix:
@@ -294,20 +284,7 @@ class Collision:
         return (self.J * self.u_before).applyfunc(tidy)
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
-        values = {(name, kind): u[k] for k, (name, kind, _) in enumerate(self.coordinates)}
-        after = []
-        for body in self.bodies:
-            if body.support == "fixed":
-                after.append(body)
-                continue
-            spin = values.get((body.name, "omega"), body.spin)
-            if body.support == "pivot":
-                after.append(body.with_motion(spin_cross(spin, body.position - body.pivot),
-                                              spin))
-            else:
-                after.append(body.with_motion((values[(body.name, "vx")],
-                                               values[(body.name, "vy")]), spin))
-        return tuple(after)
+        return moving(self.bodies, self.coordinates, list(u))
 
     def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
         return (u + self.M_inverse * self.J.T * impulses).applyfunc(tidy)

@@ -38,7 +38,7 @@ import sympy as sp
 from rigidimpact.bodies import Body
 from rigidimpact.geometry import perp, spin_cross
 
-__all__ = ["ImpulseProblem", "Coordinate"]
+__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "moving"]
 
 
 @dataclass(frozen=True)
@@ -56,6 +56,54 @@ class Coordinate:
     kind: str
     inertia: sp.Expr
     before: sp.Expr
+
+
+def coordinates_of(bodies: Sequence[Body]) -> tuple[Coordinate, ...]:
+    """The generalized velocities of some bodies: a free body's centre velocity and spin
+    (no spin for a point mass), a pivoted body's spin (its inertia about the pivot), a
+    fixed body none.
+
+    Examples
+    --------
+    >>> [c.kind for c in coordinates_of([Body.particle(1), Body.fixed()])]
+    ['vx', 'vy']
+    """
+    found: list[Coordinate] = []
+    for body in bodies:
+        if body.support == "pivot":
+            found.append(Coordinate(body.name, "omega", body.inertia_about_pivot, body.spin))
+        elif body.support == "free":
+            found += [Coordinate(body.name, "vx", body.mass, body.velocity[0]),
+                      Coordinate(body.name, "vy", body.mass, body.velocity[1])]
+            if not body.inertia.is_zero:
+                found.append(Coordinate(body.name, "omega", body.inertia, body.spin))
+    return tuple(found)
+
+
+def moving(bodies: Sequence[Body], coordinates: Sequence[Coordinate],
+           u: Sequence[sp.Expr]) -> tuple[Body, ...]:
+    """The bodies moving with generalized velocities `u` (a pivoted body's centre by its
+    turn about the pivot; a fixed body as it is).
+
+    Examples
+    --------
+    >>> ball = Body.particle(1, name="b")
+    >>> moving([ball], coordinates_of([ball]), [3, 0])[0].velocity.T
+    Matrix([[3, 0]])
+    """
+    values = {(c.body, c.kind): x for c, x in zip(coordinates, u, strict=True)}
+    after = []
+    for body in bodies:
+        if body.support == "fixed":
+            after.append(body)
+            continue
+        spin = values.get((body.name, "omega"), body.spin)
+        if body.support == "pivot":
+            after.append(body.with_motion(spin_cross(spin, body.position - body.pivot), spin))
+        else:
+            after.append(body.with_motion((values[(body.name, "vx")],
+                                           values[(body.name, "vy")]), spin))
+    return tuple(after)
 
 
 @dataclass(frozen=True)
@@ -83,17 +131,7 @@ class ImpulseProblem:
     @cached_property
     def coordinates(self) -> tuple[Coordinate, ...]:
         """The generalized velocities, body by body."""
-        found: list[Coordinate] = []
-        for body in self.bodies:
-            if body.support == "pivot":
-                found.append(Coordinate(body.name, "omega", body.inertia_about_pivot,
-                                        body.spin))
-            elif body.support == "free":
-                found += [Coordinate(body.name, "vx", body.mass, body.velocity[0]),
-                          Coordinate(body.name, "vy", body.mass, body.velocity[1])]
-                if not body.inertia.is_zero:
-                    found.append(Coordinate(body.name, "omega", body.inertia, body.spin))
-        return tuple(found)
+        return coordinates_of(self.bodies)
 
     @cached_property
     def J(self) -> sp.ImmutableMatrix:
@@ -150,20 +188,8 @@ class ImpulseProblem:
         its turn about the pivot.
         """
         change = self.M_inverse * self.J.T * sp.Matrix(impulse)
-        values = {(c.body, c.kind): c.before + change[k]
-                  for k, c in enumerate(self.coordinates)}
-        after = []
-        for body in self.bodies:
-            if body.support == "fixed":
-                after.append(body)
-                continue
-            spin = values.get((body.name, "omega"), body.spin)
-            if body.support == "pivot":
-                after.append(body.with_motion(spin_cross(spin, body.position - body.pivot),
-                                              spin))
-            else:
-                after.append(body.with_motion((values[(body.name, "vx")],
-                                               values[(body.name, "vy")]), spin))
+        u = [c.before + change[k] for k, c in enumerate(self.coordinates)]
+        after = moving(self.bodies, self.coordinates, u)
         return after[0], after[1]
 
     @staticmethod
