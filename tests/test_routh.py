@@ -272,3 +272,17 @@ def test_routh_command_prints_the_path_and_draws_the_diagram(tmp_path, capsys):
     assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert main(["routh", str(ROOT / "derivations" / "hinged-rod.toml")]) == 2
     assert "Coulomb" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("law", routh.LAWS)
+def test_printed_laws_hold_for_friction(law):
+    # what is printed is what is solved: with friction the momentum laws (and Newton's
+    # relation, under Newton's law) hold at the solution; Poisson's and the energetic law
+    # are not printed as Newton's relation, since the bent impulse path does not obey it
+    bodies = rod_on_floor()
+    impact = Impact(*bodies, Contact(restitution=1, tangential="coulomb",
+                                     friction=sp.Rational(2, 5), law=law))
+    solution = impact.solve()
+    for eq in impact.equations():
+        assert sp.simplify(eq.residual.subs(solution.values)) == 0, eq.label
+    assert any(eq.law == "restitution" for eq in impact.equations()) == (law == "newton")

@@ -259,8 +259,12 @@ class Impact:
         restitution, tangential = self._contact_laws()
         linear, angular = self._momentum_laws()
         smooth = tangential.name == "smooth"
+        # with friction the path in impulse space bends: Poisson's and the energetic law
+        # are then not Newton's relation, and Routh's method (printed course by course)
+        # is what imposes them
+        bent = self.contact.frictional and self.contact.law != "newton"
         return (*linear, *(tangential.equations(before, after) if smooth else ()), *angular,
-                *restitution.equations(before, after),
+                *(() if bent else restitution.equations(before, after)),
                 *(() if smooth else tangential.equations(before, after)))
 
     def _momentum_laws(self) -> tuple[list[laws.Equation], list[laws.Equation]]:
