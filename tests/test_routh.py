@@ -184,32 +184,10 @@ def test_poisson_and_energetic_never_create_energy(seed, mu, e, law):
     assert energy_ratio(bodies, regime.impulse) <= 1 + 1e-12
 
 
-def test_newton_creates_energy_and_evaluate_says_so(tmp_path, capsys):
+def test_newton_creates_energy_and_evaluate_says_so(capsys):
     from rigidimpact.cli import main
 
-    scene = tmp_path / "rod.toml"
-    scene.write_text('''
-[values]
-e = 1
-mu = 0.4
-[[bodies]]
-name = "rod"
-shape = "rod"
-mass = "1"
-length = "2"
-angle = "45 deg"
-struck_at = "-1"
-velocity = ["0.6", "-1"]
-[[bodies]]
-name = "floor"
-shape = "fixed"
-[contact]
-bodies = ["rod", "floor"]
-normal = ["0", "-1"]
-restitution = "e"
-tangential = "coulomb"
-friction = "mu"
-''')
+    scene = ROOT / "derivations" / "rod-rough-floor.toml"  # Newton's law, mu = 0.4, e = 1
     assert main(["evaluate", str(scene), "--json"]) == 0
     captured = capsys.readouterr()
     assert '"regime": "slip-reversal"' in captured.out

@@ -208,23 +208,30 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _evaluation(target: str, settings: Sequence[str], dps: int | None):
-    """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
-    from rigidimpact.problems import PROBLEMS
-    from rigidimpact.scene import load_scene
-
-    if target in PROBLEMS:
-        derivation, values, sources = _derivation(target), {}, {}
-    else:
-        scene = load_scene(target)
-        values = {s.name: v for s, v in scene.values.items()}
-        sources = {name: f"values.{name}" for name in values}
+def _settings(defaults: Any, settings: Sequence[str]) -> tuple[dict, dict]:
+    """A scene's [values] overridden by each --set NAME=VALUE, and where each came from."""
+    values = {s.name: v for s, v in defaults.items()}
+    sources = {name: f"values.{name}" for name in values}
     for setting in settings:
         name, eq, text = setting.partition("=")
         name = name.strip()
         if not eq or not name:
             raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
         values[name], sources[name] = text, f"--set {name}"
+    return values, sources
+
+
+def _evaluation(target: str, settings: Sequence[str], dps: int | None):
+    """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
+    from rigidimpact.problems import PROBLEMS
+    from rigidimpact.scene import load_scene
+
+    if target in PROBLEMS:
+        derivation = _derivation(target)
+        values, sources = _settings({}, settings)
+    else:
+        scene = load_scene(target)
+        values, sources = _settings(scene.values, settings)
     if target not in PROBLEMS and scene.several:
         return _several_evaluation(scene, values, sources, dps)
     if target not in PROBLEMS:
@@ -234,20 +241,9 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None):
 
 def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None):
     """Several contacts are solved with numbers: check them, solve, report each rule."""
-    import sympy as sp
+    from rigidimpact.problems import Evaluation, physics_warnings, read_values
 
-    from rigidimpact.expr import parse_expression
-    from rigidimpact.problems import Evaluation, physics_warnings
-    from rigidimpact.roles import check_assumptions, check_roles
-
-    exact = {}
-    for name, raw in values.items():
-        if name not in scene.symbols:
-            raise InputError(sources[name], f"unknown symbol {name!r}")
-        symbol = scene.symbols[name]
-        number = raw if isinstance(raw, sp.Basic) else parse_expression(raw, sources[name], {})
-        exact[symbol] = check_assumptions(symbol, number, sources[name])
-    check_roles(scene.roles, exact, {s: sources[s.name] for s in exact})
+    exact = read_values(values, sources, scene.data_symbols, scene.roles, scene.name)
     derivation = scene.derivation_at(exact)
     numbers = derivation.evaluate({}, dps).numbers
     outcomes = derivation.outcomes
@@ -306,13 +302,7 @@ def _cmd_routh(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     if args.plot:
         _check_plot_path(Path(args.plot))
-    values = {s.name: v for s, v in scene.values.items()}
-    sources = {name: f"values.{name}" for name in values}
-    for setting in args.set:
-        name, eq, text = setting.partition("=")
-        if not eq or not name.strip():
-            raise InputError("--set", f"expected NAME=VALUE, got {setting!r}")
-        values[name.strip()], sources[name.strip()] = text, f"--set {name.strip()}"
+    values, sources = _settings(scene.values, args.set)
     derivation = scene.derivation()
     exact = derivation.checked(values, sources)
     found = diagram(scene.impact(), {derivation.symbols[k]: v for k, v in exact.items()})

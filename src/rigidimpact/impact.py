@@ -168,6 +168,11 @@ class Impact:
         return (bodies[0], bodies[1]), stand_ins
 
     @property
+    def stand_ins(self) -> dict[sp.Dummy, sp.Expr]:
+        """What each stand-in symbol of a tilted frame stands for (empty without a tilt)."""
+        return self._local[1]
+
+    @property
     def before(self) -> tuple[Body, Body]:
         """Both bodies before the impact, in the contact frame (see ``_local``)."""
         return self._local[0]

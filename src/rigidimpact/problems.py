@@ -40,6 +40,7 @@ __all__ = [
     "Evaluation",
     "physics_warnings",
     "model_warnings",
+    "read_values",
     "model_name",
     "PROBLEMS",
     "derive",
@@ -179,21 +180,8 @@ class Derivation:
         ...
         rigidimpact.errors.InputError: values.e: the restitution coefficient (contact.restitution = e) must lie in [0, 1], got 3/2
         """  # noqa: E501
-        from rigidimpact.expr import parse_expression
-
         sources = dict(sources or {})
-        by_name, exact = self.data_symbols, {}
-        for name, raw in values.items():
-            where = sources.setdefault(name, f"values.{name}")
-            if name not in by_name:
-                raise InputError(where, f"not a symbol of {self.problem}; it uses "
-                                 f"{', '.join(by_name) or 'none'}")
-            value = raw if isinstance(raw, sp.Basic) else parse_expression(raw, where)
-            if not value.is_number or value.free_symbols:
-                raise InputError(where, f"must be a number, got {value}")
-            exact[by_name[name]] = check_assumptions(by_name[name], sp.sympify(value), where)
-        check_roles(self.roles, exact, {by_name[n]: w for n, w in sources.items()
-                                        if n in by_name})
+        exact = read_values(values, sources, self.data_symbols, self.roles, self.problem)
         missing = sorted(set(self.symbols) - {s.name for s in exact})
         if missing:
             raise InputError("--set", f"{self.problem} needs values for: {', '.join(missing)}")
@@ -246,6 +234,38 @@ class Evaluation:
     warnings: tuple[str, ...] = ()
     regime: str | None = None  # with friction: the course the impact took
     extra: Mapping[str, Any] = field(default_factory=dict)  # several contacts: acted, orders
+
+
+def read_values(values: Mapping[str, Any], sources: dict[str, str],
+                by_name: Mapping[str, sp.Symbol], roles: tuple[Role, ...],
+                problem: str) -> dict[sp.Symbol, sp.Expr]:
+    """Exact numbers for named symbols, each checked by its assumptions and every role it
+    fills; `sources` says where each came from (filled with ``values.NAME`` if absent).
+
+    Examples
+    --------
+    >>> e = symbol("e")
+    >>> read_values({"e": "0.5"}, {}, {"e": e}, (), "demo")
+    {e: 1/2}
+    >>> read_values({"k": 1}, {}, {"e": e}, (), "demo")
+    Traceback (most recent call last):
+    ...
+    rigidimpact.errors.InputError: values.k: not a symbol of demo; it uses e
+    """
+    from rigidimpact.expr import parse_expression
+
+    exact = {}
+    for name, raw in values.items():
+        where = sources.setdefault(name, f"values.{name}")
+        if name not in by_name:
+            raise InputError(where, f"not a symbol of {problem}; it uses "
+                             f"{', '.join(by_name) or 'none'}")
+        value = raw if isinstance(raw, sp.Basic) else parse_expression(raw, where)
+        if not value.is_number or value.free_symbols:
+            raise InputError(where, f"must be a number, got {value}")
+        exact[by_name[name]] = check_assumptions(by_name[name], sp.sympify(value), where)
+    check_roles(roles, exact, {by_name[n]: w for n, w in sources.items() if n in by_name})
+    return exact
 
 
 def model_name(contact: Contact) -> str:

@@ -350,7 +350,7 @@ def diagram(impact, values: dict) -> Diagram:
     numbers = {k: sp.sympify(v) for k, v in values.items()}
 
     def at(x):
-        return sp.sympify(x).xreplace(impact._local[1]).xreplace(numbers)
+        return sp.sympify(x).xreplace(impact.stand_ins).xreplace(numbers)
 
     W = core.W.applyfunc(at)
     v = core.velocity_before.applyfunc(at)

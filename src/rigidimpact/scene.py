@@ -121,6 +121,26 @@ class Scene:
                              "evaluate solve it; this command follows one contact")
         return Impact(self.bodies[0], self.bodies[1], self.contact)
 
+    @property
+    def data_symbols(self) -> dict[str, sp.Symbol]:
+        """The symbols the scene's bodies and contacts use, by name.
+
+        Examples
+        --------
+        >>> import rigidimpact
+        >>> root = Path(rigidimpact.__file__).parents[2]
+        >>> sorted(load_scene(root / "derivations" / "two-ball-drop.toml").data_symbols)
+        ['e']
+        """
+        found: set[sp.Symbol] = set()
+        for b in self.bodies:
+            pivot = () if b.pivot is None else tuple(b.pivot)
+            found |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
+                              *pivot).free_symbols
+        for t in self.touches:
+            found |= sp.Tuple(t.restitution, *t.point, *t.normal).free_symbols
+        return {s.name: s for s in sorted(found, key=lambda s: s.name)}
+
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
         """The scene's several contacts with numbers for its symbols."""
         return Collision.from_values(self.bodies, self.touches,
