@@ -423,12 +423,15 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _print_json(outcome.as_json())
         return 0
     for event in outcome.events:
-        extra = ", ".join(f"{k} {v}" for k, v in event.items()
-                          if k not in ("kind", "t", "why"))
+        extra = ", ".join(f"{k} {', '.join(v) if isinstance(v, list) and k == 'acted' else v}"
+                          for k, v in event.items() if k not in ("kind", "t", "why"))
         print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else "")
               + (f": {event['why']}" if "why" in event else ""))
     for key, value in outcome.final.items():
         print(f"{key} = {value!r}")
+    if "rule" in outcome.details:
+        print(f"rule = {outcome.details['rule']}; contacts that acted: "
+              f"{', '.join(outcome.details['acted']) or 'none'}")
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
     return 0
 

@@ -92,6 +92,14 @@ def explain(scene: Scene) -> str:
     """  # noqa: E501
     plan = make_plan(scene.simulate)
     lines = [plan.explain()]
+    if scene.several:
+        from rigidimpact.collision import RULE_LAWS
+
+        lines.append(f"impact rule: {scene.rule}: {RULE_LAWS[scene.rule]}")
+        if "gravity" not in plan.effects and any(b.support == "fixed" for b in scene.bodies):
+            lines.append("note: without gravity nothing brings the bodies back to the "
+                         "fixed body; ask for effects = [\"gravity\"] to see them land again")
+        return "\n".join(lines)
     if any(step.model == "compliant" for step in plan.steps):
         from rigidimpact.simulate.compliant import prepare
 
@@ -165,6 +173,10 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
+    if scene.several:
+        from rigidimpact.simulate.several import run_several
+
+        return run_several(scene)
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
     values = scene_values(scene)
