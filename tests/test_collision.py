@@ -237,3 +237,29 @@ def test_compliant_rule_from_a_scene(tmp_path, capsys):
     assert data["rule"] == "compliant"
     assert [data[f"{n}.vx"] for n in ("first", "middle", "last")] == pytest.approx(
         [0, 0, 1], abs=0.03)
+
+
+def _pulse(speed):
+    """A 40-ball Hertzian chain struck by an equal ball: when the velocity peak passes
+    balls 10 and 30, and the chain's velocities when the peak sits on ball 20."""
+    import numpy as np
+
+    out = chain(40, 1, speed).compliant(1.0, hertz=True, tolerance=1e-9, record=True)
+    t, u = out.history
+    vx = u[0::3]  # each ball's coordinates are (vx, vy, omega)
+    passes = [t[np.argmax(vx[b])] for b in (10, 30)]
+    profile = vx[:, np.argmax(vx[20])]
+    return 20 / (passes[1] - passes[0]), profile / profile.max(), vx[[10, 30]].max(axis=1)
+
+
+def test_hertzian_chain_carries_a_solitary_wave_with_nesterenkos_laws():
+    # Nesterenko (1983): in an unloaded Hertzian chain an impact becomes a solitary wave
+    # of fixed shape whose speed grows as the 1/5 power of its particle velocity and whose
+    # extent is about five ball diameters (his long-wave compacton: pi sqrt(5/2) = 4.97
+    # diameters). Striking 32 times faster must double the wave's speed (32^(1/5) = 2).
+    slow, profile, peaks = _pulse(1)
+    fast, _, _ = _pulse(32)
+    assert fast / slow == pytest.approx(2.0, rel=2e-3)
+    assert peaks[1] == pytest.approx(peaks[0], rel=1e-3)  # it travels without changing
+    moving = int((profile > 1e-3).sum())  # the discrete wave's support, in balls
+    assert 5 <= moving <= 6

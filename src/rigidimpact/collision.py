@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
@@ -119,6 +119,8 @@ class Outcome:
     impulses: dict[str, sp.Expr]
     acted: tuple[str, ...]
     passes: int = 1  # sequential: passes in which a contact acted
+    # compliant, when asked: (times, generalized velocities at those times) of the run
+    history: Any = field(default=None, repr=False, compare=False)
 
     @property
     def kinetic_energy_before(self) -> sp.Expr:
@@ -370,7 +372,7 @@ class Collision:
                        passes - 1)
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
-                  tolerance: float = 1e-10) -> Outcome:
+                  tolerance: float = 1e-10, record: bool = False) -> Outcome:
         """Every contact a push-only spring-dashpot, integrated until all have let go.
 
         The contact's compression grows at its closing speed, ``d' = -(J u)``, and it
@@ -382,7 +384,8 @@ class Collision:
         gives back exactly e for that contact alone. Equal stiffnesses give a result
         independent of their size; the ratios between contacts decide it, and as one
         contact grows far stiffer than the next, the result tends to the sequential
-        rule in that order.
+        rule in that order. With `record`, the outcome's ``history`` holds the
+        integrator's times and the generalized velocities u there (rows: coordinates).
 
         Examples
         --------
@@ -431,10 +434,15 @@ class Collision:
             period = 3 * float(((mass / stiff) ** 2 / speed).max() ** 0.2)
         else:
             period = math.pi * float(np.sqrt(mass / stiff).max())
+        times, states, elapsed = [], [], 0.0
         for _ in range(2000):  # until every contact has let go and none approaches
             run = solve_ivp(rhs, (0.0, period), y, method="LSODA", rtol=tolerance,
                             atol=tolerance * max(speed, 1.0) * period)
             y = run.y[:, -1]
+            if record:
+                times.append(run.t + elapsed)
+                states.append(run.y[:n])
+                elapsed += period
             u, depth = y[:n], y[n:n + k]
             if np.all(depth <= 0) and np.all(J @ u >= -tolerance * speed):
                 break
@@ -442,10 +450,11 @@ class Collision:
             raise InputError("impact.rule", "the compliant contacts did not let go")
         u_after = sp.Matrix([sp.Float(x, 17) for x in y[:n]])
         impulses = sp.Matrix([sp.Float(x, 17) for x in y[n + k:]])
+        history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
         return Outcome("compliant", (), self.bodies, self._after(u_after),
                        self._named(impulses),
                        tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
-                             if p > 0))
+                             if p > 0), history=history)
 
     def every_order(self) -> tuple[Outcome, ...]:
         """The sequential rule in every order of the contacts."""
