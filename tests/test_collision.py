@@ -128,10 +128,13 @@ def test_energy_by_rule(case):
 
 
 def test_refusals():
-    with pytest.raises(InputError, match="several contacts are solved with numbers"):
-        x = sp.Symbol("x")
-        Collision((Body.rigid(1, 1, (0, 0), (x, 0), name="a"), Body.fixed("w")),
-                  (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+    x = sp.Symbol("x")
+    symbolic = Collision((Body.rigid(1, 1, (0, 0), (x, 0), name="a"), Body.fixed("w")),
+                         (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+    for rule in (symbolic.simultaneous, lambda: symbolic.sequential(("t",)),
+                 symbolic.compliant):
+        with pytest.raises(InputError, match="needs numbers: give \\[values\\] for x"):
+            rule()
     with pytest.raises(InputError, match="no contact is approaching"):
         Collision((Body.rigid(1, 1, (0, 0), (-1, 0), name="a"), Body.fixed("w")),
                   (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
@@ -183,10 +186,10 @@ def test_several_contact_scenes_are_checked(change, needle):
         parse_scene(text.replace(change[0], change[1], 1)).outcomes()
 
 
-def test_simulate_refuses_several_contacts_in_one_line(capsys):
+def test_routh_refuses_several_contacts_in_one_line(capsys):
     from rigidimpact.cli import main
 
-    assert main(["simulate", str(ROOT / "derivations" / "newtons-cradle.toml")]) == 2
+    assert main(["routh", str(ROOT / "derivations" / "newtons-cradle.toml")]) == 2
     err = capsys.readouterr().err
     assert "several contacts" in err and err.count("\n") == 1
 
@@ -263,3 +266,95 @@ def test_hertzian_chain_carries_a_solitary_wave_with_nesterenkos_laws():
     assert peaks[1] == pytest.approx(peaks[0], rel=1e-3)  # it travels without changing
     moving = int((profile > 1e-3).sum())  # the discrete wave's support, in balls
     assert 5 <= moving <= 6
+
+
+def _case_at(cases, values):
+    """The symbolic cases whose conditions hold at these numbers."""
+    return [c for c in cases if all(bool(sp.sympify(k).subs(values)) for k in c.conditions)]
+
+
+def test_symbolic_simultaneous_cases_agree_with_the_numbers():
+    # a striker (mass m) on two balls (mass M) at +-30 degrees, spin-free, e symbolic: with
+    # symbols the rule gives one formula per set of acting contacts, with its conditions;
+    # at random numbers the cases that hold must give the numeric rule's answer
+    m, M = sp.Symbol("m", positive=True), sp.Symbol("M", positive=True)
+    e, v = sp.Symbol("e", nonnegative=True), sp.Symbol("v", real=True)
+    r3 = sp.sqrt(3)
+    bodies = (Body.rigid(m, 1, (0, 0), (v, 0), name="s"),
+              Body.rigid(M, 1, (r3, 1), (0, 0), name="up"),
+              Body.rigid(M, 1, (r3, -1), (0, 0), name="lo"))
+    touches = (Touch("a", "s", "up", (r3 / 2, HALF), (r3, 1), e),
+               Touch("b", "s", "lo", (r3 / 2, -HALF), (r3, -1), e),
+               Touch("c", "lo", "up", (r3, 0), (0, 1), e))
+    symbolic = Collision(bodies, touches)
+    cases = symbolic.simultaneous_cases()
+    assert [c.acted for c in cases] == [("a", "b")]  # the balls' own contact never pushes
+    assert cases[0].results()["s.vx"].subs({m: 1, M: 1, e: 1}) == -sp.Rational(1, 5) * v
+    rng = random.Random(3)
+    for _ in range(5):
+        values = {m: sp.Rational(rng.randint(1, 9), rng.randint(1, 9)),
+                  M: sp.Rational(rng.randint(1, 9), rng.randint(1, 9)),
+                  e: sp.Rational(rng.randint(0, 4), 4), v: 1}
+        numeric = Collision.from_values(bodies, touches, values).simultaneous().results()
+        (held,) = _case_at(cases, values)
+        assert {k: sp.simplify(x.subs(values)) for k, x in held.results().items()} == numeric
+
+
+@pytest.mark.parametrize("inertia, shapes", [
+    # a uniform rod (I = 1/3 < m l^2): an impulse at one end pushes the other end down
+    # (W_12 = 1/m - l^2/I = -2 < 0), so both ends act, except at low e with a fast spin
+    (sp.Rational(1, 3), {("left", "right")}),
+    # a body with I = 2 > m l^2 (W_12 = 1/2 > 0): one end's push lifts the other, so with
+    # enough spin only one end acts
+    (sp.Integer(2), {("left",), ("right",), ("left", "right")}),
+])
+def test_symbolic_landing_cases_cover_every_spin(inertia, shapes):
+    # a body landing flat on two points with spin w and restitution e symbolic: at every
+    # spin tried the case that holds must give the numeric answer
+    w, e = sp.Symbol("w", real=True), sp.Symbol("e", nonnegative=True)
+    scene = load_scene(ROOT / "derivations" / "rod-lands-flat.toml")
+    bodies = tuple(replace(b, spin=w, inertia=inertia) if b.name == "rod" else b
+                   for b in scene.bodies)
+    touches = tuple(replace(t, restitution=e) for t in scene.touches)
+    cases = Collision(bodies, touches).simultaneous_cases()
+    acted = set()
+    for spin in (-3, -1, sp.Rational(-1, 2), 0, sp.Rational(1, 3), 1, sp.Rational(5, 2), 4):
+        for restitution in (0, HALF, 1):
+            values = {w: spin, e: restitution}
+            numeric = Collision.from_values(bodies, touches, values).simultaneous()
+            held = _case_at(cases, values)
+            assert held, values
+            for case in held:  # on a boundary two cases hold, with equal numbers
+                got = {k: sp.simplify(x.subs(values)) for k, x in case.results().items()}
+                assert got == numeric.results(), values
+            acted |= {numeric.acted}
+    assert shapes <= acted
+
+
+def test_one_sequential_pass_with_symbols_says_when_it_is_the_answer():
+    # three balls, e symbolic, left then right: by hand (1-e)/2, (1-e^2)/4, (1+e)^2/4;
+    # after it the first pair still closes at (1-e)^2/4, so it is the rule's answer at e = 1
+    e = sp.Symbol("e", nonnegative=True)
+    out = chain(3, e).sequential_pass(("c0", "c1"))
+    got = [out.results()[f"ball{k}.vx"] for k in range(3)]
+    assert [sp.simplify(g - x) for g, x in zip(got, [(1 - e) / 2, (1 - e**2) / 4,
+                                                     (1 + e) ** 2 / 4])] == [0, 0, 0]
+    assert all(bool(c.subs(e, 1)) for c in out.conditions)
+    assert not all(bool(c.subs(e, HALF)) for c in out.conditions)
+    assert chain(3, HALF).sequential(("c0", "c1")).passes > 1
+
+
+def test_symbolic_several_contact_scene_derives_and_the_compliant_rule_needs_numbers(
+        tmp_path, capsys):
+    from rigidimpact.cli import main
+
+    text = (ROOT / "derivations" / "newtons-cradle.toml").read_text()
+    path = tmp_path / "cradle-symbolic.toml"
+    path.write_text(text.replace('restitution = "1"', 'restitution = "e"'))
+    assert main(["derive", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "when" in out and "e" in out
+    compliant = parse_scene(text.replace('restitution = "1"', 'restitution = "e"')
+                            .replace('rule = "sequential"', 'rule = "compliant"'))
+    with pytest.raises(InputError, match="needs numbers"):
+        compliant.outcomes()

@@ -120,7 +120,9 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "warnings": list(d.warnings),
             **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
             **({"outcomes": [{"rule": o.rule, "order": list(o.order), "acted": list(o.acted),
-                              "results": {k: _expr_json(v) for k, v in o.results().items()}}
+                              "results": {k: _expr_json(v) for k, v in o.results().items()},
+                              **({"conditions": [str(c) for c in o.conditions]}
+                                 if o.conditions else {})}
                              for o in d.outcomes]} if d.outcomes else {}),
         })
         return 0
@@ -143,6 +145,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         print(f"\nLaws: {RULE_LAWS[d.outcomes[0].rule]}")
         for outcome in d.outcomes:
             print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
+            if outcome.conditions:
+                print("  when " + " and ".join(map(str, outcome.conditions)))
             for key, value in outcome.results().items():
                 print(f"  {key} = {value}")
         print(f"\n({d.seconds:.2f} s)")

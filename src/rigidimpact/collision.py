@@ -121,6 +121,8 @@ class Outcome:
     passes: int = 1  # sequential: passes in which a contact acted
     # compliant, when asked: (times, generalized velocities at those times) of the run
     history: Any = field(default=None, repr=False, compare=False)
+    # with symbols: when this outcome is the rule's (each a relation; (True,) always)
+    conditions: tuple[Any, ...] = ()
 
     @property
     def kinetic_energy_before(self) -> sp.Expr:
@@ -201,13 +203,21 @@ class Collision:
                         any(not c.is_zero for c in body.position - touch.point):
                     raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
                                      "contact must be where it is")
-        free = self.W.free_symbols | self.velocity_before.free_symbols | set().union(
-            *(sp.sympify(t.restitution).free_symbols for t in self.touches))
-        if free:
-            raise InputError("values", "several contacts are solved with numbers: give "
-                             f"[values] for {', '.join(sorted(map(str, free)))}")
-        if all(v >= 0 for v in self.velocity_before):
+        if not self.symbols and all(v >= 0 for v in self.velocity_before):
             raise InputError("bodies", "no contact is approaching: there is no impact")
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        """The symbols left in the collision (none: every rule runs; some: the
+        simultaneous and one-pass sequential formulas, each with its conditions)."""
+        return frozenset(self.W.free_symbols | self.velocity_before.free_symbols
+                         | set().union(*(sp.sympify(t.restitution).free_symbols
+                                         for t in self.touches)))
+
+    def _numbers_only(self, rule: str) -> None:
+        if self.symbols:
+            raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
+                             f"{', '.join(sorted(map(str, self.symbols)))}")
 
     @classmethod
     def from_values(cls, bodies: Sequence[Body], touches: Sequence[Touch],
@@ -300,6 +310,7 @@ class Collision:
         Active sets are tried from the largest down; for a positive-definite W exactly
         one fits.
         """
+        self._numbers_only("simultaneous")
         v = self.velocity_before
         e = sp.Matrix([t.restitution for t in self.touches])
         poisson = all(t.law == "poisson" for t in self.touches)
@@ -341,11 +352,8 @@ class Collision:
         geometrically (a stack coming to rest): they stop once every closing speed left
         is below 1e-40 of the largest before, so such results are exact to that size.
         """
-        index = {t.name: k for k, t in enumerate(self.touches)}
-        unknown = [name for name in order if name not in index]
-        if unknown or sorted(order) != sorted(index):
-            raise InputError("impact.order", f"must list every contact once: "
-                             f"{', '.join(index)}")
+        self._numbers_only("sequential")
+        index = self._order_index(order)
         u, total = self.u_before, sp.zeros(len(index), 1)
         scale = max(abs(v) for v in self.velocity_before)
         passes, acted_now = 0, True
@@ -398,6 +406,7 @@ class Collision:
         import numpy as np
         from scipy.integrate import solve_ivp
 
+        self._numbers_only("compliant")
         k = len(self.touches)
         stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
         if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
@@ -456,6 +465,117 @@ class Collision:
                        tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
                              if p > 0), history=history)
 
+    def _order_index(self, order: Sequence[str]) -> dict[str, int]:
+        index = {t.name: k for k, t in enumerate(self.touches)}
+        unknown = [name for name in order if name not in index]
+        if unknown or sorted(order) != sorted(index):
+            raise InputError("impact.order", f"must list every contact once: "
+                             f"{', '.join(index)}")
+        return index
+
+    def simultaneous_cases(self) -> tuple[Outcome, ...]:
+        """The simultaneous rule with symbols: one outcome per set of acting contacts,
+        each with the conditions under which it is the one (its impulses >= 0, every
+        released contact separating at least as fast as its law asks, every contact
+        closing or at rest before). Where W is positive definite exactly one case holds
+        at any numbers. Under Newton's law each contact's sign before decides its target
+        (-e v- if it closes, 0 if it opens), so the cases are also split by those signs.
+
+        Examples
+        --------
+        >>> m = sp.Symbol("m", positive=True)
+        >>> balls = [Body.rigid(1, 1, (0, 0), (1, 0), name="a"),
+        ...          Body.rigid(m, 1, (2, 0), (0, 0), name="b"),
+        ...          Body.rigid(1, 1, (4, 0), (0, 0), name="c")]
+        >>> touches = [Touch("ab", "a", "b", (1, 0), (1, 0), 1),
+        ...            Touch("bc", "b", "c", (3, 0), (1, 0), 1)]
+        >>> both = Collision(tuple(balls), tuple(touches)).simultaneous_cases()[0]
+        >>> both.results()["c.vx"], both.conditions
+        (2/(m + 2), (True,))
+        """
+        v = self.velocity_before
+        e = sp.Matrix([t.restitution for t in self.touches])
+        poisson = all(t.law == "poisson" for t in self.touches)
+        if not poisson and any(t.law == "poisson" for t in self.touches):
+            raise InputError("contacts", "give every contact the same law to act together")
+        n = len(v)
+        # Newton's target -e min(v, 0) depends on each contact's sign before: one
+        # pattern of signs at a time (a contact at rest, or under Poisson's law: one)
+        options = []
+        for i in range(n):
+            if poisson or tidy(v[i]).is_zero:
+                options.append([(sp.true, sp.Integer(0), v[i].is_negative is True)])
+                continue
+            options.append([(sp.Le(v[i], 0), -e[i] * v[i], True),
+                            (sp.Ge(v[i], 0), sp.Integer(0), False)])
+        cases = []
+        for pattern in itertools.product(*options):
+            if not poisson and not any(closing for _, _, closing in pattern):
+                continue  # nothing approaches: no impact
+            signs = _conditions([c for c, _, _ in pattern])
+            if signs == (sp.false,):
+                continue
+            target = sp.Matrix([t for _, t, _ in pattern])
+            for size in range(n, 0, -1):
+                for active in itertools.combinations(range(n), size):
+                    block = self.W.extract(list(active), list(active))
+                    if tidy(block.det()) == 0:
+                        continue
+                    rhs = sp.Matrix([target[i] - v[i] for i in active])
+                    solved = block.LUsolve(rhs).applyfunc(tidy)
+                    compression = sp.Matrix([solved[active.index(i)] if i in active else 0
+                                             for i in range(n)])
+                    after = v + self.W * compression
+                    held = _conditions(list(signs) + [sp.Ge(p, 0) for p in solved] + [
+                        sp.Ge(tidy(after[i] - target[i]), 0)
+                        for i in range(n) if i not in active])
+                    if held == (sp.false,):
+                        continue
+                    impulses = sp.Matrix([compression[i] * ((1 + e[i]) if poisson else 1)
+                                          for i in range(n)]).applyfunc(tidy)
+                    u = self._kick(self.u_before, impulses)
+                    cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
+                                         self._named(impulses),
+                                         tuple(self.touches[i].name for i in active),
+                                         conditions=held))
+        return tuple(cases)
+
+    def sequential_pass(self, order: Sequence[str]) -> Outcome:
+        """The sequential rule with symbols: one pass in `order`, every contact acting
+        once, with the conditions that make it so (each contact closing at its turn) and
+        that end the rule there (no contact closing after the pass).
+
+        Examples
+        --------
+        >>> e = sp.Symbol("e", nonnegative=True)
+        >>> out = chain(3, e).sequential_pass(("c0", "c1"))
+        >>> [out.results()[f"ball{k}.vx"] for k in range(3)]
+        [-(e - 1)/2, (1 - e)*(e + 1)/4, (e + 1)**2/4]
+
+        With e < 1 the first pair still closes after the pass, so one pass ends the rule
+        only at e = 1:
+
+        >>> out.conditions
+        (e**2 - 2*e <= -1,)
+        """
+        index = self._order_index(order)
+        u = self.u_before
+        total = sp.zeros(len(index), 1)
+        conditions = []
+        for name in order:
+            k = index[name]
+            closing = tidy((self.J[k, :] * u)[0])
+            conditions.append(sp.Lt(closing, 0))
+            impulse = tidy(-(1 + self.touches[k].restitution) * closing / self.W[k, k])
+            kick = sp.zeros(len(index), 1)
+            kick[k] = impulse
+            u = self._kick(u, kick)
+            total[k] = impulse
+        conditions += [sp.Ge(tidy((self.J[k, :] * u)[0]), 0) for k in range(len(index))]
+        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+                       self._named(total.applyfunc(tidy)), tuple(order),
+                       conditions=_conditions(conditions))
+
     def every_order(self) -> tuple[Outcome, ...]:
         """The sequential rule in every order of the contacts."""
         names = [t.name for t in self.touches]
@@ -463,10 +583,62 @@ class Collision:
         if len(orders) > MAX_ORDERS:
             raise InputError("impact.order", f"{len(names)} contacts have {len(orders)} "
                              "orders: give one")
+        if self.symbols:
+            return tuple(self.sequential_pass(order) for order in orders)
         return tuple(self.sequential(order) for order in orders)
 
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
         return {t.name: impulses[k] for k, t in enumerate(self.touches)}
+
+
+FLIPPED = {sp.GreaterThan: sp.LessThan, sp.LessThan: sp.GreaterThan,
+           sp.StrictGreaterThan: sp.StrictLessThan, sp.StrictLessThan: sp.StrictGreaterThan}
+
+
+def _sign_of(relation: sp.Basic) -> sp.Basic:
+    """``expr OP 0`` with every factor of known sign taken out (a positive mass, 1 + e),
+    so what is left is the condition itself.
+
+    Examples
+    --------
+    >>> m, v = sp.Symbol("m", positive=True), sp.Symbol("v", real=True)
+    >>> _sign_of(sp.Ge(-3 * m * v / (m + 1), 0))
+    v <= 0
+    """
+    if relation in (sp.true, sp.false):
+        return relation
+    op = type(relation)
+    expr = sp.factor(relation.lhs - relation.rhs)
+    numerator, denominator = sp.fraction(expr)
+    kept = []
+    for factor in sp.Mul.make_args(numerator) + sp.Mul.make_args(denominator):
+        if factor.is_positive:
+            continue
+        if factor.is_negative:
+            op = FLIPPED[op]
+            continue
+        kept.append(factor)
+    return op(sp.Mul(*kept), 0)
+
+
+def _conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
+    """Relations with the ones that always hold dropped: ``(True,)`` when none is left,
+    ``(False,)`` when they cannot all hold, or hold only on a boundary (an equality,
+    where the neighbouring case gives the same numbers)."""
+    kept = []
+    for relation in relations:
+        relation = _sign_of(relation)
+        if relation == sp.false:
+            return (sp.false,)
+        if relation != sp.true and relation not in kept:
+            kept.append(relation)
+    if not kept:
+        return (sp.true,)
+    joint = sp.simplify(sp.And(*kept))
+    if joint == sp.false or isinstance(joint, sp.Eq) or (
+            isinstance(joint, sp.And) and any(isinstance(a, sp.Eq) for a in joint.args)):
+        return (sp.false,)
+    return tuple(joint.args) if isinstance(joint, sp.And) else (joint,)
 
 
 def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:

@@ -150,6 +150,10 @@ class Scene:
         """What the scene's rule makes of its several contacts (every order when a
         sequential rule has none)."""
         collision = self.collision(values)
+        if collision.symbols and self.rule == "simultaneous":
+            return collision.simultaneous_cases()
+        if collision.symbols and self.rule == "sequential" and self.order is not None:
+            return (collision.sequential_pass(self.order),)
         if self.rule == "compliant":
             stiffness, hertz = self.compliance
             return (collision.compliant(stiffness, hertz),)
@@ -209,7 +213,12 @@ class Scene:
                        f"restitution {t.restitution}" for t in self.touches)
         setup += (f"rule: {self.rule}" + ("" if self.order is None
                                           else f", order {', '.join(self.order)}"),)
-        return Derivation(self.name, self.title, setup, (), (), outcomes[0].results(),
+        results = outcomes[0].results()
+        if self.rule == "simultaneous" and len(outcomes) > 1:  # one case holds at a time
+            cases = [sp.And(*o.conditions) for o in outcomes]
+            results = {key: _cases([o.results()[key] for o in outcomes], cases)
+                       for key in results}
+        return Derivation(self.name, self.title, setup, (), (), results,
                           seconds=time.perf_counter() - start, outcomes=outcomes)
 
     def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
@@ -218,6 +227,13 @@ class Scene:
         if not self.several:
             return self.derivation()
         return self._several_derivation(time.perf_counter(), values)
+
+
+def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
+    """One expression over exclusive cases (a ``Piecewise`` unless all agree)."""
+    if all(p == parts[0] for p in parts):
+        return parts[0]
+    return sp.Piecewise(*zip(parts, conditions, strict=True))
 
 
 def _described(b: Body) -> str:
