@@ -140,11 +140,15 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     for line in d.setup:
         print(f"  {line}")
     if d.outcomes:
-        from rigidimpact.collision import RULE_LAWS
+        from rigidimpact.collision import rule_laws
 
-        print(f"\nLaws: {RULE_LAWS[d.outcomes[0].rule]}")
+        print(f"\nLaws: {rule_laws(d.outcomes[0].rule, bool(d.outcomes[0].courses))}")
         for outcome in d.outcomes:
             print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
+            if outcome.courses:
+                print("  courses: " + "; ".join(outcome.courses))
+            for note in outcome.notes:
+                print(f"  note: {note}")
             if outcome.conditions:
                 print("  when " + " and ".join(map(str, outcome.conditions)))
             for key, value in outcome.results().items():
@@ -252,11 +256,14 @@ def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None
     numbers = derivation.evaluate({}, dps).numbers
     outcomes = derivation.outcomes
     extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}
+    if outcomes[0].courses:
+        extra["courses"] = list(outcomes[0].courses)
     if len(outcomes) > 1:
         extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
                             "results": {k: float(v) for k, v in o.results().items()}}
                            for o in outcomes]
     warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule")
+    warnings = (*warnings, *outcomes[0].notes)
     return Evaluation(numbers, warnings, None, extra)
 
 
@@ -291,6 +298,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         if result.extra:
             print(f"rule = {result.extra['rule']}; contacts that acted: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
+            if "courses" in result.extra:
+                print(f"courses: {'; '.join(result.extra['courses'])}")
             for row in result.extra.get("orders", ()):
                 shown = ", ".join(f"{k} = {v:.10g}" for k, v in row["results"].items()
                                   if not k.endswith("tangential_impulse"))

@@ -45,11 +45,12 @@ import sympy as sp
 from rigidimpact.bodies import Body, as_vector
 from rigidimpact.compliance import damping_ratio_for
 from rigidimpact.errors import InputError
-from rigidimpact.geometry import cross
+from rigidimpact.geometry import cross, perp
 from rigidimpact.impulse import Coordinate, coordinates_of, moving
 from rigidimpact.rewrite import tidy
 
-__all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain"]
+__all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
+           "rule_laws"]
 
 RULES = ("simultaneous", "sequential", "compliant")
 MAX_PASSES = 1000  # sequential passes before the rule is declared endless
@@ -66,11 +67,29 @@ RULE_LAWS = {
     "compliant": "every contact a push-only spring-dashpot (linear, damping from e) or an "
                  "elastic Hertz spring, integrated until all let go (floating point)",
 }
+FRICTION_LAWS = {
+    "simultaneous": "Coulomb friction at the velocity level: the impulses act together; "
+                    "each contact is released, sticks (Newton's e across, no slip after, "
+                    "|P_t| <= mu P_n) or slides (|P_t| = mu P_n against its slip after); "
+                    "every combination solved exactly",
+    "sequential": "one contact at a time in the order given, each a two-body impact: a "
+                  "Coulomb contact by Routh's method with its own restitution law, a "
+                  "smooth one with Newton's e; repeated until no contact approaches",
+}
+
+
+_STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
+          "slide-": "slides"}
+
+
+def rule_laws(rule: str, frictional: bool = False) -> str:
+    """The laws a rule imposes, in words (with friction when any contact has it)."""
+    return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
 
 
 @dataclass(frozen=True)
 class Touch:
-    """One smooth contact of several: where, along which normal, with which law.
+    """One contact of several: where, along which normal, with which laws.
 
     Parameters
     ----------
@@ -78,9 +97,14 @@ class Touch:
     first, second : str
         Body names; the normal points from the first into the second.
     point, normal : 2-vectors
-        World frame; the normal need not be of unit length.
+        World frame; the normal need not be of unit length. The tangent is the normal
+        turned by +90 degrees.
     restitution : expr
-    law : {"newton", "poisson"}
+    law : {"newton", "poisson", "energetic"}
+        The energetic law only with friction under the sequential rule (where each
+        step is one contact's Routh impact).
+    friction : expr, optional
+        Coulomb's mu; None for a smooth contact.
     """
 
     name: str
@@ -90,6 +114,7 @@ class Touch:
     normal: Any
     restitution: Any
     law: str = "newton"
+    friction: Any = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
@@ -102,9 +127,22 @@ class Touch:
         if e.is_number and not 0 <= e <= 1:
             raise InputError(f"{self.name}.restitution", f"must lie in [0, 1], got {e}")
         object.__setattr__(self, "restitution", e)
-        if self.law not in ("newton", "poisson"):
-            raise InputError(f"{self.name}.law", "several contacts take Newton's or "
-                             f"Poisson's law, got {self.law!r}")
+        allowed = ("newton", "poisson", "energetic") if self.friction is not None \
+            else ("newton", "poisson")
+        if self.law not in allowed:
+            raise InputError(f"{self.name}.law", f"a {'' if self.friction else 'smooth '}"
+                             f"contact of several takes {', '.join(allowed)}, got "
+                             f"{self.law!r}")
+        if self.friction is not None:
+            mu = sp.sympify(self.friction)
+            if mu.is_number and not mu >= 0:
+                raise InputError(f"{self.name}.friction", f"must be >= 0, got {mu}")
+            object.__setattr__(self, "friction", mu)
+
+    @property
+    def tangent(self) -> sp.ImmutableMatrix:
+        """The unit tangent: the normal turned by +90 degrees."""
+        return perp(self.normal)
 
 
 @dataclass(frozen=True)
@@ -123,6 +161,10 @@ class Outcome:
     history: Any = field(default=None, repr=False, compare=False)
     # with symbols: when this outcome is the rule's (each a relation; (True,) always)
     conditions: tuple[Any, ...] = ()
+    # with friction: each contact's tangential impulse, and what each step did
+    tangential: dict[str, sp.Expr] = field(default_factory=dict)
+    courses: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
 
     @property
     def kinetic_energy_before(self) -> sp.Expr:
@@ -167,7 +209,7 @@ class Outcome:
         results["energy_loss_fraction"] = self.energy_loss_fraction
         for name, impulse in self.impulses.items():
             results[f"{name}.normal_impulse"] = impulse
-            results[f"{name}.tangential_impulse"] = sp.Integer(0)
+            results[f"{name}.tangential_impulse"] = self.tangential.get(name, sp.Integer(0))
         return results
 
 
@@ -212,7 +254,15 @@ class Collision:
         simultaneous and one-pass sequential formulas, each with its conditions)."""
         return frozenset(self.W.free_symbols | self.velocity_before.free_symbols
                          | set().union(*(sp.sympify(t.restitution).free_symbols
+                                         | sp.sympify(t.friction or 0).free_symbols
                                          for t in self.touches)))
+
+    def _smooth_only(self, where: str) -> None:
+        rough = [t.name for t in self.touches if t.friction is not None]
+        if rough:
+            raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
+                             f"solved with numbers, by the simultaneous or sequential rule; "
+                             f"not {where}")
 
     def _numbers_only(self, rule: str) -> None:
         if self.symbols:
@@ -244,7 +294,9 @@ class Collision:
             velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
             for b in bodies)
         touches = tuple(replace(t, point=vector(t.point), normal=vector(t.normal),
-                                restitution=number(t.restitution)) for t in touches)
+                                restitution=number(t.restitution),
+                                friction=None if t.friction is None else number(t.friction))
+                        for t in touches)
         return cls(bodies, touches)
 
     def _body(self, name: str) -> Body:
@@ -258,24 +310,34 @@ class Collision:
     @cached_property
     def J(self) -> sp.Matrix:
         """One row per contact: its normal closing velocity as a function of u."""
-        rows = []
-        for touch in self.touches:
-            row = []
-            for coordinate in self.coordinates:
-                name, kind = coordinate.body, coordinate.kind
-                sign = -1 if name == touch.first else 1 if name == touch.second else 0
-                body = self._body(name)
-                if sign == 0:
-                    row.append(sp.Integer(0))
-                elif kind == "vx":
-                    row.append(sign * touch.normal[0])
-                elif kind == "vy":
-                    row.append(sign * touch.normal[1])
-                else:  # n . (z x (p - axis)) = (p - axis) x n
-                    axis = body.pivot if body.support == "pivot" else body.position
-                    row.append(sign * cross(touch.point - axis, touch.normal))
-            rows.append(row)
-        return sp.Matrix(rows)
+        return sp.Matrix([self._row(t, t.normal) for t in self.touches])
+
+    @cached_property
+    def J_t(self) -> sp.Matrix:
+        """One row per contact: the tangential velocity (second minus first) along its
+        tangent, as a function of u."""
+        return sp.Matrix([self._row(t, t.tangent) for t in self.touches])
+
+    def _row(self, touch: Touch, direction: sp.MatrixBase) -> list[sp.Expr]:
+        row = []
+        for coordinate in self.coordinates:
+            name, kind = coordinate.body, coordinate.kind
+            sign = -1 if name == touch.first else 1 if name == touch.second else 0
+            body = self._body(name)
+            if sign == 0:
+                row.append(sp.Integer(0))
+            elif kind == "vx":
+                row.append(sign * direction[0])
+            elif kind == "vy":
+                row.append(sign * direction[1])
+            else:  # d . (z x (p - axis)) = (p - axis) x d
+                axis = body.pivot if body.support == "pivot" else body.position
+                row.append(sign * cross(touch.point - axis, direction))
+        return row
+
+    @property
+    def frictional(self) -> bool:
+        return any(t.friction is not None for t in self.touches)
 
     @cached_property
     def M_inverse(self) -> sp.Matrix:
@@ -311,6 +373,8 @@ class Collision:
         one fits.
         """
         self._numbers_only("simultaneous")
+        if self.frictional:
+            return self._frictional_simultaneous()
         v = self.velocity_before
         e = sp.Matrix([t.restitution for t in self.touches])
         poisson = all(t.law == "poisson" for t in self.touches)
@@ -325,6 +389,111 @@ class Collision:
         return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
                        tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
                              if p > 0))
+
+    def _frictional_simultaneous(self) -> Outcome:
+        """All contacts at once with Coulomb friction, at the velocity level.
+
+        Each contact is released (no impulse, separating at least as fast as Newton's
+        law asks), sticking (it leaves with Newton's normal velocity and no slip, its
+        tangential impulse inside the cone |P_t| <= mu P_n) or sliding (on the cone's
+        edge, opposite to the slip it leaves with). This is the model of time-stepping
+        codes (Stewart and Trinkle, Anitescu and Potra), not Routh's integration over
+        the impact: friction acts on the velocities after, so it agrees with Routh's
+        method when the slip does not change during the impact. Every combination of
+        states is solved exactly; with friction the problem can have several solutions,
+        or none (Painleve's paradox), and the outcome says so.
+        """
+        if any(t.law != "newton" for t in self.touches):
+            raise InputError("contacts", "with friction the simultaneous rule takes "
+                             "Newton's law at every contact (the sequential rule takes "
+                             "each law)")
+        n = len(self.touches)
+        v_n, v_t = self.velocity_before, (self.J_t * self.u_before).applyfunc(tidy)
+        e = [t.restitution for t in self.touches]
+        mu = [t.friction if t.friction is not None else sp.Integer(0) for t in self.touches]
+        target = [-e[i] * min(v_n[i], 0) for i in range(n)]
+        rows = sp.Matrix.vstack(self.J, self.J_t)
+        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        states = [("off", "stick", "slide+", "slide-") if mu[i] else ("off", "on")
+                  for i in range(n)]
+        found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
+        for pattern in itertools.product(*states):
+            if all(state == "off" for state in pattern):
+                continue
+            solved = self._friction_pattern(pattern, W, v_n, v_t, target, mu)
+            if solved is not None and all(solved != f for f, _ in found):
+                found.append((solved, pattern))
+        if not found:
+            raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
+                             "friction here (a Painleve-type inconsistency); try the "
+                             "sequential rule")
+        impulses, pattern = found[0]
+        motions = [(self.u_before + self.M_inverse * rows.T * f).applyfunc(tidy)
+                   for f, _ in found]
+        u = motions[0]
+        notes = ()
+        if len(found) > 1 and all(m == u for m in motions):
+            # with the velocities after fixed, the conditions on the impulses are convex:
+            # every mixture of the solutions found is one too; the mean is shown
+            impulses = (sum((f for f, _ in found), sp.zeros(2 * n, 1)) / len(found)
+                        ).applyfunc(tidy)
+            pattern = tuple("stick" if all(p[i] == "stick" for _, p in found) else
+                            pattern[i] if all(p[i] == pattern[i] for _, p in found) else
+                            "stick" for i in range(n))
+            notes = (f"the motion after is unique but the impulses are not: {len(found)} "
+                     "ways to share them between the contacts fit the rule, and every "
+                     "mixture of them; shown: their mean",)
+        elif len(found) > 1:
+            notes = (f"the simultaneous rule with friction has {len(found)} solutions here, "
+                     "with different motions after; shown: " + ", ".join(
+                         _STATE[s] for s in pattern) + "; others: " + "; ".join(
+                         ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
+        normal = impulses[:n, 0]
+        return Outcome("simultaneous", (), self.bodies, self._after(u),
+                       self._named(normal), tuple(t.name for t, s in
+                                                  zip(self.touches, pattern, strict=True)
+                                                  if s != "off"),
+                       tangential=self._named(impulses[n:, 0]),
+                       courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                                     zip(self.touches, pattern, strict=True)),
+                       notes=notes)
+
+    def _friction_pattern(self, pattern, W, v_n, v_t, target, mu) -> sp.Matrix | None:
+        """The impulses (normal then tangential) for one choice of contact states, if
+        that choice is consistent."""
+        n = len(pattern)
+        P = sp.symbols(f"p0:{2 * n}")
+        after = sp.Matrix(list(v_n) + list(v_t)) + W * sp.Matrix(P)
+        equations = []
+        for i, state in enumerate(pattern):
+            if state == "off":
+                equations += [P[i], P[n + i]]
+                continue
+            equations.append(after[i] - target[i])
+            if state in ("on",):
+                equations.append(P[n + i])
+            elif state == "stick":
+                equations.append(after[n + i])
+            else:
+                equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
+        solution = sp.solve(equations, P, dict=True)
+        if len(solution) != 1 or len(solution[0]) != 2 * n:
+            return None
+        impulses = sp.Matrix([tidy(solution[0][p]) for p in P])
+        after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
+        for i, state in enumerate(pattern):
+            p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
+            if state == "off":
+                if after[i] < target[i]:
+                    return None
+                continue
+            if p_n < 0:
+                return None
+            if state == "stick" and abs(p_t) > mu[i] * p_n:
+                return None
+            if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
+                return None
+        return impulses
 
     def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
         """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
@@ -355,6 +524,7 @@ class Collision:
         self._numbers_only("sequential")
         index = self._order_index(order)
         u, total = self.u_before, sp.zeros(len(index), 1)
+        tangential, courses = sp.zeros(len(index), 1), []
         scale = max(abs(v) for v in self.velocity_before)
         passes, acted_now = 0, True
         while acted_now:  # a pass in which no contact acted ends the rule
@@ -368,16 +538,36 @@ class Collision:
                 if closing >= 0 or -closing <= SETTLED * scale:
                     continue
                 touch = self.touches[k]
-                impulse = tidy(-(1 + touch.restitution) * closing / self.W[k, k])
-                kick = sp.zeros(len(index), 1)
-                kick[k] = impulse
-                u = self._kick(u, kick)
+                if touch.friction:  # one contact's frictional impact: Routh's method
+                    impulse, along, course = self._routh_step(k, u)
+                    u = (u + self.M_inverse * (self.J[k, :].T * impulse
+                                               + self.J_t[k, :].T * along)).applyfunc(tidy)
+                    tangential[k] += along
+                    courses.append(f"{name}: {course}")
+                else:
+                    impulse = tidy(-(1 + touch.restitution) * closing / self.W[k, k])
+                    kick = sp.zeros(len(index), 1)
+                    kick[k] = impulse
+                    u = self._kick(u, kick)
                 total[k] += impulse
                 acted_now = True
         return Outcome("sequential", tuple(order), self.bodies, self._after(u),
                        self._named(total.applyfunc(tidy)),
                        tuple(t.name for t, p in zip(self.touches, total, strict=True) if p > 0),
-                       passes - 1)
+                       passes - 1, tangential=self._named(tangential.applyfunc(tidy))
+                       if self.frictional else {}, courses=tuple(courses))
+
+    def _routh_step(self, k: int, u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str]:
+        """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course)."""
+        from rigidimpact.routh import regimes
+
+        touch = self.touches[k]
+        rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
+        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        taken = [r for r in regimes(W, (rows * u).applyfunc(tidy), touch.friction,
+                                    touch.restitution, touch.law) if r.holds() is not False]
+        regime = taken[0]
+        return tidy(regime.impulse[0]), tidy(regime.impulse[1]), regime.name
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
                   tolerance: float = 1e-10, record: bool = False) -> Outcome:
@@ -407,6 +597,7 @@ class Collision:
         from scipy.integrate import solve_ivp
 
         self._numbers_only("compliant")
+        self._smooth_only("under the compliant rule")
         k = len(self.touches)
         stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
         if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
@@ -493,6 +684,7 @@ class Collision:
         >>> both.results()["c.vx"], both.conditions
         (2/(m + 2), (True,))
         """
+        self._smooth_only("with symbols")
         v = self.velocity_before
         e = sp.Matrix([t.restitution for t in self.touches])
         poisson = all(t.law == "poisson" for t in self.touches)
@@ -558,6 +750,7 @@ class Collision:
         >>> out.conditions
         (e**2 - 2*e <= -1,)
         """
+        self._smooth_only("with symbols")
         index = self._order_index(order)
         u = self.u_before
         total = sp.zeros(len(index), 1)

@@ -138,7 +138,8 @@ class Scene:
             found |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
                               *pivot).free_symbols
         for t in self.touches:
-            found |= sp.Tuple(t.restitution, *t.point, *t.normal).free_symbols
+            found |= sp.Tuple(t.restitution, *t.point, *t.normal,
+                              t.friction or 0).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
@@ -414,9 +415,9 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
         if "name" not in table:
             raise InputError(f"{place}.name", "required with several contacts")
         contact, point = _read_contact(table, place, symbols)
-        if contact.tangential != "smooth":
-            raise InputError(f"{place}.tangential", "several contacts are smooth in this "
-                             "version")
+        if contact.tangential not in ("smooth", "coulomb"):
+            raise InputError(f"{place}.tangential", "several contacts are smooth or "
+                             f"coulomb, got {contact.tangential!r}")
         if contact.name in (c.name for c in contacts):
             raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
         first, second = _pair(table, place, [])
@@ -425,7 +426,8 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
                 raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
         contacts.append(contact)
         touches.append(Touch(contact.name, first, second, point, contact.normal,
-                             contact.restitution, contact.law))
+                             contact.restitution, contact.law,
+                             contact.friction if contact.tangential == "coulomb" else None))
     impact_table = _table(data, "impact", "settings")
     rule, order = _impact_table(impact_table, [c.name for c in contacts])
     compliance = _compliance(impact_table, len(contacts))
