@@ -111,20 +111,24 @@ def test_every_shipped_scene_derives_and_obeys_the_laws(path):
 
 def _several_obey_the_laws(scene, outcome):
     """Each free body's momentum and spin change by the impulses of its contacts, no
-    contact pulls, and no energy is made."""
+    contact pulls, friction stays in its cone, and no energy is made."""
     for before, after in zip(outcome.before, outcome.after, strict=True):
         if before.support != "free":
             continue
         push, turn = sp.zeros(2, 1), sp.Integer(0)
         for touch in scene.touches:
             sign = 1 if touch.second == before.name else -1 if touch.first == before.name else 0
-            impulse = sign * outcome.impulses[touch.name] * touch.normal
+            impulse = sign * (outcome.impulses[touch.name] * touch.normal
+                              + outcome.tangential.get(touch.name, 0) * touch.tangent)
             push += impulse
             arm = touch.point - before.position
             turn += arm[0] * impulse[1] - arm[1] * impulse[0]
         assert after.momentum - before.momentum == push
         assert sp.simplify(before.inertia * (after.spin - before.spin) - turn) == 0
     assert all(p >= 0 for p in outcome.impulses.values())
+    for touch in scene.touches:  # friction within Coulomb's cone
+        along = outcome.tangential.get(touch.name, 0)
+        assert abs(along) <= (touch.friction or 0) * outcome.impulses[touch.name]
     assert outcome.energy_loss_fraction >= 0
 
 

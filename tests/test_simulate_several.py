@@ -28,8 +28,8 @@ def test_two_ball_drop_lower_ball_comes_back_to_the_floor():
     # so it lands again after 2 (7/11) / g; the light ball (29/11 up) is never caught
     scene = scene_with("two-ball-drop.toml", 'until = "restrike"\neffects = ["gravity"]')
     outcome = run(scene)
-    kinds = [(e["kind"], e.get("contact")) for e in outcome.events]
-    assert kinds == [("impact", None), ("restrike", "ground"), ("end", None)]
+    kinds = [(e["kind"], e.get("contacts")) for e in outcome.events]
+    assert kinds == [("impact", None), ("restrike", ["ground"]), ("end", None)]
     assert outcome.final["t"] == pytest.approx(2 * (7 / 11) / G, rel=1e-12)
     assert outcome.final["lower.y"] == pytest.approx(1.0, abs=1e-12)  # back on the floor
     assert outcome.final["upper.vy"] == pytest.approx(29 / 11 - G * outcome.final["t"],
@@ -45,7 +45,7 @@ def test_rod_landing_flat_meets_the_floor_again_with_its_right_end():
     outcome = run(scene)
     right = brentq(lambda t: t - G * t * t / 2 - math.sin(t / 2), 1e-3, 1.0, xtol=1e-15)
     restrike = outcome.events[1]
-    assert (restrike["kind"], restrike["contact"]) == ("restrike", "right")
+    assert (restrike["kind"], restrike["contacts"]) == ("restrike", ["right"])
     assert restrike["t"] == pytest.approx(right, rel=1e-10)
     ends = outcome.trajectory.points()
     assert ends["rod@right"][-1][1] == pytest.approx(0.0, abs=1e-9)
@@ -78,6 +78,15 @@ def test_a_dead_ball_on_the_floor_stays_in_contact():
     outcome = run(scene)
     assert outcome.events[1]["kind"] == "stays-closed"
     assert outcome.final["t"] == 0.0
+
+
+def test_a_sliding_rod_lands_again_on_both_ends_at_once():
+    # rod-slides-flat.toml: after (5/8, 1/2) and no spin, both ends land after 2 (1/2) / g
+    outcome = run(load_scene(ROOT / "derivations" / "rod-slides-flat.toml"))
+    restrike = outcome.events[1]
+    assert restrike["contacts"] == ["left", "right"]
+    assert restrike["t"] == pytest.approx(1 / G, rel=1e-12)
+    assert outcome.final["rod.x"] == pytest.approx(5 / 8 / G, rel=1e-12)
 
 
 def test_two_shapeless_free_bodies_cannot_be_watched():
@@ -127,5 +136,5 @@ def test_simulate_cli_draws_and_animates_several_contacts(tmp_path, capsys):
     png, gif = tmp_path / "rod.png", tmp_path / "rod.gif"
     assert main(["simulate", str(path), "--plot", str(png), "--animate", str(gif)]) == 0
     out = capsys.readouterr().out
-    assert "restrike (contact right)" in out and "contacts that acted: left, right" in out
+    assert "restrike (contacts right)" in out and "contacts that acted: left, right" in out
     assert png.read_bytes()[:4] == b"\x89PNG" and gif.read_bytes()[:3] == b"GIF"

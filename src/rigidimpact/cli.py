@@ -436,7 +436,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _print_json(outcome.as_json())
         return 0
     for event in outcome.events:
-        extra = ", ".join(f"{k} {', '.join(v) if isinstance(v, list) and k == 'acted' else v}"
+        extra = ", ".join(f"{k} {', '.join(v) if k in ('acted', 'contacts') else v}"
                           for k, v in event.items() if k not in ("kind", "t", "why"))
         print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else "")
               + (f": {event['why']}" if "why" in event else ""))

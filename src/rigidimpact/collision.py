@@ -16,6 +16,11 @@ rules say how the contacts act together:
 - ``compliant``: every contact a push-only spring-dashpot (or an elastic Hertz spring),
   integrated numerically until all contacts let go; the stiffnesses' ratios decide.
 
+A contact may have Coulomb friction: the sequential rule then runs Routh's method at each
+step (:mod:`rigidimpact.routh`), the simultaneous rule solves friction at the velocity
+level over every combination of contact states. With symbols left the simultaneous and
+one-pass sequential rules give formulas, each with the conditions under which it holds.
+
 The numbers are exact (rationals stay rationals), so the rules can be compared exactly.
 
 Examples

@@ -226,15 +226,18 @@ def _fly(scene: Scene, outcome: RuleOutcome, until: str | float, gravity: float)
         if t is not None and t <= horizon:
             found.append((t, watch))
     if found:
-        t, watch = min(found, key=lambda pair: pair[0])
+        t = min(when for when, _ in found)
+        tied = [w for when, w in found if when <= t + 1e-12 * max(t, 1e-300)]
+        names = [w.touch for w in tied]
         if t == 0.0:
-            events.append({"kind": "stays-closed", "t": 0.0, "contact": watch.touch})
-            return flyers, events, 0.0, (f"contact {watch.touch} does not open: it would "
-                                         "need a lasting contact force, which free flight "
-                                         "does not have")
-        events.append({"kind": "restrike", "t": t, "contact": watch.touch})
-        return flyers, events, t, (f"contact {watch.touch} closes again ({watch.how}); "
-                                   "the flight cannot go on through it")
+            events.append({"kind": "stays-closed", "t": 0.0, "contacts": names})
+            return flyers, events, 0.0, (f"contact {', '.join(names)} does not open: it "
+                                         "would need a lasting contact force, which free "
+                                         "flight does not have")
+        events.append({"kind": "restrike", "t": t, "contacts": names})
+        return flyers, events, t, (f"contact {', '.join(names)} closes again "
+                                   f"({'; '.join(w.how for w in tied)}); the flight cannot "
+                                   "go on through it")
     if math.isfinite(horizon):
         return flyers, events, horizon, f"reached until = {horizon:g} s"
     return flyers, events, 0.0, "no contact of the scene closes again"
