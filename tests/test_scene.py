@@ -128,7 +128,8 @@ def _several_obey_the_laws(scene, outcome):
     assert all(p >= 0 for p in outcome.impulses.values())
     for touch in scene.touches:  # friction within Coulomb's cone
         along = outcome.tangential.get(touch.name, 0)
-        assert abs(along) <= (touch.friction or 0) * outcome.impulses[touch.name]
+        mu = sp.sympify(touch.friction or 0).subs(scene.values)
+        assert abs(along) <= mu * outcome.impulses[touch.name]
     assert outcome.energy_loss_fraction >= 0
 
 
