@@ -190,7 +190,8 @@ _LHS = {
     "impulse": "J",
     "impulse_t": "J_t",
 }
-_COMPONENT = {"vx": "V_x", "vy": "V_y", "omega": r"\omega"}
+_COMPONENT = {"vx": "V_x", "vy": "V_y", "omega": r"\omega", "normal_impulse": "P_n",
+              "tangential_impulse": "P_t"}
 
 
 def to_latex(expr: sp.Basic) -> str:
