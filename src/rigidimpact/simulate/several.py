@@ -37,15 +37,16 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import sympy as sp
 
 from rigidimpact.bodies import Body
-from rigidimpact.collision import Outcome as RuleOutcome, Touch
+from rigidimpact.collision import Outcome as RuleOutcome
+from rigidimpact.collision import Touch
 from rigidimpact.errors import InputError
 from rigidimpact.problems import physics_warnings, read_values
 from rigidimpact.scene import Scene
