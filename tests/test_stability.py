@@ -55,3 +55,28 @@ def test_the_suite_covers_the_extremes(report):
     assert report["cases"] > 5000
     barbell = next(r for r in report["rows"] if r["problem"] == "barbell")
     assert barbell["cases"] >= 1000
+
+
+def test_every_backend_is_checked_and_passes(report):
+    from rigidimpact.stability import available_backends
+
+    assert report["backends"] == list(available_backends())
+    for row in report["rows"]:
+        assert set(row["by_backend"]) == set(report["backends"])
+        for backend, errors in row["by_backend"].items():
+            assert errors["scaled_error"] <= BOUND, (row["problem"], row["quantity"], backend)
+
+
+def test_the_notebooks_snapshot_matches_a_fresh_run(report):
+    # notebook 9 shows notebooks/data/stability.json instead of running the whole suite a
+    # second time; it must still describe the suite as it is
+    import json
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "notebooks" / "data" / "stability.json"
+    stored = json.loads(path.read_text())
+    assert stored["cases"] == report["cases"] and stored["bound"] == report["bound"]
+    assert [(r["problem"], r["quantity"], r["cases"]) for r in stored["rows"]] == [
+        (r["problem"], r["quantity"], r["cases"]) for r in report["rows"]]
+    assert all(r["passed"] for r in stored["rows"])
+    assert stored["worst"]["rel_error"] <= BOUND

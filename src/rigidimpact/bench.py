@@ -47,7 +47,7 @@ import sympy as sp
 from rigidimpact import restrike
 from rigidimpact.errors import InputError
 from rigidimpact.notation import symbol
-from rigidimpact.numeric import kernels
+from rigidimpact.numeric import fused, kernels
 from rigidimpact.problems import derive
 from rigidimpact.scene import parse_scene
 from rigidimpact.simulate import run
@@ -363,32 +363,87 @@ def _pymunk(exact, repeats: int, steps: Iterable[float]) -> list[dict]:
     return rows
 
 
-def throughput(count: int = 10**6, repeats: int = 5) -> dict[str, float]:
-    """The float64 kernel for V_x over `count` parameter sets, against hand-written NumPy.
+BARBELL_FOUR = ("v_fx", "V_x", "omega_z", "energy_loss_fraction")
+
+
+def _barbell_sets(count: int) -> dict[str, np.ndarray]:
+    rng = np.random.default_rng(20070301)
+    return {"m": rng.uniform(0.1, 10, count), "M": rng.uniform(0.1, 10, count),
+            "theta": rng.uniform(0, np.pi, count), "e": rng.uniform(0, 1, count),
+            "v_ix": np.ones(count), "L": np.ones(count)}
+
+
+def _barbell_by_hand(m, M, theta, e, v_ix, L):
+    """The four barbell results as a careful NumPy user writes them: the sine and the
+    denominator of eq. (5) shared, the stable arrangements of the paper's forms."""
+    s = np.sin(theta)
+    k = m * (1 + s * s)
+    d = 2 * M + k
+    V = (1 + e) * m * v_ix / d
+    return {"v_fx": v_ix * (k - 2 * M * e) / d, "V_x": V, "omega_z": V * s / L,
+            "energy_loss_fraction": 2 * M * (1 - e) * (1 + e) / d}
+
+
+def throughput(count: int = 10**6, repeats: int = 5,
+               backends: Iterable[str] = ("numpy", "numba")) -> dict[str, float]:
+    """All four barbell results over `count` parameter sets, side by side in one run.
+
+    ``kernel_per_s``: the fused kernel (NumPy backend, chunked); ``numpy_per_s``:
+    hand-written NumPy of the same four results over whole arrays; ``ratio``: fused time
+    over hand-written time (below 1 is faster); ``per_result_per_s``: the four results
+    through their separate kernels; ``numba_per_s`` (when numba is installed) and
+    ``numba_speedup`` over hand-written NumPy; ``sine_bound_per_s``: np.sin alone over the
+    same angles, one core, times the cores numba uses (the pace of one sine per set);
+    ``max_difference``: the largest relative difference between the fused kernel and
+    the hand-written results.
 
     Examples
     --------
-    >>> sorted(throughput(1000, 1))
-    ['kernel_per_s', 'max_difference', 'numpy_per_s', 'ratio']
+    >>> sorted(throughput(1000, 1, backends=("numpy",)))[:4]
+    ['cores', 'kernel_per_s', 'max_difference', 'numpy_per_s']
     """
-    kernel = kernels(derive("barbell").results)["V_x"]
-    rng = np.random.default_rng(20070301)
-    m, big = rng.uniform(0.1, 10, count), rng.uniform(0.1, 10, count)
-    theta, e, v = rng.uniform(0, np.pi, count), rng.uniform(0, 1, count), np.ones(count)
+    results = derive("barbell").results
+    four = {k: results[k] for k in BARBELL_FOUR}
+    sets = _barbell_sets(count)
+    kernel = fused(four)
+    separate = kernels(four)
 
-    def by_kernel():
-        return kernel(M=big, e=e, m=m, theta=theta, v_ix=v)
+    def by_fused():
+        return kernel(**sets)
 
-    def by_hand():  # eq. (5): V_x = f v_ix, f = (1 + e) m / (2M + m (1 + sin^2 theta))
-        s = np.sin(theta)
-        return (1 + e) * m * v / (2 * big + m * (1 + s * s))
+    def by_hand():
+        return _barbell_by_hand(**sets)
 
-    kernel_s = _median_time(by_kernel, repeats)
-    numpy_s = _median_time(by_hand, repeats)
-    return {"kernel_per_s": count / kernel_s, "numpy_per_s": count / numpy_s,
-            "ratio": kernel_s / numpy_s,
-            "max_difference": float(np.max(np.abs(by_kernel() - by_hand())
-                                           / np.abs(by_hand())))}
+    def by_separate():
+        return {k: c(**{n: sets[n] for n in c.arguments}) for k, c in separate.items()}
+
+    def sine():
+        return np.sin(sets["theta"])
+
+    fused_s = _median_time(by_fused, repeats)
+    hand_s = _median_time(by_hand, repeats)
+    separate_s = _median_time(by_separate, repeats)
+    sine_s = _median_time(sine, repeats)
+    hand, got = by_hand(), by_fused()
+    report = {"kernel_per_s": count / fused_s, "numpy_per_s": count / hand_s,
+              "ratio": fused_s / hand_s, "per_result_per_s": count / separate_s,
+              "sets": count, "cores": 1, "sine_bound_per_s": count / sine_s,
+              "max_difference": max(float(np.max(np.abs(got[k] - hand[k])
+                                                 / np.maximum(np.abs(hand[k]), 1e-300)))
+                                    for k in BARBELL_FOUR)}
+    if "numba" in backends:
+        try:
+            import numba
+        except ImportError:
+            return report
+        compiled = fused(four, "numba")
+        compiled(**{k: v[:10] for k, v in sets.items()})  # compile before timing
+        numba_s = _median_time(lambda: compiled(**sets), repeats)
+        cores = numba.get_num_threads()
+        report |= {"numba_per_s": count / numba_s, "numba_speedup": hand_s / numba_s,
+                   "cores": cores, "sine_bound_per_s": cores * count / sine_s,
+                   "numba_of_sine_bound": (count / numba_s) / (cores * count / sine_s)}
+    return report
 
 
 def pareto(rows: list[dict]) -> list[dict]:

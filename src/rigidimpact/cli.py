@@ -326,6 +326,7 @@ def _cmd_routh(args: argparse.Namespace) -> int:
         figure = routh_diagram(found, scene.title)
         write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
                    "--plot")
+        _close(figure)
     path = [[float(a), float(b)] for a, b in found.regime.path]
     if args.json:
         _print_json({"regime": found.regime.name, "law": found.law, "mu": float(found.mu),
@@ -485,7 +486,10 @@ def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
     def save(temporary: Path) -> None:
         movie.save(str(temporary), writer=writer)
 
-    write_file(path, save, "--animate")
+    try:
+        write_file(path, save, "--animate")
+    finally:
+        _close(movie._fig)
 
 
 def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
@@ -499,7 +503,76 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
         name = scene.bodies[1].name
         velocity = (f"{name} at O", track.contact_velocity(name))
     figure = trajectories(track.t, track.points(), scene.title, velocity)
-    write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    try:
+        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    finally:
+        _close(figure)
+
+
+def _close(figure: Any) -> None:
+    """Release a figure (pyplot keeps every figure it made until closed)."""
+    import matplotlib.pyplot as plt
+
+    plt.close(figure)
+
+
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    """Evaluate over a grid, chunk by chunk, into DIR/KEY.npy and DIR/summary.json."""
+    import itertools
+    import time
+
+    from rigidimpact.problems import PROBLEMS
+    from rigidimpact.scene import load_scene
+    from rigidimpact.sweep import parse_grid, run_sweep
+
+    derivation = _derivation(args.target)
+    if derivation.outcomes:
+        raise InputError("sweep", "a scene with several contacts is solved with numbers; "
+                         "evaluate it point by point")
+    defaults = load_scene(args.target).values if args.target not in PROBLEMS else {}
+    values, sources = _settings(defaults, args.set)
+    grid = parse_grid(args.grid, derivation.symbols)
+    results = dict(derivation.results)
+    if args.keys:
+        chosen = [k.strip() for k in args.keys.split(",") if k.strip()]
+        unknown = [k for k in chosen if k not in results]
+        if unknown or not chosen:
+            raise InputError("--keys", f"no result {unknown[0] if unknown else ''!r}; the "
+                             f"results are {', '.join(results)}")
+        results = {k: results[k] for k in chosen}
+    fixed_names = [n for n in values if n not in grid]
+    names = list(grid)
+    corners = list(itertools.product(*((a[0], a[-1]) for a in grid.values())))[:64]
+    exact: dict[str, Any] = {}
+    for corner in corners or [()]:  # every value, and the grid's corners, checked
+        point = {n: values[n] for n in fixed_names} | {
+            n: repr(float(x)) for n, x in zip(names, corner, strict=True)}
+        where = dict(sources) | {n: f"--grid {n}" for n in names}
+        exact = derivation.checked(point, where)
+    fixed = {n: float(exact[n]) for n in fixed_names if n in exact}
+    total = 1
+    for axis in grid.values():
+        total *= len(axis)
+    started, last = time.perf_counter(), [-1]
+
+    def progress(done: int, count: int) -> None:
+        if time.perf_counter() - started < 2.0:
+            return  # a short run draws no bar
+        tenth = 100 * done // count
+        if tenth != last[0]:
+            last[0] = tenth
+            _progress_bar(done, count, "parameter sets")
+
+    summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress)
+    if args.json:
+        _print_json(summary)
+        return 0
+    print(f"{summary['sets']} parameter sets ({' x '.join(map(str, summary['shape'])) or 1})"
+          f" in {summary['seconds']:.3g} s with {args.backend}; written to {args.out}/")
+    for key, stat in summary["results"].items():
+        extra = f", {stat['not_finite']} not finite" if stat["not_finite"] else ""
+        print(f"  {key}.npy: from {stat['min']!r} to {stat['max']!r}{extra}")
+    return 0
 
 
 def _progress_bar(done: int, total: int, label: str) -> None:
@@ -603,6 +676,20 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="build/bench", metavar="DIR")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_bench)
+
+    p = sub.add_parser("sweep", help="every result over a grid of parameter sets, into "
+                                     ".npy files (chunked, bounded memory)")
+    p.add_argument("target", metavar="NAME-OR-SCENE")
+    p.add_argument("--grid", action="append", default=[], metavar="NAME=START:STOP:COUNT",
+                   help="a range for a symbol (repeat; the grid is their product)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a value for a symbol (repeat); a scene's [values] are defaults")
+    p.add_argument("--keys", metavar="KEY,KEY", help="only these results (default: all)")
+    p.add_argument("--backend", default="numpy", choices=("numpy", "numba"),
+                   help="numba (an optional extra) compiles one parallel loop")
+    p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.set_defaults(run=_cmd_sweep)
 
     p = sub.add_parser("stability", help="the hard-case suite against mpmath references")
     p.add_argument("--json", action="store_true")

@@ -36,7 +36,8 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
 
-__all__ = ["stable_form", "magnitude", "Kernel", "kernels", "evaluate"]
+__all__ = ["stable_form", "magnitude", "Kernel", "kernels", "evaluate", "Fused", "fused",
+           "BACKENDS", "CHUNK"]
 
 
 def _reverse_pythagoras(expr: sp.Expr) -> sp.Expr:
@@ -173,6 +174,184 @@ def kernels(results: Mapping[str, sp.Expr]) -> dict[str, Kernel]:
     ['V_1fx', 'V_1fy']
     """
     return {key: Kernel.from_expr(expr) for key, expr in results.items()}
+
+
+BACKENDS = ("numpy", "numba")
+CHUNK = 1 << 15  # parameter sets per pass: the temporaries of one pass stay in cache
+
+
+@dataclass(frozen=True)
+class Fused:
+    """All results of a derivation compiled together: one float64 kernel.
+
+    The results are put in their stable forms (:func:`stable_form`, as for
+    :class:`Kernel`) and their common subexpressions are computed once (``sympy.cse``): a
+    sine shared by four results is taken once per parameter set. The work goes chunk by
+    chunk (`chunk` sets at a time), so the temporaries stay in cache and the memory used
+    beyond the results is bounded. The ``numpy`` backend runs whole-chunk array code; the
+    ``numba`` backend (an optional extra) compiles one parallel loop over the sets, with
+    the inputs that are single numbers passed as numbers.
+
+    Call it with keyword arguments (arrays broadcast): it returns ``{key: array}``.
+    :meth:`sweep` evaluates over a grid (the product of 1-D ranges) without ever
+    building the grid, writing into arrays you give (memory-mapped files, say).
+
+    Examples
+    --------
+    >>> from rigidimpact.problems import derive
+    >>> kernel = fused(derive("barbell").results)
+    >>> kernel.arguments
+    ('L', 'M', 'e', 'm', 'theta', 'v_ix')
+    >>> out = kernel(M=1.0, L=1.0, e=1.0, m=2.0, theta=np.zeros(3), v_ix=1.0)
+    >>> out["V_x"].tolist()
+    [1.0, 1.0, 1.0]
+    """
+
+    keys: tuple[str, ...]
+    arguments: tuple[str, ...]
+    stable: tuple[sp.Expr, ...]
+    backend: str = "numpy"
+    chunk: int = CHUNK
+
+    def source(self, scalars: tuple[bool, ...] | None = None) -> str:
+        """The generated Python source (`scalars`: which arguments are single numbers,
+        for the numba loop)."""
+        scalars = scalars or (False,) * len(self.arguments)
+        return _fused_source(self.stable, self.arguments, self.backend, scalars)
+
+    def _function(self, scalars: tuple[bool, ...]):
+        scalars = scalars if self.backend == "numba" else (False,) * len(self.arguments)
+        key = (self.stable, self.arguments, self.backend, scalars)
+        if key not in _CACHE:
+            _CACHE[key] = _fused_function(self.source(scalars), self.backend)
+        return _CACHE[key]
+
+    def _run(self, inputs: list, outputs: list[np.ndarray]) -> None:
+        """One chunk: `inputs` are 1-D arrays of the chunk's length or single floats."""
+        scalars = tuple(not isinstance(a, np.ndarray) for a in inputs)
+        function = self._function(scalars)
+        if self.backend == "numba":
+            function(*inputs, *outputs)
+            return
+        for out, value in zip(outputs, function(*inputs), strict=True):
+            out[...] = value
+
+    def _step(self) -> int:
+        return self.chunk if self.backend == "numpy" else max(self.chunk, 1 << 20)
+
+    def __call__(self, progress=None, **values: Any) -> dict[str, np.ndarray]:
+        """Every result over the broadcast inputs; `progress(done, total)` is called
+        after each chunk when given."""
+        missing = [n for n in self.arguments if n not in values]
+        if missing:
+            raise InputError(missing[0], "a value is needed for every argument")
+        given = [np.asarray(values[n], dtype=np.float64) for n in self.arguments]
+        try:
+            shape = np.broadcast_shapes(*(a.shape for a in given)) if given else ()
+        except ValueError:
+            raise InputError("values", "the arrays do not broadcast together: "
+                             + ", ".join(f"{n} {a.shape}" for n, a in
+                                         zip(self.arguments, given, strict=True))) from None
+        total = int(np.prod(shape))
+        flat = [float(a.reshape(-1)[0]) if a.size == 1 else
+                np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1) for a in given]
+        outputs = [np.empty(total) for _ in self.keys]
+        step = self._step()
+        for start in range(0, total, step):
+            part = slice(start, min(start + step, total))
+            self._run([a if isinstance(a, float) else a[part] for a in flat],
+                      [o[part] for o in outputs])
+            if progress is not None:
+                progress(part.stop, total)
+        return {k: o.reshape(shape) for k, o in zip(self.keys, outputs, strict=True)}
+
+    def sweep(self, grid: Mapping[str, np.ndarray], fixed: Mapping[str, float],
+              outputs: Mapping[str, np.ndarray], progress=None) -> None:
+        """Every result over the product of the 1-D ranges in `grid` (the last varies
+        fastest), the other arguments `fixed`, written into `outputs` (flat arrays of the
+        grid's size, one per key): only one chunk of inputs exists at a time."""
+        names = list(grid)
+        axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
+        shape = tuple(len(a) for a in axes)
+        total = int(np.prod(shape))
+        step = self._step()
+        for start in range(0, total, step):
+            index = np.arange(start, min(start + step, total))
+            coordinates = np.unravel_index(index, shape)
+            chunk = {n: a[c] for n, a, c in zip(names, axes, coordinates, strict=True)}
+            inputs = [chunk[n] if n in chunk else float(fixed[n]) for n in self.arguments]
+            self._run(inputs, [np.asarray(outputs[k])[start:start + len(index)]
+                               for k in self.keys])
+            if progress is not None:
+                progress(start + len(index), total)
+
+
+def fused(results: Mapping[str, sp.Expr], backend: str = "numpy",
+          chunk: int = CHUNK) -> Fused:
+    """One fused kernel for all of `results` (see :class:`Fused`).
+
+    Raises
+    ------
+    InputError
+        An unknown backend, or ``numba`` when it is not installed.
+    """
+    if backend not in BACKENDS:
+        raise InputError("--backend", f"must be one of {', '.join(BACKENDS)}, got "
+                         f"{backend!r}")
+    if backend == "numba":
+        try:
+            import numba  # noqa: F401
+        except ImportError:
+            raise InputError("--backend", "numba is not installed: pip install -e "
+                             "'.[fast]'") from None
+    keys = tuple(results)
+    exprs = tuple(stable_form(sp.sympify(results[k])) for k in keys)
+    names = sorted({s.name for e in exprs for s in e.free_symbols})
+    return Fused(keys, tuple(names), exprs, backend, chunk)
+
+
+def _fused_source(stable: tuple[sp.Expr, ...], arguments: tuple[str, ...],
+                  backend: str, scalars: tuple[bool, ...]) -> str:
+    """Python source of the fused kernel: shared subexpressions first, then results."""
+    from sympy.printing.numpy import NumPyPrinter
+    from sympy.printing.pycode import PythonCodePrinter
+
+    dummies = {s: sp.Symbol(f"a{arguments.index(s.name)}")
+               for e in stable for s in e.free_symbols}
+    exprs = [e.xreplace(dummies) for e in stable]
+    shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
+    args = [f"a{k}" for k in range(len(arguments))]
+    if backend == "numba":
+        printer = PythonCodePrinter({"fully_qualified_modules": True})
+        outs = [f"out{k}" for k in range(len(exprs))]
+        lines = [f"def kernel({', '.join([a + '_' for a in args] + outs)}):",
+                 f"    for i in numba.prange({outs[0]}.shape[0]):"]
+        lines += [f"        {a} = {a}_" + ("" if scalar else "[i]")
+                  for a, scalar in zip(args, scalars, strict=True)]
+        lines += [f"        {t} = {printer.doprint(v)}" for t, v in shared]
+        lines += [f"        out{k}[i] = {printer.doprint(r)}" for k, r in enumerate(reduced)]
+        return "\n".join(lines) + "\n"
+    printer = NumPyPrinter({"fully_qualified_modules": True})
+    lines = [f"def kernel({', '.join(args)}):"]
+    lines += [f"    {t} = {printer.doprint(v)}" for t, v in shared]
+    lines += [f"    return ({', '.join(printer.doprint(r) for r in reduced)},)"]
+    return "\n".join(lines) + "\n"
+
+
+def _fused_function(source: str, backend: str):
+    """Compile generated source (our own printer's output from exact expressions, never
+    text from a user's file)."""
+    import math
+
+    namespace: dict[str, Any] = {"numpy": np, "math": math}
+    if backend == "numba":
+        import numba
+
+        namespace["numba"] = numba
+        exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
+        return numba.njit(parallel=True)(namespace["kernel"])
+    exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
+    return namespace["kernel"]
 
 
 FALLBACK_DIGITS = 40  # where float64 cannot hold a result or a step toward it

@@ -1,9 +1,10 @@
 """The hard-case suite: float64 kernels against 50-digit references at extreme inputs.
 
-Every case evaluates each result with the vectorised float64 kernel and compares it with
-the *exact* expression evaluated by mpmath at 50 digits from the same float inputs (taken
-exactly, so the reference answers the question the float code was asked). Two errors are
-reported per quantity:
+Every case evaluates each result in float64 (by every backend: each result's own kernel,
+the fused kernel of all results, and the fused numba loop when numba is installed) and
+compares it with the *exact* expression evaluated by mpmath at 50 digits from the same
+float inputs (taken exactly, so the reference answers the question the float code was
+asked). Two errors are reported per quantity, the worst over the backends:
 
 * ``rel_error``: ``|float - exact| / |exact|``;
 * ``scaled_error``: ``|float - exact| / magnitude``, where the magnitude is the exact
@@ -31,10 +32,10 @@ from pathlib import Path
 import mpmath
 import numpy as np
 
-from rigidimpact.numeric import Kernel, kernels
+from rigidimpact.numeric import Kernel, fused, kernels
 from rigidimpact.problems import derive
 
-__all__ = ["Case", "CASES", "run_suite", "BOUND"]
+__all__ = ["Case", "CASES", "run_suite", "BOUND", "available_backends"]
 
 BOUND = 1e-13  # a few units in the last place of float64, relative to the magnitude
 DIGITS = 50
@@ -115,17 +116,40 @@ def _approaching(problem: str, point: Mapping[str, float]) -> bool:
     return True
 
 
-def _evaluate(kernel: Kernel, points: list[dict[str, float]]) -> list[tuple]:
-    """(float64 value, exact value, magnitude) at each point."""
-    arrays = {n: np.array([p[n] for p in points]) for n in kernel.arguments}
-    floats = np.broadcast_to(kernel(**arrays), (len(points),))
+def _references(kernel: Kernel, points: list[dict[str, float]]) -> list[tuple]:
+    """(exact value, magnitude) at each point, at 50 digits."""
     rows = []
-    for p, value in zip(points, floats, strict=True):
+    for p in points:
         args = {n: p[n] for n in kernel.arguments}
-        exact = kernel.reference(DIGITS, **args)
-        scale = kernel.scale(DIGITS, **args)
-        rows.append((float(value), exact, scale))
+        rows.append((kernel.reference(DIGITS, **args), kernel.scale(DIGITS, **args)))
     return rows
+
+
+def _floats(results: Mapping, points: list[dict[str, float]],
+            backends: Sequence[str]) -> dict[str, dict[str, np.ndarray]]:
+    """Every backend's float64 values of every result at the points."""
+    out: dict[str, dict[str, np.ndarray]] = {}
+    single = kernels(results)
+    for backend in backends:
+        if backend == "kernel":  # each result its own kernel
+            out[backend] = {}
+            for key, kernel in single.items():
+                arrays = {n: np.array([p[n] for p in points]) for n in kernel.arguments}
+                out[backend][key] = np.broadcast_to(kernel(**arrays), (len(points),))
+            continue
+        kernel = fused(results, "numpy" if backend == "fused" else backend)
+        out[backend] = kernel(**{n: np.array([p.get(n, 0.0) for p in points])
+                                 for n in kernel.arguments})
+    return out
+
+
+def available_backends() -> tuple[str, ...]:
+    """``kernel`` (one per result), ``fused`` (NumPy) and ``numba`` when installed."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return ("kernel", "fused")
+    return ("kernel", "fused", "numba")
 
 
 def _errors(value: float, exact: mpmath.mpf, scale: mpmath.mpf) -> tuple[float, float]:
@@ -138,13 +162,27 @@ def _errors(value: float, exact: mpmath.mpf, scale: mpmath.mpf) -> tuple[float, 
     return rel, scaled
 
 
-def run_suite(problems: Iterable[str] | None = None) -> dict:
-    """Run the hard cases; return ``{"cases", "worst", "rows", "bound"}``.
+_REPORTS: dict[tuple, dict] = {}
+
+
+def run_suite(problems: Iterable[str] | None = None,
+              backends: Sequence[str] | None = None) -> dict:
+    """Run the hard cases; return ``{"cases", "worst", "rows", "bound", "backends"}``.
 
     Each row is one quantity of one problem: the number of cases, the worst relative and
-    scaled errors, the largest condition number met, and the inputs of the worst case.
+    scaled errors over every backend, the largest condition number met, the inputs of the
+    worst case, and ``by_backend`` (each backend's worst errors). The 50-digit references
+    are computed once and shared by the backends; a report is kept for the rest of the
+    process, so asking twice costs nothing.
     """
-    chosen = set(problems) if problems is not None else None
+    backends = tuple(backends or available_backends())
+    key = (None if problems is None else tuple(sorted(problems)), backends)
+    if key not in _REPORTS:
+        _REPORTS[key] = _run(None if problems is None else set(problems), backends)
+    return _REPORTS[key]
+
+
+def _run(chosen: set[str] | None, backends: tuple[str, ...]) -> dict:
     cases = [c for c in CASES + _scene_cases()
              if chosen is None or c.problem in chosen or Path(c.problem).name in chosen]
     rows, total = [], 0
@@ -154,25 +192,36 @@ def run_suite(problems: Iterable[str] | None = None) -> dict:
                   for combo in itertools.product(*case.grid.values())]
         points = [p for p in points if _approaching(case.problem, p)]
         total += len(points)
-        for quantity, kernel in kernels(_results(case.problem)).items():
+        results = _results(case.problem)
+        floats = _floats(results, points, backends)
+        for quantity, kernel in kernels(results).items():
             if not kernel.arguments:
                 continue  # a constant (a spin that cannot change): nothing to round
-            evaluated = _evaluate(kernel, points)
-            worst_rel, worst_scaled, worst_condition, worst_at = 0.0, 0.0, 1.0, points[0]
-            for (value, exact, scale), point in zip(evaluated, points, strict=True):
-                rel, scaled = _errors(value, exact, scale)
-                worst_rel = max(worst_rel, rel)
-                if exact != 0:
-                    worst_condition = max(worst_condition, float(scale / abs(exact)))
-                if scaled >= worst_scaled:
-                    worst_scaled, worst_at = scaled, point
+            references = _references(kernel, points)
+            by_backend = {}
+            worst_condition, worst_at = 1.0, points[0]
+            for backend in backends:
+                worst_rel, worst_scaled = 0.0, 0.0
+                values = floats[backend][quantity]
+                for value, (exact, scale), point in zip(values, references, points,
+                                                        strict=True):
+                    rel, scaled = _errors(float(value), exact, scale)
+                    worst_rel = max(worst_rel, rel)
+                    if exact != 0:
+                        worst_condition = max(worst_condition, float(scale / abs(exact)))
+                    if scaled >= worst_scaled and backend == backends[0]:
+                        worst_at = point
+                    worst_scaled = max(worst_scaled, scaled)
+                by_backend[backend] = {"rel_error": worst_rel, "scaled_error": worst_scaled}
+            worst_rel = max(b["rel_error"] for b in by_backend.values())
+            worst_scaled = max(b["scaled_error"] for b in by_backend.values())
             rows.append({"problem": Path(case.problem).name if case.problem.endswith(".toml")
                          else case.problem, "quantity": quantity, "cases": len(points),
                          "rel_error": worst_rel, "scaled_error": worst_scaled,
                          "condition": worst_condition, "worst_at": worst_at,
-                         "passed": worst_scaled <= BOUND})
+                         "by_backend": by_backend, "passed": worst_scaled <= BOUND})
     worst = max(rows, key=lambda r: r["scaled_error"])
     return {"cases": total,
             "worst": {"quantity": f"{worst['problem']}.{worst['quantity']}",
                       "rel_error": worst["scaled_error"]},
-            "bound": BOUND, "rows": rows}
+            "bound": BOUND, "backends": list(backends), "rows": rows}

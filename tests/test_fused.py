@@ -1,0 +1,117 @@
+"""The fused kernel: the same numbers as the per-result kernels, chunked, swept."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from rigidimpact.cli import main
+from rigidimpact.errors import InputError
+from rigidimpact.numeric import fused, kernels
+from rigidimpact.problems import derive
+
+
+
+def _has_numba() -> bool:
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+BACKENDS = ["numpy"] + (["numba"] if _has_numba() else [])
+
+
+def _random_sets(count: int, seed: int = 1) -> dict[str, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    return {"M": 10 ** rng.uniform(-6, 6, count), "m": 10 ** rng.uniform(-6, 6, count),
+            "L": 10 ** rng.uniform(-3, 3, count), "theta": rng.uniform(0, np.pi, count),
+            "e": rng.uniform(0, 1, count), "v_ix": rng.uniform(-2, 2, count)}
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("problem", ["barbell", "sticking", "discs", "two-body"])
+def test_fused_agrees_with_each_results_own_kernel(problem, backend):
+    # the same stable forms, with shared subexpressions: within a few ulps of the scale
+    results = derive(problem).results
+    kernel = fused(results, backend, chunk=1000)
+    rng = np.random.default_rng(7)
+    sets = {n: rng.uniform(0.5, 2.0, 5000) for n in kernel.arguments}
+    if "e" in sets:
+        sets["e"] = rng.uniform(0, 1, 5000)
+    got = kernel(**sets)
+    for key, single in kernels(results).items():
+        want = np.broadcast_to(single(**{n: sets[n] for n in single.arguments}), (5000,))
+        assert np.allclose(got[key], want, rtol=1e-13, atol=1e-15), key
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_chunks_scalars_and_broadcasting_do_not_change_the_numbers(backend):
+    results = derive("barbell").results
+    sets = _random_sets(10_000)
+    whole = fused(results, backend, chunk=1 << 20)(**sets)
+    small = fused(results, backend, chunk=333)(**sets)
+    for key in whole:
+        assert np.array_equal(whole[key], small[key]), key
+    # a single number for an input is the same as an array of it
+    point = fused(results, backend)(**(sets | {"L": 2.0, "m": 1.0}))
+    spread = fused(results, backend)(**(sets | {"L": np.full(10_000, 2.0),
+                                                "m": np.full(10_000, 1.0)}))
+    for key in point:
+        assert np.array_equal(point[key], spread[key]), key
+    grid = fused(results, backend)(theta=np.linspace(0, 3, 7)[:, None],
+                                   M=sets["M"][:5][None, :], m=1.0, L=1.0, e=0.5, v_ix=1.0)
+    assert grid["V_x"].shape == (7, 5)
+    with pytest.raises(InputError, match="do not broadcast"):
+        fused(results, backend)(**(sets | {"theta": np.zeros(3)}))
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_sweep_writes_the_grid_without_building_it(backend, tmp_path):
+    # 40 x 30 sets; every value must equal the fused kernel on the materialised grid
+    theta, big = np.linspace(0, np.pi / 2, 40), np.linspace(0.1, 10, 30)
+    folder = tmp_path / "out"
+    argv = ["sweep", "barbell", "--grid", "theta=0:pi/2:40", "--grid", "M=0.1:10:30",
+            "--set", "m=1", "--set", "e=1/2", "--set", "v_ix=1", "--set", "L=2",
+            "--backend", backend, "--out", str(folder), "--json"]
+    assert main(argv) == 0
+    T, B = np.meshgrid(theta, big, indexing="ij")
+    want = fused(derive("barbell").results)(theta=T, M=B, m=1.0, e=0.5, v_ix=1.0, L=2.0)
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["shape"] == [40, 30] and summary["sets"] == 1200
+    for key, values in want.items():
+        got = np.load(folder / f"{key}.npy").reshape(40, 30)
+        assert np.allclose(got, values, rtol=1e-15, atol=0), key
+        assert summary["results"][key]["max"] == pytest.approx(float(values.max()))
+
+
+def test_sweep_refuses_bad_grids_in_one_line(tmp_path, capsys):
+    base = ["sweep", "barbell", "--set", "m=1", "--set", "v_ix=1", "--set", "L=1",
+            "--set", "theta=0", "--out", str(tmp_path / "x")]
+    for grid, words in ((["--grid", "e=0:2:10", "--set", "M=1"], "must lie in [0, 1]"),
+                        (["--grid", "e=0:1"], "NAME=START:STOP:COUNT"),
+                        (["--grid", "M=1:2:ten", "--set", "e=0"], "whole number"),
+                        (["--grid", "q=1:2:3", "--set", "e=0", "--set", "M=1"], "not a symbol"),
+                        (["--set", "e=0"], "needs values for: M")):
+        assert main(base + grid) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and words in err, (grid, err)
+        assert not (tmp_path / "x").exists()
+
+
+def test_numba_missing_is_one_line(monkeypatch):
+    import builtins
+
+    real = builtins.__import__
+
+    def no_numba(name, *args, **kwargs):
+        if name == "numba":
+            raise ImportError("no numba")
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_numba)
+    with pytest.raises(InputError, match="numba is not installed"):
+        fused(derive("discs").results, "numba")
