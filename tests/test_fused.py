@@ -13,7 +13,6 @@ from rigidimpact.numeric import fused, kernels
 from rigidimpact.problems import derive
 
 
-
 def _has_numba() -> bool:
     try:
         import numba  # noqa: F401
