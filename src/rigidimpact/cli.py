@@ -599,7 +599,14 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         raise InputError("--out", f"cannot make {str(out)!r}: {exc.strerror or exc}") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise InputError("--out", f"cannot write in {str(out)!r} (permission denied)")
-    report = run_bench(quick=args.quick, progress=_progress_bar)
+    from rigidimpact.bench import FAMILIES
+
+    unknown = [f for f in args.family if f not in FAMILIES]
+    if unknown:
+        raise InputError("--family", f"unknown family {unknown[0]!r}; the families are "
+                         f"{', '.join(FAMILIES)}")
+    report = run_bench(quick=args.quick, families=args.family or FAMILIES,
+                       progress=_progress_bar)
     try:
         paths = write_outputs(report, out)
     except OSError as exc:
@@ -673,6 +680,9 @@ def _build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="accuracy against time for every method")
     p.add_argument("--quick", action="store_true", help="a smaller grid (under 2 minutes)")
+    p.add_argument("--family", action="append", default=[], metavar="NAME",
+                   help="only this family of methods (repeat); the throughput of the "
+                        "fused kernels is always measured")
     p.add_argument("--out", default="build/bench", metavar="DIR")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_bench)

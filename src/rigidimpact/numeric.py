@@ -177,7 +177,11 @@ def kernels(results: Mapping[str, sp.Expr]) -> dict[str, Kernel]:
 
 
 BACKENDS = ("numpy", "numba")
+# computed by NumPy's vectorised routines before the numba loop (which would call libm)
+TRANSCENDENTAL = (sp.sin, sp.cos, sp.tan, sp.exp, sp.log, sp.asin, sp.acos, sp.atan,
+                  sp.sinh, sp.cosh, sp.tanh)
 CHUNK = 1 << 15  # parameter sets per pass: the temporaries of one pass stay in cache
+NUMBA_CHUNK = 1 << 16  # per worker thread: large enough to pay for the hand-over
 
 
 @dataclass(frozen=True)
@@ -231,13 +235,31 @@ class Fused:
         scalars = tuple(not isinstance(a, np.ndarray) for a in inputs)
         function = self._function(scalars)
         if self.backend == "numba":
-            function(*inputs, *outputs)
+            pre, loop = function
+            loop(*inputs, *pre(*inputs), *outputs)
             return
         for out, value in zip(outputs, function(*inputs), strict=True):
             out[...] = value
 
-    def _step(self) -> int:
-        return self.chunk if self.backend == "numpy" else max(self.chunk, 1 << 20)
+    def _chunks(self, total: int, work, progress) -> None:
+        """``work(start, stop)`` over every chunk: in order (NumPy), or spread over the
+        cores (numba: its loop releases the GIL, as do NumPy's functions)."""
+        starts = range(0, total, self.chunk)
+        if self.backend != "numba" or total <= self.chunk:
+            for start in starts:
+                stop = min(start + self.chunk, total)
+                work(start, stop)
+                if progress is not None:
+                    progress(stop, total)
+            return
+        def job(start: int) -> int:
+            stop = min(start + self.chunk, total)
+            work(start, stop)
+            return stop
+
+        for stop in _pool().map(job, starts):  # in order, so the progress only grows
+            if progress is not None:
+                progress(stop, total)
 
     def __call__(self, progress=None, **values: Any) -> dict[str, np.ndarray]:
         """Every result over the broadcast inputs; `progress(done, total)` is called
@@ -256,34 +278,46 @@ class Fused:
         flat = [float(a.reshape(-1)[0]) if a.size == 1 else
                 np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1) for a in given]
         outputs = [np.empty(total) for _ in self.keys]
-        step = self._step()
-        for start in range(0, total, step):
-            part = slice(start, min(start + step, total))
-            self._run([a if isinstance(a, float) else a[part] for a in flat],
-                      [o[part] for o in outputs])
-            if progress is not None:
-                progress(part.stop, total)
+
+        def work(start: int, stop: int) -> None:
+            self._run([a if isinstance(a, float) else a[start:stop] for a in flat],
+                      [o[start:stop] for o in outputs])
+
+        self._chunks(total, work, progress)
         return {k: o.reshape(shape) for k, o in zip(self.keys, outputs, strict=True)}
 
     def sweep(self, grid: Mapping[str, np.ndarray], fixed: Mapping[str, float],
               outputs: Mapping[str, np.ndarray], progress=None) -> None:
         """Every result over the product of the 1-D ranges in `grid` (the last varies
         fastest), the other arguments `fixed`, written into `outputs` (flat arrays of the
-        grid's size, one per key): only one chunk of inputs exists at a time."""
+        grid's size, one per key): only the chunks at work have their inputs in memory."""
         names = list(grid)
         axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
         shape = tuple(len(a) for a in axes)
         total = int(np.prod(shape))
-        step = self._step()
-        for start in range(0, total, step):
-            index = np.arange(start, min(start + step, total))
-            coordinates = np.unravel_index(index, shape)
+        targets = [np.asarray(outputs[k]) for k in self.keys]
+
+        def work(start: int, stop: int) -> None:
+            coordinates = np.unravel_index(np.arange(start, stop), shape)
             chunk = {n: a[c] for n, a, c in zip(names, axes, coordinates, strict=True)}
             inputs = [chunk[n] if n in chunk else float(fixed[n]) for n in self.arguments]
-            self._run(inputs, [np.asarray(outputs[k])[start:start + len(index)]
-                               for k in self.keys])
-            if progress is not None:
-                progress(start + len(index), total)
+            self._run(inputs, [t[start:stop] for t in targets])
+
+        self._chunks(total, work, progress)
+
+
+_POOL: list = []
+
+
+def _pool():
+    """Worker threads for the numba backend, one per core numba would use."""
+    if not _POOL:
+        from concurrent.futures import ThreadPoolExecutor
+
+        import numba
+
+        _POOL.append(ThreadPoolExecutor(max_workers=numba.get_num_threads()))
+    return _POOL[0]
 
 
 def fused(results: Mapping[str, sp.Expr], backend: str = "numpy",
@@ -304,6 +338,7 @@ def fused(results: Mapping[str, sp.Expr], backend: str = "numpy",
         except ImportError:
             raise InputError("--backend", "numba is not installed: pip install -e "
                              "'.[fast]'") from None
+        chunk = max(chunk, NUMBA_CHUNK)
     keys = tuple(results)
     exprs = tuple(stable_form(sp.sympify(results[k])) for k in keys)
     names = sorted({s.name for e in exprs for s in e.free_symbols})
@@ -319,18 +354,31 @@ def _fused_source(stable: tuple[sp.Expr, ...], arguments: tuple[str, ...],
     dummies = {s: sp.Symbol(f"a{arguments.index(s.name)}")
                for e in stable for s in e.free_symbols}
     exprs = [e.xreplace(dummies) for e in stable]
-    shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
     args = [f"a{k}" for k in range(len(arguments))]
-    if backend == "numba":
+    if backend == "numba":  # NumPy's vectorised sines first, then one compiled loop
+        found = sorted({a for e in exprs for a in e.atoms(*TRANSCENDENTAL)
+                        if not a.args[0].has(*TRANSCENDENTAL)}, key=sp.default_sort_key)
+        values = {a: sp.Symbol(f"f{k}") for k, a in enumerate(found)}
+        exprs = [e.xreplace(values) for e in exprs]
+        shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
+        numpy_printer = NumPyPrinter({"fully_qualified_modules": True})
+        pre = [f"def pre({', '.join(args)}):",
+               "    return (" + "".join(f"{numpy_printer.doprint(a)}, " for a in found) + ")"]
+        scalar_of = dict(zip(args, scalars, strict=True))
+        loose = [all(scalar_of[s.name] for s in a.free_symbols) for a in found]
         printer = PythonCodePrinter({"fully_qualified_modules": True})
         outs = [f"out{k}" for k in range(len(exprs))]
-        lines = [f"def kernel({', '.join([a + '_' for a in args] + outs)}):",
-                 f"    for i in numba.prange({outs[0]}.shape[0]):"]
+        inputs = [a + "_" for a in args] + [f"f{k}_" for k in range(len(found))]
+        lines = [f"def kernel({', '.join(inputs + outs)}):",
+                 f"    for i in range({outs[0]}.shape[0]):"]
         lines += [f"        {a} = {a}_" + ("" if scalar else "[i]")
                   for a, scalar in zip(args, scalars, strict=True)]
+        lines += [f"        f{k} = f{k}_" + ("" if scalar else "[i]")
+                  for k, scalar in enumerate(loose)]
         lines += [f"        {t} = {printer.doprint(v)}" for t, v in shared]
         lines += [f"        out{k}[i] = {printer.doprint(r)}" for k, r in enumerate(reduced)]
-        return "\n".join(lines) + "\n"
+        return "\n".join(pre) + "\n\n\n" + "\n".join(lines) + "\n"
+    shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
     printer = NumPyPrinter({"fully_qualified_modules": True})
     lines = [f"def kernel({', '.join(args)}):"]
     lines += [f"    {t} = {printer.doprint(v)}" for t, v in shared]
@@ -349,7 +397,7 @@ def _fused_function(source: str, backend: str):
 
         namespace["numba"] = numba
         exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
-        return numba.njit(parallel=True)(namespace["kernel"])
+        return namespace["pre"], numba.njit(nogil=True)(namespace["kernel"])
     exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
     return namespace["kernel"]
 
