@@ -203,3 +203,19 @@ def test_simulate_animates_the_restrike_to_a_gif(tmp_path, capsys):
     assert not [p for p in tmp_path.iterdir() if p.name != "restrike.gif"]  # no leftovers
     assert main(["simulate", scene, "--animate", str(tmp_path / "film.txt")]) == 2
     assert "--animate: expected a .gif or .mp4" in capsys.readouterr().err
+
+
+def test_start_up_imports_only_what_is_needed():
+    # `import rigidimpact` and `rigidimpact --help` pull in neither SymPy's heavy
+    # neighbours nor the plotting and integration libraries (issue: fast start)
+    import subprocess
+    import sys
+
+    script = ("import sys, rigidimpact\n"
+              "from rigidimpact.cli import _build_parser\n"
+              "_build_parser().format_help()\n"
+              "print(sorted(m for m in ('scipy', 'matplotlib', 'sympy', 'numba', 'mpmath')"
+              " if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
