@@ -343,6 +343,30 @@ class Impact:
         normal, tangential = (tidy(x) for x in matrix.LUsolve(rhs))
         return self._solved_by(core, (normal, tangential))
 
+    def in_terms_of(self, normal: sp.Symbol) -> dict[sp.Symbol, sp.Expr]:
+        """Each unknown motion after a smooth impact written with its normal impulse
+        left as the symbol `normal` (u+ = u- + M^-1 J^T P, no elimination needed).
+
+        Examples
+        --------
+        >>> from rigidimpact.bodies import Body
+        >>> J = sp.Symbol("J")
+        >>> found = Impact(Body.particle(2, (1, 0), "a"), Body.particle(3, name="b"),
+        ...                Contact()).in_terms_of(J)
+        >>> found
+        {V_1fx: 1 - J/2, V_1fy: 0, V_2fx: J/3, V_2fy: 0}
+        """
+        core = ImpulseProblem(self.before)
+        kicked = core.bodies_after(sp.ImmutableMatrix([normal, 0]))
+        values = {}
+        for state, moved in zip(self.after, kicked, strict=True):
+            if state.support == "free":
+                values[state.velocity[0]] = sp.expand(moved.velocity[0])
+                values[state.velocity[1]] = sp.expand(moved.velocity[1])
+            if state.support != "fixed" and isinstance(state.spin, sp.Symbol):
+                values[state.spin] = sp.expand(sp.sympify(moved.spin))
+        return values
+
     def _solved_by(self, core: ImpulseProblem, impulse: tuple[sp.Expr, sp.Expr],
                    **extra) -> Solution:
         """The solution that a known impulse at O gives."""

@@ -589,10 +589,11 @@ def two_body() -> Derivation:
     impact = two_body_impact()
     solution = impact.solve()
     results = {str(u): solution.values[u] for u in impact.unknowns}
-    # the normal impulse J collects the long common factor of every result
+    # the normal impulse J collects the long common factor of every result: written
+    # straight from the core (u+ = u- + M^-1 J^T J), not by eliminating e again
     J = symbol("J")
-    named = {key: sp.expand(recognise(expr, J, solution.normal_impulse, e))
-             for key, expr in results.items() if expr.has(e)}
+    by_impulse = impact.in_terms_of(J)
+    named = {str(u): by_impulse[u] for u in impact.unknowns if results[str(u)].has(e)}
     return Derivation(
         "two-body",
         "Two rigid bodies, smooth contact (section 3)",
