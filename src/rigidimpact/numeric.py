@@ -180,7 +180,7 @@ BACKENDS = ("numpy", "numba")
 # computed by NumPy's vectorised routines before the numba loop (which would call libm)
 TRANSCENDENTAL = (sp.sin, sp.cos, sp.tan, sp.exp, sp.log, sp.asin, sp.acos, sp.atan,
                   sp.sinh, sp.cosh, sp.tanh)
-CHUNK = 1 << 15  # parameter sets per pass: the temporaries of one pass stay in cache
+CHUNK = 1 << 13  # parameter sets per pass: the temporaries of one pass stay in cache
 NUMBA_CHUNK = 1 << 16  # per worker thread: large enough to pay for the hand-over
 
 
