@@ -275,12 +275,15 @@ class Fused:
                              + ", ".join(f"{n} {a.shape}" for n, a in
                                          zip(self.arguments, given, strict=True))) from None
         total = int(np.prod(shape))
-        flat = [float(a.reshape(-1)[0]) if a.size == 1 else
+        # a single number stays one: a float for the numba loop, a NumPy scalar for the
+        # NumPy code (whose arithmetic, unlike Python's, obeys np.errstate)
+        single = float if self.backend == "numba" else np.float64
+        flat = [single(a.reshape(-1)[0]) if a.size == 1 else
                 np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1) for a in given]
         outputs = [np.empty(total) for _ in self.keys]
 
         def work(start: int, stop: int) -> None:
-            self._run([a if isinstance(a, float) else a[start:stop] for a in flat],
+            self._run([a if not isinstance(a, np.ndarray) else a[start:stop] for a in flat],
                       [o[start:stop] for o in outputs])
 
         self._chunks(total, work, progress)
@@ -418,6 +421,22 @@ def _float_point(kernel: Kernel, args: Mapping[str, Any]) -> float | None:
     return value if np.isfinite(value) else None
 
 
+def _fused_point(results: Mapping[str, sp.Expr], values: Mapping[str, Any]) -> dict | None:
+    """Every result at one point through one fused kernel, or None where float64
+    overflows, underflows or divides by zero on the way (then each result is redone)."""
+    key = ("point", tuple(results.items()))
+    if key not in _CACHE:
+        _CACHE[key] = fused(results)
+    kernel = _CACHE[key]
+    try:
+        with np.errstate(over="raise", under="raise", invalid="raise", divide="raise"):
+            found = kernel(**{n: float(values[n]) for n in kernel.arguments})
+    except (OverflowError, FloatingPointError, ZeroDivisionError):
+        return None
+    numbers = {k: float(v) for k, v in found.items()}
+    return numbers if all(np.isfinite(v) for v in numbers.values()) else None
+
+
 def _mp_point(kernel: Kernel, key: str, args: Mapping[str, Any], dps: int) -> mpmath.mpf:
     """The stable form in mpmath; refuse a result that is undefined at these values."""
     with mpmath.workdps(dps + 10):
@@ -454,6 +473,10 @@ def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, Any],
     mpf('1.0e+400')
     """
     out: dict[str, Any] = {}
+    if not dps:  # every result at once through the fused kernel, when float64 suffices
+        together = _fused_point(results, values)
+        if together is not None:
+            return together
     for key, kernel in kernels(results).items():
         args = {n: values[n] for n in kernel.arguments}
         if dps:
