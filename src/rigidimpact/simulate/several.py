@@ -56,9 +56,6 @@ from rigidimpact.simulate.planner import make_plan
 
 __all__ = ["run_several", "Watch", "watches", "SeveralTrack"]
 
-SAMPLES = 240  # trajectory samples for plots and animations
-
-
 @dataclass(frozen=True)
 class Watch:
     """How one contact is watched after the impact: the first time it closes again."""
@@ -72,8 +69,9 @@ class Watch:
 class SeveralTrack:
     """Closed-form flight of every moving body from the impact to ``t_end``.
 
-    ``points()`` gives each body's centre, and for a body without a drawn shape (``rigid``)
-    also its contact points, so a rod given by its inertia shows its ends.
+    ``points()`` gives what a one-contact run's track gives (each body's centre, a
+    segment's ends) and, for a body without a drawn shape (``rigid``), its contact points
+    too, so a rod given by its inertia shows its ends.
     """
 
     flyers: tuple[Flyer, ...]
@@ -81,18 +79,17 @@ class SeveralTrack:
     t_end: float
 
     @property
+    def _track(self):
+        from rigidimpact.simulate.runner import FlightTrack
+
+        return FlightTrack(self.flyers, self.t_end)
+
+    @property
     def t(self) -> np.ndarray:
-        return np.linspace(0.0, self.t_end, SAMPLES) if self.t_end > 0 else np.zeros(1)
+        return self._track.t
 
     def points(self) -> dict[str, np.ndarray]:
-        out = {}
-        for f in self.flyers:
-            if f.ends is not None:
-                ends = [f.ends_at(t) for t in self.t]
-                for k, label in enumerate(f.labels):
-                    out[f"{f.name}.{label}"] = np.array([pair[k] for pair in ends])
-            else:
-                out[f.name] = np.array([f.at(t)[0] for t in self.t])
+        out = self._track.points()
         for label, index, offset in self.marks:
             f = self.flyers[index]
             out[label] = np.array([_material(f, offset, t) for t in self.t])
