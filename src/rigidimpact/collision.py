@@ -84,7 +84,7 @@ FRICTION_LAWS = {
 
 
 _STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
-          "slide-": "slides"}
+          "slide-": "slides", "mixed": "differs between the solutions"}
 
 
 def rule_laws(rule: str, frictional: bool = False) -> str:
@@ -442,9 +442,8 @@ class Collision:
             # every mixture of the solutions found is one too; the mean is shown
             impulses = (sum((f for f, _ in found), sp.zeros(2 * n, 1)) / len(found)
                         ).applyfunc(tidy)
-            pattern = tuple("stick" if all(p[i] == "stick" for _, p in found) else
-                            pattern[i] if all(p[i] == pattern[i] for _, p in found) else
-                            "stick" for i in range(n))
+            pattern = tuple(pattern[i] if all(p[i] == pattern[i] for _, p in found)
+                            else "mixed" for i in range(n))
             notes = (f"the motion after is unique but the impulses are not: {len(found)} "
                      "ways to share them between the contacts fit the rule, and every "
                      "mixture of them; shown: their mean",)
@@ -455,9 +454,9 @@ class Collision:
                          ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
         normal = impulses[:n, 0]
         return Outcome("simultaneous", (), self.bodies, self._after(u),
-                       self._named(normal), tuple(t.name for t, s in
-                                                  zip(self.touches, pattern, strict=True)
-                                                  if s != "off"),
+                       self._named(normal), tuple(t.name for t, p in
+                                                  zip(self.touches, normal, strict=True)
+                                                  if p > 0),
                        tangential=self._named(impulses[n:, 0]),
                        courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                      zip(self.touches, pattern, strict=True)),
