@@ -20,6 +20,7 @@ Examples
 from __future__ import annotations
 
 import json
+import shutil
 import time
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -32,7 +33,7 @@ from rigidimpact.errors import InputError
 
 __all__ = ["parse_grid", "run_sweep", "MAX_SETS"]
 
-MAX_SETS = 10**10  # beyond this a sweep would run for hours and fill the disk
+MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
 
 
 def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[str, np.ndarray]:
@@ -97,6 +98,15 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
         raise InputError(f"--grid {unused[0]}", "the results do not depend on it")
     shape = tuple(len(a) for a in grid.values())
     total = int(np.prod(shape)) if shape else 1
+    need = 8 * total * len(kernel.keys)
+    parent = Path(folder).resolve().parent
+    while not parent.exists():
+        parent = parent.parent
+    free = shutil.disk_usage(parent).free
+    if need > 0.9 * free:
+        raise InputError("--out", f"the results need {need / 1e9:.1f} GB and "
+                         f"{str(parent)!r} has {free / 1e9:.1f} GB free; sweep fewer sets "
+                         "or fewer --keys")
     summary: dict[str, Any] = {}
 
     def fill(staging: Path) -> list[str]:
