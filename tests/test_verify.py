@@ -50,3 +50,13 @@ def test_references_are_the_paper_not_the_solver():
 
     source = Path(paper.__file__).read_text(encoding="utf-8")
     assert "import impact" not in source and "problems" not in source
+
+
+def test_worker_processes_give_the_same_checks_in_the_same_order():
+    def small(check_id):
+        return check_id.split(".")[0] in ("discs", "barbell")
+
+    alone = run_checks(small)
+    together = run_checks(small, jobs=2)
+    assert [(c.id, c.status) for c in together] == [(c.id, c.status) for c in alone]
+    assert len(alone) > 5 and all(c.status == "pass" for c in together)

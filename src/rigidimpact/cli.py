@@ -176,7 +176,9 @@ def _cmd_derive(args: argparse.Namespace) -> int:
 def _cmd_verify(args: argparse.Namespace) -> int:
     from rigidimpact.verify import run_checks
 
-    rows = run_checks()
+    if args.jobs is not None and not 1 <= args.jobs <= 64:
+        raise InputError("--jobs", f"must lie between 1 and 64, got {args.jobs}")
+    rows = run_checks(jobs=args.jobs if args.jobs is not None else (os.cpu_count() or 1))
     failed = sum(row.status != "pass" for row in rows)
     if args.json:
         _print_json({
@@ -635,6 +637,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_cmd_derive)
 
     p = sub.add_parser("verify", help="check every result of the paper")
+    p.add_argument("--jobs", type=int, metavar="N",
+                   help="worker processes (default: one per core; 1 runs in this process)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_verify)
 

@@ -401,29 +401,56 @@ def _two_body_discs() -> Verdict:
                  for k in ("V_1fx", "V_2fx")])
 
 
-def run_checks(select: Callable[[str], bool] = lambda _id: True) -> list[Check]:
+def _every() -> list[tuple[str, str, str, Callable[[], Verdict]]]:
+    from rigidimpact import (
+        catalogue,
+        restrike,  # noqa: F401  (section 2's checks are defined there)
+    )
+
+    return [*CHECKS, *((cid, "catalogue", text, fn) for cid, text, fn in catalogue.CHECKS)]
+
+
+def _run_one(check_id: str, paper: str, description: str,
+             fn: Callable[[], Verdict]) -> Check:
+    start = time.perf_counter()
+    try:
+        verdict = fn()
+    except Exception as exc:  # a crashing check is a failed check, reported as such
+        verdict = Verdict(False, f"error: {type(exc).__name__}: {exc}")
+    return Check(check_id, paper, description, "pass" if verdict.passed else "fail",
+                 verdict.detail, time.perf_counter() - start)
+
+
+def _run_group(ids: tuple[str, ...]) -> list[Check]:
+    """The checks with these ids, in one worker process (problems derived there once)."""
+    by_id = {entry[0]: entry for entry in _every()}
+    return [_run_one(*by_id[i]) for i in ids]
+
+
+def run_checks(select: Callable[[str], bool] = lambda _id: True,
+               jobs: int = 1) -> list[Check]:
     """Run every registered check (or those `select` keeps) and time each.
+
+    With ``jobs > 1`` the checks run in that many fresh worker processes, grouped by
+    the problem they derive (a problem is derived once per process), and come back in
+    the usual order.
 
     Examples
     --------
     >>> [c.status for c in run_checks(lambda i: i == "barbell.f")]
     ['pass']
     """
-    from rigidimpact import (
-        catalogue,
-        restrike,  # noqa: F401  (section 2's checks are defined there)
-    )
+    chosen = [entry for entry in _every() if select(entry[0])]
+    if jobs <= 1 or len(chosen) < 2:
+        return [_run_one(*entry) for entry in chosen]
+    import multiprocessing
 
-    every = [*CHECKS, *((cid, "catalogue", text, fn) for cid, text, fn in catalogue.CHECKS)]
-    rows = []
-    for check_id, paper, description, fn in every:
-        if not select(check_id):
-            continue
-        start = time.perf_counter()
-        try:
-            verdict = fn()
-        except Exception as exc:  # a crashing check is a failed check, reported as such
-            verdict = Verdict(False, f"error: {type(exc).__name__}: {exc}")
-        rows.append(Check(check_id, paper, description, "pass" if verdict.passed else "fail",
-                          verdict.detail, time.perf_counter() - start))
-    return rows
+    groups: dict[str, list[str]] = {}
+    for entry in chosen:
+        groups.setdefault(entry[0].split(".")[0], []).append(entry[0])
+    # fresh interpreters: a forked copy of a process with threads (a test run, a
+    # notebook) can inherit a lock some other thread held
+    with multiprocessing.get_context("spawn").Pool(min(jobs, len(groups))) as pool:
+        found = pool.map(_run_group, [tuple(ids) for ids in groups.values()], chunksize=1)
+    by_id = {check.id: check for group in found for check in group}
+    return [by_id[entry[0]] for entry in chosen]
