@@ -498,6 +498,18 @@ def test_ctrl_c_on_a_real_run():
     assert err == "rigidimpact: interrupted\n"
 
 
+def test_ctrl_c_to_the_whole_process_group_is_still_one_line():
+    # a terminal's Ctrl-C reaches verify's worker processes too; only the parent answers
+    process = subprocess.Popen([*RIGIDIMPACT, "verify"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True, cwd=ROOT,
+                               start_new_session=True)
+    time.sleep(4.0)  # the workers are running checks by now
+    os.killpg(process.pid, signal.SIGINT)
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    assert err == "rigidimpact: interrupted\n"
+
+
 def test_output_piped_into_head_ends_quietly():
     shell = f"{' '.join(RIGIDIMPACT)} derive two-body | head -1"
     run = subprocess.run(["bash", "-c", shell], capture_output=True, text=True, cwd=ROOT,

@@ -421,6 +421,13 @@ def _run_one(check_id: str, paper: str, description: str,
                  verdict.detail, time.perf_counter() - start)
 
 
+def _quiet_worker() -> None:
+    """Ctrl-C reaches the whole process group: only the parent answers it (one line)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _run_group(ids: tuple[str, ...]) -> list[Check]:
     """The checks with these ids, in one worker process (problems derived there once)."""
     by_id = {entry[0]: entry for entry in _every()}
@@ -450,7 +457,8 @@ def run_checks(select: Callable[[str], bool] = lambda _id: True,
         groups.setdefault(entry[0].split(".")[0], []).append(entry[0])
     # fresh interpreters: a forked copy of a process with threads (a test run, a
     # notebook) can inherit a lock some other thread held
-    with multiprocessing.get_context("spawn").Pool(min(jobs, len(groups))) as pool:
+    with multiprocessing.get_context("spawn").Pool(min(jobs, len(groups)),
+                                                   initializer=_quiet_worker) as pool:
         found = pool.map(_run_group, [tuple(ids) for ids in groups.values()], chunksize=1)
     by_id = {check.id: check for group in found for check in group}
     return [by_id[entry[0]] for entry in chosen]
