@@ -9,19 +9,10 @@ import pytest
 
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.numeric import fused, kernels
+from rigidimpact.numeric import fused, has_numba, kernels
 from rigidimpact.problems import derive
 
-
-def _has_numba() -> bool:
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-BACKENDS = ["numpy"] + (["numba"] if _has_numba() else [])
+BACKENDS = ["numpy"] + (["numba"] if has_numba() else [])
 
 
 def _random_sets(count: int, seed: int = 1) -> dict[str, np.ndarray]:

@@ -47,7 +47,7 @@ import sympy as sp
 from rigidimpact import restrike
 from rigidimpact.errors import InputError
 from rigidimpact.notation import symbol
-from rigidimpact.numeric import fused, kernels
+from rigidimpact.numeric import fused, has_numba, kernels
 from rigidimpact.problems import derive
 from rigidimpact.scene import parse_scene
 from rigidimpact.simulate import run
@@ -433,16 +433,10 @@ def throughput(count: int = 10**6, repeats: int = 5,
         return np.sin(sets["theta"])
 
     candidates = {"fused": by_fused, "hand": by_hand, "separate": by_separate, "sine": sine}
-    numba_kernel = None
-    if "numba" in backends:
-        try:
-            import numba
-        except ImportError:
-            numba = None
-        if numba is not None:
-            numba_kernel = fused(four, "numba")
-            numba_kernel(**{k: v[:10] for k, v in sets.items()})  # compile before timing
-            candidates["numba"] = lambda: numba_kernel(**sets)
+    numba_kernel = fused(four, "numba") if "numba" in backends and has_numba() else None
+    if numba_kernel is not None:
+        numba_kernel(**{k: v[:10] for k, v in sets.items()})  # compile before timing
+        candidates["numba"] = lambda: numba_kernel(**sets)
     times = _interleaved(candidates, repeats)
     fused_s, hand_s, separate_s, sine_s = (times[k] for k in ("fused", "hand", "separate",
                                                               "sine"))
@@ -455,6 +449,8 @@ def throughput(count: int = 10**6, repeats: int = 5,
                                                  / np.maximum(np.abs(hand[k]), 1.0)))
                                     for k in BARBELL_FOUR)}
     if numba_kernel is not None:
+        import numba
+
         numba_s = times["numba"]
         cores = numba.get_num_threads()
         report |= {"numba_per_s": count / numba_s, "numba_speedup": hand_s / numba_s,

@@ -142,7 +142,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     if d.outcomes:
         from rigidimpact.collision import rule_laws
 
-        print(f"\nLaws: {rule_laws(d.outcomes[0].rule, bool(d.outcomes[0].courses))}")
+        print(f"\nLaws: {rule_laws(d.outcomes[0].rule, d.outcomes[0].frictional)}")
         for outcome in d.outcomes:
             print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
             if outcome.courses:
@@ -527,11 +527,14 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from rigidimpact.scene import load_scene
     from rigidimpact.sweep import parse_grid, run_sweep
 
-    derivation = _derivation(args.target)
-    if derivation.outcomes:
-        raise InputError("sweep", "a scene with several contacts is solved with numbers; "
-                         "evaluate it point by point")
-    defaults = load_scene(args.target).values if args.target not in PROBLEMS else {}
+    if args.target in PROBLEMS:
+        derivation, defaults = _derivation(args.target), {}
+    else:
+        scene = load_scene(args.target)
+        if scene.several:
+            raise InputError("sweep", "a scene with several contacts is solved with "
+                             "numbers; evaluate it point by point")
+        derivation, defaults = scene.derivation(), scene.values
     values, sources = _settings(defaults, args.set)
     grid = parse_grid(args.grid, derivation.symbols)
     results = dict(derivation.results)
@@ -544,7 +547,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         results = {k: results[k] for k in chosen}
     fixed_names = [n for n in values if n not in grid]
     names = list(grid)
-    corners = list(itertools.product(*((a[0], a[-1]) for a in grid.values())))[:64]
+    corners = list(itertools.islice(itertools.product(*((a[0], a[-1])
+                                                          for a in grid.values())), 64))
     exact: dict[str, Any] = {}
     for corner in corners or [()]:  # every value, and the grid's corners, checked
         point = {n: values[n] for n in fixed_names} | {
@@ -552,17 +556,14 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         where = dict(sources) | {n: f"--grid {n}" for n in names}
         exact = derivation.checked(point, where)
     fixed = {n: float(exact[n]) for n in fixed_names if n in exact}
-    total = 1
-    for axis in grid.values():
-        total *= len(axis)
     started, last = time.perf_counter(), [-1]
 
     def progress(done: int, count: int) -> None:
         if time.perf_counter() - started < 2.0:
             return  # a short run draws no bar
-        tenth = 100 * done // count
-        if tenth != last[0]:
-            last[0] = tenth
+        percent = 100 * done // count
+        if percent != last[0]:  # at most a hundred redraws
+            last[0] = percent
             _progress_bar(done, count, "parameter sets")
 
     summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress)
@@ -700,7 +701,7 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="a value for a symbol (repeat); a scene's [values] are defaults")
     p.add_argument("--keys", metavar="KEY,KEY", help="only these results (default: all)")
     p.add_argument("--backend", default="numpy", choices=("numpy", "numba"),
-                   help="numba (an optional extra) compiles one parallel loop")
+                   help="numba (an optional extra): a compiled loop over the cores")
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(run=_cmd_sweep)

@@ -182,6 +182,11 @@ class Outcome:
         return tidy(1 - after / self.kinetic_energy_before)
 
     @property
+    def frictional(self) -> bool:
+        """Whether the rule ran with friction (its tangential impulses are kept)."""
+        return bool(self.tangential)
+
+    @property
     def label(self) -> str:
         """``simultaneous`` or ``sequential left, right``."""
         return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
@@ -382,9 +387,7 @@ class Collision:
             return self._frictional_simultaneous()
         v = self.velocity_before
         e = sp.Matrix([t.restitution for t in self.touches])
-        poisson = all(t.law == "poisson" for t in self.touches)
-        if not poisson and any(t.law == "poisson" for t in self.touches):
-            raise InputError("contacts", "give every contact the same law to act together")
+        poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
         impulses = self._complementarity(v, target)
@@ -499,24 +502,44 @@ class Collision:
                 return None
         return impulses
 
-    def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
-        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
+    def _poisson(self) -> bool:
+        """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
+        poisson = all(t.law == "poisson" for t in self.touches)
+        if not poisson and any(t.law == "poisson" for t in self.touches):
+            raise InputError("contacts", "give every contact the same law to act together")
+        return poisson
+
+    def _active_sets(self, v: sp.Matrix, target: sp.Matrix):
+        """Each set of acting contacts whose block of W is invertible, largest first:
+        ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
+        and zero elsewhere (the conditions that pick a set are the caller's)."""
         n = len(v)
         for size in range(n, 0, -1):
             for active in itertools.combinations(range(n), size):
                 block = self.W.extract(list(active), list(active))
-                if block.det() == 0:
+                if tidy(block.det()) == 0:
                     continue
-                rhs = sp.Matrix([target[i] - v[i] for i in active])
-                solved = block.LUsolve(rhs).applyfunc(tidy)
+                solved = block.LUsolve(sp.Matrix([target[i] - v[i] for i in active]))
                 impulses = sp.zeros(n, 1)
                 for k, i in enumerate(active):
-                    impulses[i] = solved[k]
-                after = v + self.W * impulses
-                if all(p >= 0 for p in solved) and all(
-                        after[i] - target[i] >= 0 for i in range(n) if i not in active):
-                    return impulses
-        return sp.zeros(n, 1)
+                    impulses[i] = tidy(solved[k])
+                yield active, impulses, v + self.W * impulses
+
+    def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
+        for active, impulses, after in self._active_sets(v, target):
+            if all(impulses[i] >= 0 for i in active) and all(
+                    after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
+                return impulses
+        return sp.zeros(len(v), 1)
+
+    def _smooth_step(self, k: int, u: sp.Matrix, closing: sp.Expr) -> tuple[sp.Expr,
+                                                                              sp.Matrix]:
+        """Contact k alone, smooth, with Newton's e: its impulse and the motion after."""
+        impulse = tidy(-(1 + self.touches[k].restitution) * closing / self.W[k, k])
+        kick = sp.zeros(len(self.touches), 1)
+        kick[k] = impulse
+        return impulse, self._kick(u, kick)
 
     def sequential(self, order: Sequence[str]) -> Outcome:
         """One contact at a time in `order`, passes repeated until none approaches.
@@ -549,10 +572,7 @@ class Collision:
                     tangential[k] += along
                     courses.append(f"{name}: {course}")
                 else:
-                    impulse = tidy(-(1 + touch.restitution) * closing / self.W[k, k])
-                    kick = sp.zeros(len(index), 1)
-                    kick[k] = impulse
-                    u = self._kick(u, kick)
+                    impulse, u = self._smooth_step(k, u, closing)
                 total[k] += impulse
                 acted_now = True
         return Outcome("sequential", tuple(order), self.bodies, self._after(u),
@@ -691,9 +711,7 @@ class Collision:
         self._smooth_only("with symbols")
         v = self.velocity_before
         e = sp.Matrix([t.restitution for t in self.touches])
-        poisson = all(t.law == "poisson" for t in self.touches)
-        if not poisson and any(t.law == "poisson" for t in self.touches):
-            raise InputError("contacts", "give every contact the same law to act together")
+        poisson = self._poisson()
         n = len(v)
         # Newton's target -e min(v, 0) depends on each contact's sign before: one
         # pattern of signs at a time (a contact at rest, or under Poisson's law: one)
@@ -712,28 +730,19 @@ class Collision:
             if signs == (sp.false,):
                 continue
             target = sp.Matrix([t for _, t, _ in pattern])
-            for size in range(n, 0, -1):
-                for active in itertools.combinations(range(n), size):
-                    block = self.W.extract(list(active), list(active))
-                    if tidy(block.det()) == 0:
-                        continue
-                    rhs = sp.Matrix([target[i] - v[i] for i in active])
-                    solved = block.LUsolve(rhs).applyfunc(tidy)
-                    compression = sp.Matrix([solved[active.index(i)] if i in active else 0
-                                             for i in range(n)])
-                    after = v + self.W * compression
-                    held = _conditions(list(signs) + [sp.Ge(p, 0) for p in solved] + [
-                        sp.Ge(tidy(after[i] - target[i]), 0)
-                        for i in range(n) if i not in active])
-                    if held == (sp.false,):
-                        continue
-                    impulses = sp.Matrix([compression[i] * ((1 + e[i]) if poisson else 1)
-                                          for i in range(n)]).applyfunc(tidy)
-                    u = self._kick(self.u_before, impulses)
-                    cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
-                                         self._named(impulses),
-                                         tuple(self.touches[i].name for i in active),
-                                         conditions=held))
+            for active, compression, after in self._active_sets(v, target):
+                held = _conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
+                                   + [sp.Ge(tidy(after[i] - target[i]), 0)
+                                      for i in range(n) if i not in active])
+                if held == (sp.false,):
+                    continue
+                impulses = sp.Matrix([compression[i] * ((1 + e[i]) if poisson else 1)
+                                      for i in range(n)]).applyfunc(tidy)
+                u = self._kick(self.u_before, impulses)
+                cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
+                                     self._named(impulses),
+                                     tuple(self.touches[i].name for i in active),
+                                     conditions=held))
         return tuple(cases)
 
     def sequential_pass(self, order: Sequence[str]) -> Outcome:
@@ -763,11 +772,7 @@ class Collision:
             k = index[name]
             closing = tidy((self.J[k, :] * u)[0])
             conditions.append(sp.Lt(closing, 0))
-            impulse = tidy(-(1 + self.touches[k].restitution) * closing / self.W[k, k])
-            kick = sp.zeros(len(index), 1)
-            kick[k] = impulse
-            u = self._kick(u, kick)
-            total[k] = impulse
+            total[k], u = self._smooth_step(k, u, closing)
         conditions += [sp.Ge(tidy((self.J[k, :] * u)[0]), 0) for k in range(len(index))]
         return Outcome("sequential", tuple(order), self.bodies, self._after(u),
                        self._named(total.applyfunc(tidy)), tuple(order),

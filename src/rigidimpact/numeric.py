@@ -37,7 +37,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.rewrite import tidy
 
 __all__ = ["stable_form", "magnitude", "Kernel", "kernels", "evaluate", "Fused", "fused",
-           "BACKENDS", "CHUNK"]
+           "BACKENDS", "CHUNK", "has_numba"]
 
 
 def _reverse_pythagoras(expr: sp.Expr) -> sp.Expr:
@@ -177,6 +177,16 @@ def kernels(results: Mapping[str, sp.Expr]) -> dict[str, Kernel]:
 
 
 BACKENDS = ("numpy", "numba")
+
+
+def has_numba() -> bool:
+    """Whether the optional ``numba`` backend is installed."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
 # computed by NumPy's vectorised routines before the numba loop (which would call libm)
 TRANSCENDENTAL = (sp.sin, sp.cos, sp.tan, sp.exp, sp.log, sp.asin, sp.acos, sp.atan,
                   sp.sinh, sp.cosh, sp.tanh)
@@ -193,8 +203,9 @@ class Fused:
     sine shared by four results is taken once per parameter set. The work goes chunk by
     chunk (`chunk` sets at a time), so the temporaries stay in cache and the memory used
     beyond the results is bounded. The ``numpy`` backend runs whole-chunk array code; the
-    ``numba`` backend (an optional extra) compiles one parallel loop over the sets, with
-    the inputs that are single numbers passed as numbers.
+    ``numba`` backend (an optional extra) takes NumPy's vectorised sines (and other
+    transcendental functions) for each chunk, does the rest in one compiled loop that
+    releases the GIL, and spreads the chunks over the cores.
 
     Call it with keyword arguments (arrays broadcast): it returns ``{key: array}``.
     :meth:`sweep` evaluates over a grid (the product of 1-D ranges) without ever
@@ -324,8 +335,9 @@ def _pool():
 
 
 def fused(results: Mapping[str, sp.Expr], backend: str = "numpy",
-          chunk: int = CHUNK) -> Fused:
-    """One fused kernel for all of `results` (see :class:`Fused`).
+          chunk: int | None = None) -> Fused:
+    """One fused kernel for all of `results` (see :class:`Fused`); `chunk` defaults to
+    the backend's (8192 sets for NumPy, 65536 per worker thread for numba).
 
     Raises
     ------
@@ -335,13 +347,9 @@ def fused(results: Mapping[str, sp.Expr], backend: str = "numpy",
     if backend not in BACKENDS:
         raise InputError("--backend", f"must be one of {', '.join(BACKENDS)}, got "
                          f"{backend!r}")
-    if backend == "numba":
-        try:
-            import numba  # noqa: F401
-        except ImportError:
-            raise InputError("--backend", "numba is not installed: pip install -e "
-                             "'.[fast]'") from None
-        chunk = max(chunk, NUMBA_CHUNK)
+    if backend == "numba" and not has_numba():
+        raise InputError("--backend", "numba is not installed: pip install -e '.[fast]'")
+    chunk = chunk or (NUMBA_CHUNK if backend == "numba" else CHUNK)
     keys = tuple(results)
     exprs = tuple(stable_form(sp.sympify(results[k])) for k in keys)
     names = sorted({s.name for e in exprs for s in e.free_symbols})
@@ -358,34 +366,34 @@ def _fused_source(stable: tuple[sp.Expr, ...], arguments: tuple[str, ...],
                for e in stable for s in e.free_symbols}
     exprs = [e.xreplace(dummies) for e in stable]
     args = [f"a{k}" for k in range(len(arguments))]
+    found: list[sp.Expr] = []
     if backend == "numba":  # NumPy's vectorised sines first, then one compiled loop
         found = sorted({a for e in exprs for a in e.atoms(*TRANSCENDENTAL)
                         if not a.args[0].has(*TRANSCENDENTAL)}, key=sp.default_sort_key)
-        values = {a: sp.Symbol(f"f{k}") for k, a in enumerate(found)}
-        exprs = [e.xreplace(values) for e in exprs]
-        shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
-        numpy_printer = NumPyPrinter({"fully_qualified_modules": True})
-        pre = [f"def pre({', '.join(args)}):",
-               "    return (" + "".join(f"{numpy_printer.doprint(a)}, " for a in found) + ")"]
-        scalar_of = dict(zip(args, scalars, strict=True))
-        loose = [all(scalar_of[s.name] for s in a.free_symbols) for a in found]
-        printer = PythonCodePrinter({"fully_qualified_modules": True})
-        outs = [f"out{k}" for k in range(len(exprs))]
-        inputs = [a + "_" for a in args] + [f"f{k}_" for k in range(len(found))]
-        lines = [f"def kernel({', '.join(inputs + outs)}):",
-                 f"    for i in range({outs[0]}.shape[0]):"]
-        lines += [f"        {a} = {a}_" + ("" if scalar else "[i]")
-                  for a, scalar in zip(args, scalars, strict=True)]
-        lines += [f"        f{k} = f{k}_" + ("" if scalar else "[i]")
-                  for k, scalar in enumerate(loose)]
-        lines += [f"        {t} = {printer.doprint(v)}" for t, v in shared]
-        lines += [f"        out{k}[i] = {printer.doprint(r)}" for k, r in enumerate(reduced)]
-        return "\n".join(pre) + "\n\n\n" + "\n".join(lines) + "\n"
+        exprs = [e.xreplace({a: sp.Symbol(f"f{k}") for k, a in enumerate(found)})
+                 for e in exprs]
     shared, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"))
-    printer = NumPyPrinter({"fully_qualified_modules": True})
-    lines = [f"def kernel({', '.join(args)}):"]
-    lines += [f"    {t} = {printer.doprint(v)}" for t, v in shared]
-    lines += [f"    return ({', '.join(printer.doprint(r) for r in reduced)},)"]
+    numpy_printer = NumPyPrinter({"fully_qualified_modules": True})
+    if backend == "numpy":
+        lines = [f"def kernel({', '.join(args)}):"]
+        lines += [f"    {t} = {numpy_printer.doprint(v)}" for t, v in shared]
+        lines += [f"    return ({', '.join(numpy_printer.doprint(r) for r in reduced)},)"]
+        return "\n".join(lines) + "\n"
+    scalar_of = dict(zip(args, scalars, strict=True))
+    loose = [all(scalar_of[s.name] for s in a.free_symbols) for a in found]
+    printer = PythonCodePrinter({"fully_qualified_modules": True})
+    outs = [f"out{k}" for k in range(len(exprs))]
+    inputs = [a + "_" for a in args] + [f"f{k}_" for k in range(len(found))]
+    lines = [f"def pre({', '.join(args)}):",
+             "    return (" + "".join(f"{numpy_printer.doprint(a)}, " for a in found) + ")",
+             "", "",
+             f"def kernel({', '.join(inputs + outs)}):",
+             f"    for i in range({outs[0]}.shape[0]):"]
+    lines += [f"        {a} = {a}_" + ("" if scalar else "[i]")
+              for a, scalar in zip(args, scalars, strict=True)]
+    lines += [f"        f{k} = f{k}_" + ("" if scalar else "[i]") for k, scalar in enumerate(loose)]
+    lines += [f"        {t} = {printer.doprint(v)}" for t, v in shared]
+    lines += [f"        out{k}[i] = {printer.doprint(r)}" for k, r in enumerate(reduced)]
     return "\n".join(lines) + "\n"
 
 
@@ -395,13 +403,11 @@ def _fused_function(source: str, backend: str):
     import math
 
     namespace: dict[str, Any] = {"numpy": np, "math": math}
+    exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
     if backend == "numba":
         import numba
 
-        namespace["numba"] = numba
-        exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
         return namespace["pre"], numba.njit(nogil=True)(namespace["kernel"])
-    exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
     return namespace["kernel"]
 
 

@@ -32,7 +32,7 @@ from pathlib import Path
 import mpmath
 import numpy as np
 
-from rigidimpact.numeric import Kernel, fused, kernels
+from rigidimpact.numeric import Kernel, fused, has_numba, kernels
 from rigidimpact.problems import derive
 
 __all__ = ["Case", "CASES", "run_suite", "BOUND", "available_backends"]
@@ -138,18 +138,14 @@ def _floats(results: Mapping, points: list[dict[str, float]],
                 out[backend][key] = np.broadcast_to(kernel(**arrays), (len(points),))
             continue
         kernel = fused(results, "numpy" if backend == "fused" else backend)
-        out[backend] = kernel(**{n: np.array([p.get(n, 0.0) for p in points])
+        out[backend] = kernel(**{n: np.array([p[n] for p in points])
                                  for n in kernel.arguments})
     return out
 
 
 def available_backends() -> tuple[str, ...]:
     """``kernel`` (one per result), ``fused`` (NumPy) and ``numba`` when installed."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return ("kernel", "fused")
-    return ("kernel", "fused", "numba")
+    return ("kernel", "fused", "numba") if has_numba() else ("kernel", "fused")
 
 
 def _errors(value: float, exact: mpmath.mpf, scale: mpmath.mpf) -> tuple[float, float]:
@@ -198,20 +194,18 @@ def _run(chosen: set[str] | None, backends: tuple[str, ...]) -> dict:
             if not kernel.arguments:
                 continue  # a constant (a spin that cannot change): nothing to round
             references = _references(kernel, points)
-            by_backend = {}
-            worst_condition, worst_at = 1.0, points[0]
+            worst_condition = max([1.0] + [float(scale / abs(exact))
+                                           for exact, scale in references if exact != 0])
+            by_backend, worst_at, worst_seen = {}, points[0], -1.0
             for backend in backends:
                 worst_rel, worst_scaled = 0.0, 0.0
                 values = floats[backend][quantity]
                 for value, (exact, scale), point in zip(values, references, points,
                                                         strict=True):
                     rel, scaled = _errors(float(value), exact, scale)
-                    worst_rel = max(worst_rel, rel)
-                    if exact != 0:
-                        worst_condition = max(worst_condition, float(scale / abs(exact)))
-                    if scaled >= worst_scaled and backend == backends[0]:
-                        worst_at = point
-                    worst_scaled = max(worst_scaled, scaled)
+                    worst_rel, worst_scaled = max(worst_rel, rel), max(worst_scaled, scaled)
+                    if scaled >= worst_seen:  # the inputs of the worst case, any backend
+                        worst_seen, worst_at = scaled, point
                 by_backend[backend] = {"rel_error": worst_rel, "scaled_error": worst_scaled}
             worst_rel = max(b["rel_error"] for b in by_backend.values())
             worst_scaled = max(b["scaled_error"] for b in by_backend.values())

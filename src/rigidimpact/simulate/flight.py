@@ -101,10 +101,20 @@ class Flyer:
         >>> [np.round(p, 12) + 0.0 for p in rod.ends_at(0.5)]
         [array([ 0., -1.]), array([0., 1.])]
         """
+        return tuple(self.carried(q, t) for q in self.ends)
+
+    def carried(self, offset, t: float) -> np.ndarray:
+        """Where the body's material point at `offset` from its centre (at t = 0) is at
+        time `t` (lab frame).
+
+        Examples
+        --------
+        >>> Flyer("r", "rigid", (1, 0), (0, 0), math.pi).carried((1, 0), 0.5).round(12) + 0
+        array([1., 1.])
+        """
         centre, turn = self.at(t)
         c, s = math.cos(turn), math.sin(turn)
-        rotate = np.array([[c, -s], [s, c]])
-        return tuple(centre + rotate @ np.asarray(q, dtype=float) for q in self.ends)
+        return centre + np.array([c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]])
 
 
 @dataclass(frozen=True)

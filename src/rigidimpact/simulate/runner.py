@@ -93,9 +93,10 @@ def explain(scene: Scene) -> str:
     plan = make_plan(scene.simulate)
     lines = [plan.explain()]
     if scene.several:
-        from rigidimpact.collision import RULE_LAWS
+        from rigidimpact.collision import rule_laws
 
-        lines.append(f"impact rule: {scene.rule}: {RULE_LAWS[scene.rule]}")
+        frictional = any(t.friction is not None for t in scene.touches)
+        lines.append(f"impact rule: {scene.rule}: {rule_laws(scene.rule, frictional)}")
         if "gravity" not in plan.effects and any(b.support == "fixed" for b in scene.bodies):
             lines.append("note: without gravity nothing brings the bodies back to the "
                          "fixed body; ask for effects = [\"gravity\"] to see them land again")

@@ -92,15 +92,8 @@ class SeveralTrack:
         out = self._track.points()
         for label, index, offset in self.marks:
             f = self.flyers[index]
-            out[label] = np.array([_material(f, offset, t) for t in self.t])
+            out[label] = np.array([f.carried(offset, t) for t in self.t])
         return out
-
-
-def _material(f: Flyer, offset: Sequence[float], t: float) -> np.ndarray:
-    """Where the material point at ``offset`` from the centre (at t = 0) is at time t."""
-    centre, turn = f.at(t)
-    c, s = math.cos(turn), math.sin(turn)
-    return centre + np.array([c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]])
 
 
 def _flyer(body: Body, gravity: float) -> Flyer:
@@ -122,13 +115,11 @@ def _against_fixed(touch: Touch, f: Flyer, sign: float, round_body: bool) -> Wat
     down = -f.gravity * n[1]  # the gap's acceleration from gravity (n . (0, -g))
 
     def gap(t: float) -> float:
-        return float(n @ (_material(f, offset, t) - x0))
+        return float(n @ (f.carried(offset, t) - x0))
 
-    def rate(t: float) -> float:
-        turn = w * t
-        c, s = math.cos(turn), math.sin(turn)
-        r = np.array([c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]])
-        return float(n @ (v0 + w * np.array([-r[1], r[0]]))) + down * t
+    def rate(t: float) -> float:  # n . (v(t) + omega z x r(t))
+        r = f.carried(offset, t) - f.at(t)[0]
+        return float(n @ (f.velocity_at(t) + w * np.array([-r[1], r[0]])))
 
     def centre(t: float) -> float:  # the centre's opening coordinate, a parabola
         return float(n @ (np.asarray(f.position, float) - x0)) + float(n @ v0) * t \
