@@ -355,6 +355,19 @@ def barbell_impact(restitution: sp.Expr = e, tangential: str = "smooth") -> Impa
                   BALL_BARBELL_UNKNOWNS, PAPER_NUMBERS)
 
 
+@functools.cache
+def barbell_solution(restitution: sp.Expr = e, tangential: str = "smooth") -> Solution:
+    """The solved :func:`barbell_impact`, solved once per process (several derivations
+    and checks start from the same impact).
+
+    Examples
+    --------
+    >>> barbell_solution(0, "stick") is barbell_solution(0, "stick")
+    True
+    """
+    return barbell_impact(restitution, tangential).solve()
+
+
 def _timed(build: Callable[[], Derivation]) -> Callable[[], Derivation]:
     """Time a problem's derivation once; later calls return the same (immutable) result."""
 
@@ -379,7 +392,7 @@ def barbell() -> Derivation:
     m*v_ix*(e + 1)*sin(theta)/(L*(2*M + m*sin(theta)**2 + m))
     """
     impact = barbell_impact()
-    solution = impact.solve()
+    solution = barbell_solution()
     values = solution.values
     f = symbol("f")
     f_definition = tidy(values[symbol("V_x")] / v_ix)
@@ -419,12 +432,12 @@ def sphere_a_velocity() -> sp.ImmutableMatrix:
     >>> sphere_a_velocity()[1]
     -m*v_ix*(e + 1)*sin(theta)*cos(theta)/(2*M + m*sin(theta)**2 + m)
     """
-    solution = barbell_impact().solve()
-    bar = solution.second_after
+    bar = barbell_solution().second_after
     sphere_a = next(p for p in bar.parts if p.label == "A")
     return bar.point_velocity(sphere_a.position).applyfunc(tidy)
 
 
+@functools.cache
 def _composite_route() -> tuple[tuple[Equation, ...], dict[str, sp.Expr]]:
     """Eqs. (8)-(9): ball and barbell move as one body (u, omega) about S after."""
     ball = Body.particle(m, velocity=(v_ix, 0), name="ball")
@@ -482,7 +495,7 @@ def sticking_routes() -> dict[str, dict[str, sp.Expr]]:
     composite = join(ball, bar)
     routes["parallel-axis"] = {"u_x": composite.velocity[0], "omega_z": composite.spin}
 
-    stuck = barbell_impact(restitution=0, tangential="stick").solve()
+    stuck = barbell_solution(0, "stick")
     routes["impact"] = {
         "u_x": tidy((stuck.first_after.momentum[0] + stuck.second_after.momentum[0])
                     / (2 * M + m)),
@@ -491,6 +504,7 @@ def sticking_routes() -> dict[str, dict[str, sp.Expr]]:
     return routes
 
 
+@functools.cache
 def _sticking_h() -> sp.Expr:
     """Distance from the barbell's centre C to the pair's centre S, along the rod."""
     ball = Body.particle(m, velocity=(v_ix, 0), name="ball")

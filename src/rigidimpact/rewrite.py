@@ -64,13 +64,18 @@ def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
 
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
-    best = _positive_lead(sp.factor(sp.cancel(expr)))
+    # ``factor`` puts the expression over one denominator and factors both sides, so
+    # common factors cancel without a separate (and as costly) ``cancel`` first
+    best = _positive_lead(sp.factor(expr))
     angles = {f.args[0] for f in best.atoms(sp.sin, sp.cos)}
     for angle in sorted(angles, key=sp.default_sort_key):
         s, c = sp.sin(angle), sp.cos(angle)
         for old, new in ((c, s), (s, c)):
-            swapped = _pythagoras(sp.cancel(best), old, new)
-            candidate = _positive_lead(sp.factor(sp.cancel(swapped)))
+            expanded = sp.cancel(best)
+            swapped = _pythagoras(expanded, old, new)
+            if swapped == expanded:  # no power of `old` to rewrite
+                continue
+            candidate = _positive_lead(sp.factor(swapped))
             if sp.count_ops(candidate) < sp.count_ops(best):
                 best = candidate
     return best

@@ -323,8 +323,8 @@ def _sticking_routes() -> Verdict:
         "at theta = 90 degrees sticking and bouncing with e = 0 leave the same motion")
 def _sticking_right_angle() -> Verdict:
     at = {theta: sp.pi / 2}
-    stuck = problems.barbell_impact(restitution=0, tangential="stick").solve()
-    bounced = problems.barbell_impact(restitution=0).solve()
+    stuck = problems.barbell_solution(0, "stick")
+    bounced = problems.barbell_solution(0)
     pairs = [("v_fx", stuck.first_after.velocity[0], bounced.first_after.velocity[0]),
              ("V_x", stuck.second_after.velocity[0], bounced.second_after.velocity[0]),
              ("omega_z", stuck.second_after.spin, bounced.second_after.spin)]
@@ -421,6 +421,18 @@ def _run_one(check_id: str, paper: str, description: str,
                  verdict.detail, time.perf_counter() - start)
 
 
+# checks that derive from the same problem run in one process, which derives it once:
+# the re-strike analysis starts from the barbell's solution
+_SHARED = {"restrike": "barbell"}
+# rough seconds per group (``run_checks(jobs=1)``), to start the longest first
+GROUP_WEIGHTS = {"barbell": 3.0, "two-body": 2.5, "sticking": 2.0, "catalogue": 1.0}
+
+
+def _group(check_id: str) -> str:
+    prefix = check_id.split(".")[0]
+    return _SHARED.get(prefix, prefix)
+
+
 def _quiet_worker() -> None:
     """Ctrl-C reaches the whole process group: only the parent answers it (one line)."""
     import signal
@@ -438,9 +450,9 @@ def run_checks(select: Callable[[str], bool] = lambda _id: True,
                jobs: int = 1) -> list[Check]:
     """Run every registered check (or those `select` keeps) and time each.
 
-    With ``jobs > 1`` the checks run in that many fresh worker processes, grouped by
-    the problem they derive (a problem is derived once per process), and come back in
-    the usual order.
+    With ``jobs > 1`` the checks run in that many worker processes, grouped by the
+    problem they derive (a problem is derived once per process), and come back in the
+    usual order.
 
     Examples
     --------
@@ -451,14 +463,20 @@ def run_checks(select: Callable[[str], bool] = lambda _id: True,
     if jobs <= 1 or len(chosen) < 2:
         return [_run_one(*entry) for entry in chosen]
     import multiprocessing
+    import threading
 
     groups: dict[str, list[str]] = {}
     for entry in chosen:
-        groups.setdefault(entry[0].split(".")[0], []).append(entry[0])
-    # fresh interpreters: a forked copy of a process with threads (a test run, a
-    # notebook) can inherit a lock some other thread held
-    with multiprocessing.get_context("spawn").Pool(min(jobs, len(groups)),
-                                                   initializer=_quiet_worker) as pool:
-        found = pool.map(_run_group, [tuple(ids) for ids in groups.values()], chunksize=1)
+        groups.setdefault(_group(entry[0]), []).append(entry[0])
+    # the longest groups first, so the last to finish is a short one
+    ordered = sorted(groups, key=lambda g: -GROUP_WEIGHTS.get(g, 1.0))
+    # a forked worker starts with everything this process has imported; a process
+    # with other threads (a test run, a notebook) is not forked, since a copy can
+    # inherit a lock some other thread held: its workers start fresh
+    method = ("fork" if threading.active_count() == 1
+              and "fork" in multiprocessing.get_all_start_methods() else "spawn")
+    with multiprocessing.get_context(method).Pool(min(jobs, len(groups)),
+                                                  initializer=_quiet_worker) as pool:
+        found = pool.map(_run_group, [tuple(groups[g]) for g in ordered], chunksize=1)
     by_id = {check.id: check for group in found for check in group}
     return [by_id[entry[0]] for entry in chosen]
