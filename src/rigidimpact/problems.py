@@ -31,7 +31,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.impact import Impact
 from rigidimpact.laws import Equation
 from rigidimpact.notation import symbol
-from rigidimpact.rewrite import recognise, tidy
+from rigidimpact.rewrite import recognise, solve_linear, tidy
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.solution import Solution
 
@@ -457,7 +457,7 @@ def _composite_route() -> tuple[tuple[Equation, ...], dict[str, sp.Expr]]:
         laws.pair_tangential_momentum(ball, ball_after, bar, bar_after),
         laws.angular_momentum(bar, bar_after),
     )
-    solved = sp.solve([eq.residual for eq in equations], [u_x, u_y, omega], dict=True)[0]
+    solved = solve_linear([eq.residual for eq in equations], [u_x, u_y, omega])
     equations = tuple(Equation(eq.label, p, tidy(eq.lhs), tidy(eq.rhs)) for eq, p in
                       zip(equations, ("(8)", "(8), y", "(9)"), strict=True))
     return equations, {"u_x": tidy(solved[u_x]), "omega_z": tidy(solved[omega])}
@@ -486,7 +486,7 @@ def sticking_routes() -> dict[str, dict[str, sp.Expr]]:
     by_number = {eq.paper: eq for eq in smooth.equations()}
     modified = [by_number["(1), (12)"], by_number["(3), (4)"],
                 by_number["(2), (14)"].subs(V_y, omega * h * sp.cos(theta))]
-    solved = sp.solve([eq.residual for eq in modified], [v_fx, V_x, omega], dict=True)[0]
+    solved = solve_linear([eq.residual for eq in modified], [v_fx, V_x, omega])
     routes["alternative"] = {
         "u_x": tidy((m * solved[v_fx] + 2 * M * solved[V_x]) / (2 * M + m)),
         "omega_z": tidy(solved[omega]),

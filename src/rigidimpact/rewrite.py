@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["tidy", "recognise"]
+__all__ = ["tidy", "recognise", "solve_linear"]
 
 
 def tidy(expr: sp.Expr) -> sp.Expr:
@@ -146,5 +146,26 @@ def recognise(expr: sp.Expr, name: sp.Symbol, definition: sp.Expr,
     >>> recognise(m * v * (e + 1) / (2 * M + m), f, (e + 1) * m / (2 * M + m), e)
     f*v
     """
-    (replacement,) = sp.solve(sp.Eq(name, definition), eliminate, dict=False)
-    return tidy(expr.subs(eliminate, replacement))
+    numerator = sp.fraction(sp.together(name - definition))[0]
+    line = sp.Poly(sp.expand(numerator), eliminate)
+    if line.degree() != 1:
+        raise ValueError(f"{name} = {definition} is not linear in {eliminate}")
+    slope, offset = line.all_coeffs()
+    return tidy(expr.subs(eliminate, -offset / slope))
+
+
+def solve_linear(equations, unknowns) -> dict[sp.Symbol, sp.Expr]:
+    """The unique solution of equations linear in `unknowns` (expressions equal to zero),
+    each value tidied; no general-purpose solver, so no blanket simplification.
+
+    Examples
+    --------
+    >>> x, y, a = sp.symbols("x y a")
+    >>> solve_linear([x + y - a, x - y], [x, y])
+    {x: a/2, y: a/2}
+    """
+    unknowns = list(unknowns)
+    matrix, rhs = sp.linear_eq_to_matrix(list(equations), unknowns)
+    if matrix.shape[0] != matrix.shape[1] or tidy(matrix.det()) == 0:
+        raise ValueError("the equations do not fix every unknown once")
+    return {u: tidy(v) for u, v in zip(unknowns, matrix.LUsolve(rhs), strict=True)}
