@@ -613,10 +613,11 @@ def symbolic_ladder(counts: Iterable[int] = (2, 4, 6, 8, 10, 12, 14, 16),
 def verify_against_plain(repeats: int = 3) -> dict[str, float]:
     """``rigidimpact verify`` end to end against a plain SymPy script that solves only the
     barbell (eqs. 1, 2 and 4) and simplifies its energy loss; medians of fresh processes."""
-    ours = statistics.median(
-        _python("from rigidimpact.cli import main; main(['verify'])") for _ in range(repeats))
-    plain = statistics.median(_python(PLAIN_BARBELL) for _ in range(repeats))
-    return {"verify_s": ours, "plain_barbell_s": plain, "ratio": ours / plain}
+    times = _interleaved({  # in turn, so a slow spell of the machine falls on both
+        "ours": lambda: _python("from rigidimpact.cli import main; main(['verify'])"),
+        "plain": lambda: _python(PLAIN_BARBELL)}, repeats)
+    return {"verify_s": times["ours"], "plain_barbell_s": times["plain"],
+            "ratio": times["ours"] / times["plain"]}
 
 
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,

@@ -70,14 +70,14 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     angles = {f.args[0] for f in best.atoms(sp.sin, sp.cos)}
     for angle in sorted(angles, key=sp.default_sort_key):
         s, c = sp.sin(angle), sp.cos(angle)
+        expanded = sp.cancel(best)
         for old, new in ((c, s), (s, c)):
-            expanded = sp.cancel(best)
             swapped = _pythagoras(expanded, old, new)
             if swapped == expanded:  # no power of `old` to rewrite
                 continue
             candidate = _positive_lead(sp.factor(swapped))
             if sp.count_ops(candidate) < sp.count_ops(best):
-                best = candidate
+                best, expanded = candidate, sp.cancel(candidate)
     return best
 
 
