@@ -22,7 +22,7 @@ from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.impact import Impact
 from rigidimpact.notation import symbol
-from rigidimpact.rewrite import tidy
+from rigidimpact.rewrite import polynomial_roots, tidy
 from rigidimpact.solution import Solution
 from rigidimpact.verify import Verdict, agree
 
@@ -195,14 +195,14 @@ def _check_wall() -> Verdict:
 
 def _check_percussion() -> Verdict:
     reaction = centre_of_percussion().results()["rod.pivot_impulse_x"]
-    roots = sp.solve(sp.numer(sp.together(reaction)), d)
+    roots = polynomial_roots(reaction, d)
     return Verdict(roots == [2 * l / 3], f"pivot impulse zero at d = {roots}")
 
 
 def _check_sweet_spot() -> Verdict:
     inertia, a = symbol("I"), sp.Symbol("a", positive=True)
     reaction = sweet_spot().results()["bat.pivot_impulse_x"]
-    roots = sp.solve(sp.numer(sp.together(reaction)), d)
+    roots = polynomial_roots(reaction, d)
     expected = (inertia + M * a**2) / (M * a)
     passed = len(roots) == 1 and tidy(roots[0] - expected) == 0
     return Verdict(passed, f"pivot impulse zero at d = {roots}")

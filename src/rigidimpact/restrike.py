@@ -52,7 +52,7 @@ from rigidimpact import problems, verify
 from rigidimpact.errors import InputError
 from rigidimpact.notation import symbol
 from rigidimpact.paper import CRITICAL_ANGLE_EQUATION, F
-from rigidimpact.rewrite import tidy
+from rigidimpact.rewrite import polynomial_roots, tidy
 from rigidimpact.verify import Verdict, agree, symbolic_zero
 
 __all__ = ["Restrike", "derive", "Edge", "CriticalAngle", "critical_angle", "windows",
@@ -373,7 +373,7 @@ def _at_rest_edges(factor: sp.Expr) -> list[sp.Expr]:
     if theta in plain.free_symbols:
         raise ArithmeticError(f"the k = 0 factor should depend on sin(theta) only: {factor}")
     angles = []
-    for root in sp.solve(plain, s):
+    for root in polynomial_roots(plain, s):
         if root.is_real and 0 < root <= 1:
             angles += [sp.asin(root), sp.pi - sp.asin(root)] if root < 1 else [sp.pi / 2]
     return sorted(set(angles), key=lambda x: float(x))

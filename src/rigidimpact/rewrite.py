@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["tidy", "recognise", "solve_linear"]
+__all__ = ["tidy", "recognise", "solve_linear", "polynomial_roots"]
 
 
 def tidy(expr: sp.Expr) -> sp.Expr:
@@ -169,3 +169,24 @@ def solve_linear(equations, unknowns) -> dict[sp.Symbol, sp.Expr]:
     if matrix.shape[0] != matrix.shape[1] or tidy(matrix.det()) == 0:
         raise ValueError("the equations do not fix every unknown once")
     return {u: tidy(v) for u, v in zip(unknowns, matrix.LUsolve(rhs), strict=True)}
+
+
+def polynomial_roots(expr: sp.Expr, x: sp.Symbol) -> list[sp.Expr]:
+    """The distinct roots in `x` of the numerator of `expr`, a polynomial in `x`, each in
+    closed form; an error when some root has none (a general solver would hand back an
+    implicit root object instead).
+
+    Examples
+    --------
+    >>> x, a = sp.symbols("x a", positive=True)
+    >>> polynomial_roots((x**2 - a**2) / x, x)
+    [-a, a]
+    """
+    numerator = sp.fraction(sp.together(expr))[0]
+    line = sp.Poly(sp.expand(numerator), x)
+    if line.degree() < 1:
+        return []
+    found = sp.roots(line)
+    if sum(found.values()) != line.degree():
+        raise ArithmeticError(f"not every root of {numerator} in {x} has a closed form")
+    return sorted(found, key=sp.default_sort_key)
