@@ -60,6 +60,29 @@ def test_chunks_scalars_and_broadcasting_do_not_change_the_numbers(backend):
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
+def test_into_given_arrays_gives_the_same_numbers_and_refuses_wrong_ones(backend):
+    results = derive("barbell").results
+    kernel = fused(results, backend, chunk=999)
+    sets = _random_sets(5_000, seed=3)
+    buffers = {k: np.full(5_000, np.nan) for k in kernel.keys}
+    kernel.into(buffers, **sets)
+    fresh = kernel(**sets)
+    for key in kernel.keys:
+        assert np.array_equal(buffers[key], fresh[key]), key
+    # reused: a second call overwrites every element
+    kernel.into(buffers, **(sets | {"e": 0.0}))
+    again = kernel(**(sets | {"e": 0.0}))
+    for key in kernel.keys:
+        assert np.array_equal(buffers[key], again[key]), key
+    bad = [np.empty(4_999), np.empty(5_000, dtype=np.float32), np.empty((5_000, 2))[:, 0],
+           np.empty(5_000).view(), None]
+    bad[3].flags.writeable = False
+    for wrong in bad:
+        with pytest.raises(InputError, match="outputs.v_fx"):
+            kernel.into(buffers | {"v_fx": wrong}, **sets)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
 def test_sweep_writes_the_grid_without_building_it(backend, tmp_path):
     # 40 x 30 sets; every value must equal the fused kernel on the materialised grid
     theta, big = np.linspace(0, np.pi / 2, 40), np.linspace(0.1, 10, 30)

@@ -407,7 +407,9 @@ def throughput(count: int = 10**6, repeats: int = 5,
     ``numba_speedup`` over hand-written NumPy; ``sine_bound_per_s``: np.sin alone over the
     same angles, one core, times the cores numba uses (the pace of one sine per set);
     ``max_difference``: the largest relative difference between the fused kernel and
-    the hand-written results.
+    the hand-written results. With numba, the ``*_into_*`` keys time the loop and np.sin
+    writing into memory given once (:meth:`Fused.into`), and ``sine_spread_per_s`` is
+    np.sin spread over the loop's threads: how far the cores really scale.
 
     Examples
     --------
@@ -436,7 +438,17 @@ def throughput(count: int = 10**6, repeats: int = 5,
     numba_kernel = fused(four, "numba") if "numba" in backends and has_numba() else None
     if numba_kernel is not None:
         numba_kernel(**{k: v[:10] for k, v in sets.items()})  # compile before timing
-        candidates["numba"] = lambda: numba_kernel(**sets)
+        buffers = {k: np.empty(count) for k in numba_kernel.keys}
+        sines = np.empty(count)
+
+        def sine_spread():  # np.sin over the numba backend's threads and chunks
+            numba_kernel._chunks(count, lambda a, b: np.sin(sets["theta"][a:b],
+                                                            out=sines[a:b]), None)
+
+        candidates |= {"numba": lambda: numba_kernel(**sets),
+                       "numba_into": lambda: numba_kernel.into(buffers, **sets),
+                       "sine_into": lambda: np.sin(sets["theta"], out=sines),
+                       "sine_spread": sine_spread}
     times = _interleaved(candidates, repeats)
     fused_s, hand_s, separate_s, sine_s = (times[k] for k in ("fused", "hand", "separate",
                                                               "sine"))
@@ -451,11 +463,22 @@ def throughput(count: int = 10**6, repeats: int = 5,
     if numba_kernel is not None:
         import numba
 
-        numba_s = times["numba"]
+        numba_s, into_s = times["numba"], times["numba_into"]
         cores = numba.get_num_threads()
+        bound_into = cores * count / times["sine_into"]
         report |= {"numba_per_s": count / numba_s, "numba_speedup": hand_s / numba_s,
                    "cores": cores, "sine_bound_per_s": cores * count / sine_s,
-                   "numba_of_sine_bound": (count / numba_s) / (cores * count / sine_s)}
+                   "numba_of_sine_bound": (count / numba_s) / (cores * count / sine_s),
+                   # the same, with every output written into memory given once (no
+                   # fresh pages to fault in and zero, for the loop or for np.sin)
+                   "numba_into_per_s": count / into_s,
+                   "sine_bound_into_per_s": bound_into,
+                   "numba_into_of_sine_bound": (count / into_s) / bound_into,
+                   # what np.sin itself reaches over the same threads: the cores' real
+                   # parallel pace, which the ideal bound above assumes to be `cores` x
+                   "sine_spread_per_s": count / times["sine_spread"],
+                   "sine_spread_scaling": times["sine_into"] / times["sine_spread"],
+                   "numba_into_of_sine_spread": times["sine_spread"] / into_s}
     return report
 
 
@@ -710,7 +733,14 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
         lines += [f"numba loop {tp['numba_per_s']:.3e}/s = {tp['numba_speedup']:.1f} x "
                   f"hand-written NumPy and {100 * tp['numba_of_sine_bound']:.0f}% of the "
                   f"sine bound ({tp['sine_bound_per_s']:.3e}/s: np.sin alone over the same "
-                  f"angles, times {tp['cores']} cores)."]
+                  f"angles, times {tp['cores']} cores).",
+                  f"Into memory given once (no fresh pages): numba loop "
+                  f"{tp['numba_into_per_s']:.3e}/s = "
+                  f"{100 * tp['numba_into_of_sine_bound']:.0f}% of the sine bound "
+                  f"({tp['sine_bound_into_per_s']:.3e}/s) and "
+                  f"{100 * tp['numba_into_of_sine_spread']:.0f}% of np.sin spread over the "
+                  f"same {tp['cores']} threads ({tp['sine_spread_per_s']:.3e}/s, "
+                  f"{tp['sine_spread_scaling']:.2f} x one core)."]
     auto = report.get("auto_choice") or {}
     if auto:
         lines += ["", f"Automatic choice for tolerance {auto['tolerance']:.0e}: "
