@@ -82,6 +82,21 @@ def test_into_given_arrays_gives_the_same_numbers_and_refuses_wrong_ones(backend
             kernel.into(buffers | {"v_fx": wrong}, **sets)
 
 
+@pytest.mark.skipif(not has_numba(), reason="numba is not installed")
+def test_numba_divides_by_zero_as_numpy_does():
+    # massless bodies make the denominator of eq. (5) zero: nan or inf as in NumPy,
+    # never an exception from inside the compiled loop
+    results = derive("barbell").results
+    sets = {"M": np.array([0.0, 0.0, 1.0]), "m": np.array([0.0, 1.0, 1.0]),
+            "L": np.array([1.0, 0.0, 1.0]), "theta": np.ones(3), "e": 0.5, "v_ix": 1.0}
+    with np.errstate(all="ignore"):
+        want = fused(results)(**sets)
+    got = fused(results, "numba")(**sets)
+    for key in want:
+        assert np.array_equal(got[key], want[key], equal_nan=True), key
+    assert not np.isfinite(got["V_x"][0]) and not np.isfinite(got["omega_z"][1])
+
+
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_sweep_writes_the_grid_without_building_it(backend, tmp_path):
     # 40 x 30 sets; every value must equal the fused kernel on the materialised grid

@@ -441,7 +441,10 @@ def _fused_function(source: str, backend: str):
     if backend == "numba":
         import numba
 
-        return namespace["pre"], numba.njit(nogil=True)(namespace["kernel"])
+        # NumPy's error model: a division by zero gives inf or nan as in the NumPy
+        # backend (not a ZeroDivisionError), and with no check in it the loop vectorises
+        return namespace["pre"], numba.njit(nogil=True, error_model="numpy")(
+            namespace["kernel"])
     return namespace["kernel"]
 
 
