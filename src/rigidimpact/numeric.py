@@ -25,6 +25,7 @@ Examples
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -238,7 +239,11 @@ class Fused:
         scalars = scalars if self.backend == "numba" else (False,) * len(self.arguments)
         key = (self.stable, self.arguments, self.backend, scalars)
         if key not in _CACHE:
-            _CACHE[key] = _fused_function(self.source(scalars), self.backend)
+            function = _fused_function(self.source(scalars), self.backend)
+            if self.backend == "numba":  # with the count of scratch arrays `pre` takes
+                pre = function[0]
+                function = (*function, pre.__code__.co_argcount - len(self.arguments))
+            _CACHE[key] = function
         return _CACHE[key]
 
     def _run(self, inputs: list, outputs: list[np.ndarray]) -> None:
@@ -246,8 +251,10 @@ class Fused:
         scalars = tuple(not isinstance(a, np.ndarray) for a in inputs)
         function = self._function(scalars)
         if self.backend == "numba":
-            pre, loop = function
-            loop(*inputs, *pre(*inputs), *outputs)
+            pre, loop, spare = function
+            size = outputs[0].shape[0]
+            loop(*inputs, *pre(*inputs, *(s[:size] for s in _scratch(spare, size))),
+                 *outputs)
             return
         for out, value in zip(outputs, function(*inputs), strict=True):
             out[...] = value
@@ -355,6 +362,16 @@ class Fused:
 
 
 _POOL: list = []
+_LOCAL = threading.local()
+
+
+def _scratch(count: int, size: int) -> list[np.ndarray]:
+    """`count` arrays of at least `size` floats, kept by the calling thread: the sines of
+    chunk after chunk go into the same (cached) memory."""
+    kept = getattr(_LOCAL, "arrays", ())
+    if len(kept) < count or (count and kept[0].shape[0] < size):
+        kept = _LOCAL.arrays = tuple(np.empty(size) for _ in range(count))
+    return kept[:count]
 
 
 def _pool():
@@ -418,8 +435,14 @@ def _fused_source(stable: tuple[sp.Expr, ...], arguments: tuple[str, ...],
     printer = PythonCodePrinter({"fully_qualified_modules": True})
     outs = [f"out{k}" for k in range(len(exprs))]
     inputs = [a + "_" for a in args] + [f"f{k}_" for k in range(len(found))]
-    lines = [f"def pre({', '.join(args)}):",
-             "    return (" + "".join(f"{numpy_printer.doprint(a)}, " for a in found) + ")",
+    # an array-valued function goes into scratch memory the caller keeps (s0, s1, ...)
+    scratch = [f"s{k}" for k in range(loose.count(False))]
+    spare = iter(scratch)
+    values = [numpy_printer.doprint(a) for a in found]  # each a ufunc call: numpy.f(...)
+    values = [v if single else v[:-1] + f", out={next(spare)})"
+              for v, single in zip(values, loose, strict=True)]
+    lines = [f"def pre({', '.join(args + scratch)}):",
+             "    return (" + "".join(f"{v}, " for v in values) + ")",
              "", "",
              f"def kernel({', '.join(inputs + outs)}):",
              f"    for i in range({outs[0]}.shape[0]):"]
