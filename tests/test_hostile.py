@@ -488,22 +488,42 @@ def test_ctrl_c_ends_in_one_line(capsys, monkeypatch):
     assert capsys.readouterr().err == "rigidimpact: interrupted\n"
 
 
+def _workers_started(process: subprocess.Popen, limit: float = 30.0) -> None:
+    """Wait until `process` has child processes (verify's workers, forked once the
+    imports are done): from then on it is inside the command for a few seconds."""
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        assert process.poll() is None, "verify ended before its workers could be seen"
+        for stat in Path("/proc").glob("[0-9]*/stat"):
+            try:
+                fields = stat.read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == process.pid:  # the parent's pid, after the state
+                time.sleep(0.3)
+                return
+        time.sleep(0.05)
+    raise AssertionError("verify started no workers")
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
 def test_ctrl_c_on_a_real_run():
     process = subprocess.Popen([*RIGIDIMPACT, "verify"], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True, cwd=ROOT)
-    time.sleep(2.0)  # inside the command by now (imports take well under a second)
+    _workers_started(process)
     process.send_signal(signal.SIGINT)
     out, err = process.communicate(timeout=60)
     assert process.returncode == 130, err
     assert err == "rigidimpact: interrupted\n"
 
 
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
 def test_ctrl_c_to_the_whole_process_group_is_still_one_line():
     # a terminal's Ctrl-C reaches verify's worker processes too; only the parent answers
     process = subprocess.Popen([*RIGIDIMPACT, "verify"], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True, cwd=ROOT,
                                start_new_session=True)
-    time.sleep(4.0)  # the workers are running checks by now
+    _workers_started(process)
     os.killpg(process.pid, signal.SIGINT)
     out, err = process.communicate(timeout=60)
     assert process.returncode == 130, err
