@@ -146,8 +146,7 @@ def recognise(expr: sp.Expr, name: sp.Symbol, definition: sp.Expr,
     >>> recognise(m * v * (e + 1) / (2 * M + m), f, (e + 1) * m / (2 * M + m), e)
     f*v
     """
-    numerator = sp.fraction(sp.together(name - definition))[0]
-    line = sp.Poly(sp.expand(numerator), eliminate)
+    line = _numerator_poly(name - definition, eliminate)
     if line.degree() != 1:
         raise ValueError(f"{name} = {definition} is not linear in {eliminate}")
     slope, offset = line.all_coeffs()
@@ -182,11 +181,15 @@ def polynomial_roots(expr: sp.Expr, x: sp.Symbol) -> list[sp.Expr]:
     >>> polynomial_roots((x**2 - a**2) / x, x)
     [-a, a]
     """
-    numerator = sp.fraction(sp.together(expr))[0]
-    line = sp.Poly(sp.expand(numerator), x)
+    line = _numerator_poly(expr, x)
     if line.degree() < 1:
         return []
     found = sp.roots(line)
     if sum(found.values()) != line.degree():
-        raise ArithmeticError(f"not every root of {numerator} in {x} has a closed form")
+        raise ArithmeticError(f"not every root of {line.as_expr()} in {x} has a closed form")
     return sorted(found, key=sp.default_sort_key)
+
+
+def _numerator_poly(expr: sp.Expr, x: sp.Symbol) -> sp.Poly:
+    """The numerator of `expr` over one denominator, as a polynomial in `x`."""
+    return sp.Poly(sp.expand(sp.fraction(sp.together(expr))[0]), x)

@@ -545,11 +545,12 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
 def _check_balance(energy: Mapping[str, float], tolerance: float, method: str) -> None:
     """Refuse a run whose energy does not balance: kinetic + stored at the end must equal
     the start plus the work the contact did (integrated alongside). Runs that follow the
-    model balance to within 0.4 times the tolerance on the bench's grid (4e-5 with e = 0,
-    where the capped dashpot is hardest to integrate); an integrator that strays from the
-    model does not (scipy's Radau on the bench's barbell: off by 15 to 40 per cent
-    whatever the tolerance). The limit, 100 times the tolerance but at least 0.1 per cent
-    and at most 5 per cent, catches such gross departures only."""
+    model balanced to within 0.4 times the tolerance on a sample of the bench's grid, and
+    to 4e-5 at tolerance 1e-6 with e = 0 (the capped dashpot, hardest to integrate); an
+    integrator that strays from the model does not (SciPy's Radau on the bench's barbell:
+    off by 15 to 40 per cent at tolerances 1e-5 to 1e-9). The limit, 100 times the
+    tolerance but at least 0.1 per cent and at most 5 per cent, catches such gross
+    departures only."""
     size = abs(energy["initial"]) + abs(energy["contact_work"])
     off = abs(energy["balance_error"]) / size if size > 0 else 0.0
     if off > min(max(100 * tolerance, 1e-3), 0.05):
