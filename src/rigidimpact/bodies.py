@@ -21,7 +21,7 @@ Matrix([[L*cos(theta), L*sin(theta)]])
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -47,7 +47,8 @@ def _expr(value: Any, where: str) -> sp.Expr:
         raise InputError(where, f"not a scalar expression: {value!r}")
     if expr.has(sp.nan) or expr.has(sp.zoo) or expr.has(sp.oo) or expr.has(-sp.oo):
         raise InputError(where, f"must be finite, got {expr}")
-    if expr.is_real is False:
+    # asking a large formula whether it is real can take minutes: ask numbers only
+    if expr.has(sp.I) or (expr.is_number and expr.is_real is False):
         raise InputError(where, f"must be real, got {expr}")
     return expr
 
@@ -391,6 +392,25 @@ class Body:
         Matrix([[2, 0]])
         """
         return replace(self, velocity=velocity, spin=spin)
+
+    def at(self, values: Mapping[sp.Symbol, Any]) -> Body:
+        """The same body with numbers (or expressions) put in for its symbols.
+
+        Examples
+        --------
+        >>> m, v = sp.symbols("m v", positive=True)
+        >>> Body.particle(m, (v, 0)).at({m: 2, v: 3})
+        Body(name='ball', mass=2, inertia=0, position=(0, 0), velocity=(3, 0), spin=0, shape='particle')
+        """  # noqa: E501
+        def put(x: Any) -> Any:
+            return x if x is None else sp.sympify(x).xreplace(dict(values))
+
+        parts = tuple(replace(p, mass=put(p.mass), position=put(p.position))
+                      for p in self.parts)
+        return replace(self, mass=put(self.mass), inertia=put(self.inertia),
+                       position=put(self.position), velocity=put(self.velocity),
+                       spin=put(self.spin), pivot=put(self.pivot), parts=parts,
+                       dimensions=tuple((k, put(v)) for k, v in self.dimensions))
 
     def point_velocity(self, point: sp.MatrixBase) -> sp.ImmutableMatrix:
         """Velocity of the material point at `point` (relative to O): V + omega x (r - R).

@@ -20,7 +20,8 @@ Matrix([
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -91,10 +92,10 @@ class Contact:
         if e.is_negative or (e - 1).is_positive or role.allows(e) is False:
             raise InputError("contact.restitution", role.describe(e))
         object.__setattr__(self, "restitution", e)
-        if self.tangential not in TANGENTIAL_LAWS:
+        if not isinstance(self.tangential, str) or self.tangential not in TANGENTIAL_LAWS:
             raise InputError("contact.tangential", f"must be one of {', '.join(TANGENTIAL)}, "
                              f"got {self.tangential!r}")
-        if self.law not in RESTITUTION_LAWS:
+        if not isinstance(self.law, str) or self.law not in RESTITUTION_LAWS:
             raise InputError("contact.law", f"must be one of {', '.join(RESTITUTION_LAWS)}, "
                              f"got {self.law!r}")
         if self.law != "newton" and self.tangential == "stick":
@@ -140,6 +141,22 @@ class Contact:
             extra += f", tangential_restitution={self.tangential_restitution}"
         return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
                 f"tangential={self.tangential!r}, law={self.law!r}{extra})")
+
+    def at(self, values: Mapping[sp.Symbol, Any]) -> Contact:
+        """The same contact with numbers (or expressions) put in for its symbols.
+
+        Examples
+        --------
+        >>> e = sp.Symbol("e", nonnegative=True)
+        >>> Contact(restitution=e).at({e: sp.Rational(1, 2)})
+        Contact(normal=(1, 0), restitution=1/2, tangential='smooth', law='newton')
+        """
+        def put(x: Any) -> Any:
+            return x if x is None else sp.sympify(x).xreplace(dict(values))
+
+        return replace(self, normal=put(self.normal), restitution=put(self.restitution),
+                       friction=put(self.friction),
+                       tangential_restitution=put(self.tangential_restitution))
 
     @property
     def laws(self) -> tuple[ContactLaw, ContactLaw]:

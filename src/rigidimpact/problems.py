@@ -66,6 +66,11 @@ PAPER_NUMBERS = (
 )
 
 
+# a frictional impact is solved at its numbers; with transcendental data that is done
+# with 50-digit floats (see Impact.numeric), enough for --dps up to this many digits
+_FRICTION_DIGITS = 45
+
+
 @dataclass(frozen=True)
 class Derivation:
     """A solved problem, ready to print, export or verify.
@@ -210,12 +215,23 @@ class Derivation:
         from rigidimpact.numeric import evaluate
 
         exact = self.checked(values, sources)
-        numbers = evaluate(self.results, exact, dps)
         if self.solution is None:
+            numbers = evaluate(self.results, exact, dps)
             return Evaluation(numbers, physics_warnings(numbers, dps, "the model"))
         contact = self.solution.contact
+        at = {self.symbols[k]: v for k, v in exact.items()}
+        if contact.frictional and (dps is None or dps <= _FRICTION_DIGITS):
+            # numbers first, then the case analysis: one course, exact (or 50-digit)
+            # arithmetic, and no formula over every course evaluated where most of its
+            # branches are undefined (a friction coefficient of 0, say)
+            solved = Impact(*(b.at(at) for b in self.solution.before),
+                            contact.at(at)).solve()
+            numbers = evaluate(solved.results(), {}, dps)
+            regime = solved.regime
+        else:
+            numbers = evaluate(self.results, exact, dps)
+            regime = self.solution.regime_at(at)
         model = model_name(contact)
-        regime = self.solution.regime_at({self.symbols[k]: v for k, v in exact.items()})
         if regime is not None:
             model += f" (regime {regime}"
             if contact.law == "newton" and ("reversal" in regime or "stick" in regime):

@@ -45,6 +45,7 @@ __all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", 
 
 LAWS = ("newton", "poisson", "energetic")
 SLIP, STICK, REVERSAL = "slip", "slip-stick", "slip-reversal"
+_FLOAT_DIGITS = 50  # the numeric mode's digits (transcendental data as 50-digit numbers)
 
 
 @dataclass(frozen=True)
@@ -142,7 +143,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
     for s in signs:
         side = () if len(signs) == 1 else (sp.Gt(s * v_t, 0),)
         found += _slipping(W, v_n, v_t, mu, e, law, s, side)
-    decided = [r for r in found if r.holds() is not False]
+    decided = [r for r in found if r is not None and r.holds() is not False]
     if not decided:
         raise InputError("contact", "no course of the impact fits these values: the "
                          "contact jams (the normal velocity would fall while slipping)")
@@ -164,7 +165,7 @@ def _from_rest(W, v_n, mu, e, law) -> tuple[Regime, ...]:
         slope = -mu * s
         found.append(_finish((_Piece(sp.Integer(0), slope, _rates(W, slope)),), v_n, e, law,
                              SLIP, (sp.Not(holds), sp.Gt(s * W[1, 0], 0))))
-    return tuple(r for r in found if r.holds() is not False)
+    return tuple(r for r in found if r is not None and r.holds() is not False)
 
 
 def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime]:
@@ -180,6 +181,8 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime]:
     rate = _rates(W, slope)
     first = _Piece(sp.Integer(0), slope, rate)
     stops = sp.Lt(s * rate[1], 0)  # the tangential velocity runs down to zero
+    if stops is sp.false:  # it never does (no friction, nothing coupling it): one piece
+        return [_finish((first,), v_n, e, law, SLIP, (*side, sp.Gt(rate[0], 0)))]
     p_star = sp.cancel(-v_t / rate[1])
     at_stop = sp.cancel(v_n + rate[0] * p_star)
     ended = sp.Ge(at_stop, -e * v_n)  # a straight impact would have ended by then
@@ -202,11 +205,13 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime]:
     return found
 
 
-def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime:
+def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime | None:
     """Follow the path to the end the law sets, in the regime's own ordering of events:
     with two pieces, slip stops inside the impact (and, by the name, in compression or
     in restitution)."""
     conditions = tuple(c for c in map(_simplified, conditions) if c is not sp.true)
+    if sp.false in conditions:  # this course cannot happen: its path is never built
+        return None
     if len(pieces) == 1:
         piece = pieces[0]
         p_c = -v_n / piece.rate[0]
@@ -224,13 +229,22 @@ def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime
         else:
             p_f = _energetic_end(first, second, v_n, e, name.endswith("restitution"))
         ends = [second.start, p_f]
-    ends = [tidy(p) for p in ends]
+    ends = [_tidy_number(p) for p in ends]
     path = [(sp.Integer(0), sp.Integer(0))]
     tangential = sp.Integer(0)
     for piece, end in zip(pieces, ends, strict=True):
         tangential += piece.slope * (end - piece.start)
-        path.append((end, tidy(tangential)))
+        path.append((end, _tidy_number(tangential)))
     return Regime(name, conditions, path[-1], tuple(path))
+
+
+def _tidy_number(expr: sp.Expr) -> sp.Expr:
+    """`tidy` for formulas; a floating-point number is only evaluated (factoring one is
+    slow and shows nothing)."""
+    expr = sp.sympify(expr)
+    if expr.is_number and expr.has(sp.Float):
+        return expr.evalf(_FLOAT_DIGITS)
+    return tidy(expr)
 
 
 def _energetic_end(first: _Piece, second: _Piece, v_n, e, stop_in_restitution) -> sp.Expr:

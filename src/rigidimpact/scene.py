@@ -302,7 +302,7 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     if not isinstance(name, str) or not name.isidentifier():
         raise InputError(f"{where}.name", "required: an identifier such as \"ball\"")
     shape = table.get("shape")
-    if shape not in SHAPES:
+    if not isinstance(shape, str) or shape not in SHAPES:
         raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
                          f"{', '.join(SHAPES)}")
     kind = SHAPES[shape]
@@ -397,8 +397,15 @@ def _read_contact(table: Mapping[str, Any], place: str,
         raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
     coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
                     for key in ("friction", "tangential_restitution") if key in table}
-    contact = Contact(normal, restitution, table.get("tangential", "smooth"),
-                      table.get("law", "newton"), contact_name, **coefficients)
+    words = {key: table.get(key, default) for key, default in
+             (("tangential", "smooth"), ("law", "newton"))}
+    for key, word in words.items():
+        if not isinstance(word, str):
+            raise InputError(f"{place}.{key}", f"must be one word in quotes, such as "
+                             f"\"{'smooth' if key == 'tangential' else 'newton'}\", got "
+                             f"{word!r}")
+    contact = Contact(normal, restitution, words["tangential"], words["law"], contact_name,
+                      **coefficients)
     origin = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
         else (sp.Integer(0), sp.Integer(0))
     return contact, origin
@@ -536,6 +543,8 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
 
     by_name = _body_tables(data)
     simulate = _table(data, "simulate", "settings")
+    if "contact" in data and "contacts" in data:
+        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
     if isinstance(data.get("contacts"), list) and len(data["contacts"]) > 1:
         return _several(data, title, symbols, values, by_name, simulate, name)
     contact_table, place = _contact_table(data)
