@@ -191,3 +191,123 @@ bodies = ["b", "c"]
 restitution = "1"
 """
     refused(capsys, ["derive", scene_file(tmp_path, text)], "not both")
+
+
+VEE = """
+[[bodies]]
+name = "block"
+shape = "rigid"
+mass = "1"
+inertia = "1/3"
+position = ["0", "0"]
+velocity = ["0.3", "-1"]
+spin = "0.5"
+[[bodies]]
+name = "ground"
+shape = "fixed"
+"""
+VEE_CONTACT = """
+[[contacts]]
+name = "{name}"
+bodies = ["block", "ground"]
+point = ["{x}", "-1"]
+normal = ["{nx}", "-sqrt(2)"]
+restitution = "0.5"
+tangential = "coulomb"
+friction = "0.3"
+"""
+
+
+def test_frictional_contacts_with_irrational_normals_are_solved(tmp_path, capsys):
+    # two contacts whose normals have length sqrt(3); each state's linear system is
+    # solved in the field of its numbers. The answer must meet the velocity-level rule
+    # it names, recomputed here from the motion after: an acting contact leaves at -e
+    # times its normal closing speed, a sticking one with no slip, a sliding one on the
+    # cone's edge against its slip; and the impulses must give the momentum change.
+    text = VEE + VEE_CONTACT.format(name="left", x="-1", nx="-1") + \
+        VEE_CONTACT.format(name="right", x="1", nx="1")
+    out = evaluated(capsys, ["evaluate", scene_file(tmp_path, text)])
+    root3 = 3 ** 0.5
+    v0, w0 = (0.3, -1.0), 0.5
+    v1, w1 = (out["block.vx"], out["block.vy"]), out["block.omega"]
+    momentum = [0.0, 0.0]
+    for name, x, nx in (("left", -1, -1), ("right", 1, 1)):
+        n = (nx / root3, -(2 ** 0.5) / root3)
+        t = (-n[1], n[0])
+        before = (v0[0] - w0 * -1, v0[1] + w0 * x)  # v + w x r, r = (x, -1)
+        after = (v1[0] - w1 * -1, v1[1] + w1 * x)
+        closing = before[0] * n[0] + before[1] * n[1]
+        assert closing > 0
+        assert after[0] * n[0] + after[1] * n[1] == pytest.approx(-0.5 * closing)
+        p_n, p_t = out[f"{name}.normal_impulse"], out[f"{name}.tangential_impulse"]
+        slip = after[0] * t[0] + after[1] * t[1]
+        course = dict(c.split(": ") for c in out["courses"])[name]
+        if course == "sticks":
+            assert slip == pytest.approx(0, abs=1e-12) and abs(p_t) <= 0.3 * p_n + 1e-12
+        else:
+            # the ground's slip relative to the block is -slip: its impulse opposes that
+            assert abs(p_t) == pytest.approx(0.3 * p_n) and p_t * slip > 0
+        for k in (0, 1):  # the ground pushes the block by -(P_n n + P_t t)
+            momentum[k] -= p_n * n[k] + p_t * t[k]
+    assert v1[0] - v0[0] == pytest.approx(momentum[0])
+    assert v1[1] - v0[1] == pytest.approx(momentum[1])
+
+
+def test_every_order_of_many_contacts_is_refused_before_any_is_made(tmp_path, capsys):
+    lines = []
+    for k in range(13):
+        lines += ["[[bodies]]", f'name = "b{k}"', 'shape = "disc"', 'mass = "1"',
+                  'radius = "1"', f'position = ["{2 * k}", "0"]',
+                  f'velocity = ["{1 if k == 0 else 0}", "0"]']
+    for k in range(12):
+        lines += ["[[contacts]]", f'name = "c{k}"', f'bodies = ["b{k}", "b{k + 1}"]',
+                  f'point = ["{2 * k + 1}", "0"]', 'restitution = "1"']
+    lines += ["[impact]", 'rule = "sequential"']
+    text = "\n".join(lines)
+    refused(capsys, ["evaluate", scene_file(tmp_path, text)], "479001600 orders")
+
+
+def test_symbolic_simultaneous_rule_is_bounded(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("rigidimpact.collision.MAX_SYMBOLIC_SECONDS", 2.0)
+    # three contacts between four discs, every speed a symbol: 64 cases under Newton's law
+    speeds = ["v", "u", "w", "d"]
+    lines = []
+    for k, speed in enumerate(speeds):
+        lines += ["[[bodies]]", f'name = "b{k}"', 'shape = "disc"', 'mass = "m"',
+                  'radius = "1"', f'position = ["{2 * k}", "0"]', f'velocity = ["{speed}", "0"]']
+    for k in range(3):
+        lines += ["[[contacts]]", f'name = "c{k}"', f'bodies = ["b{k}", "b{k + 1}"]',
+                  f'point = ["{2 * k + 1}", "0"]', 'restitution = "e"']
+    refused(capsys, ["derive", scene_file(tmp_path, "\n".join(lines))], "give numbers")
+
+
+def test_a_particle_takes_a_position_among_several_contacts(tmp_path, capsys):
+    # a bead placed at (3, 0), away from the origin, moving at 2 along x strikes a wall
+    # there; a second contact at the same point (normal along y) does not close. By hand:
+    # the bead leaves at -e * 2 = -1 and the wall's impulse is m (1 + e) 2 = 3.
+    text = """
+[[bodies]]
+name = "bead"
+shape = "particle"
+mass = "1"
+position = ["3", "0"]
+velocity = ["2", "0"]
+[[bodies]]
+name = "wall"
+shape = "fixed"
+[[contacts]]
+name = "hit"
+bodies = ["bead", "wall"]
+point = ["3", "0"]
+restitution = "1/2"
+[[contacts]]
+name = "graze"
+bodies = ["bead", "wall"]
+point = ["3", "0"]
+normal = ["0", "1"]
+restitution = "1/2"
+"""
+    out = evaluated(capsys, ["evaluate", scene_file(tmp_path, text)])
+    # the bead rebounds at -e v along x; the second contact does not close (v_y = 0)
+    assert out["bead.vx"] == -1.0 and out["bead.vy"] == 0.0
+    assert out["hit.normal_impulse"] == 3.0 and out["graze.normal_impulse"] == 0.0

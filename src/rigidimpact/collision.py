@@ -40,6 +40,8 @@ Examples
 from __future__ import annotations
 
 import itertools
+import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -63,6 +65,12 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 # collapse); it is cut where every closing speed left is this small next to the first
 SETTLED = sp.Rational(1, 10**40)
 MAX_ORDERS = 720  # every order of up to six contacts
+# the simultaneous rule with symbols: a case (signs before x acting contacts) that can
+# hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
+# past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
+# the cases are counted first and the work is given a time
+MAX_SYMBOLIC_CASES = 4096
+MAX_SYMBOLIC_SECONDS = 20.0
 RULE_LAWS = {
     "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
                     "restitution law at each contact that acts and no contact pulling "
@@ -425,9 +433,15 @@ class Collision:
         states = [("off", "stick", "slide+", "slide-") if mu[i] else ("off", "on")
                   for i in range(n)]
         found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
+        count = math.prod(len(s) for s in states)
+        if count > MAX_SYMBOLIC_CASES:
+            raise InputError("contacts", _too_many_states(n, count))
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         for pattern in itertools.product(*states):
             if all(state == "off" for state in pattern):
                 continue
+            if time.perf_counter() > deadline:
+                raise InputError("contacts", _too_many_states(n, count))
             solved = self._friction_pattern(pattern, W, v_n, v_t, target, mu)
             if solved is not None and all(solved != f for f, _ in found):
                 found.append((solved, pattern))
@@ -483,10 +497,10 @@ class Collision:
                 equations.append(after[n + i])
             else:
                 equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
-        solution = sp.solve(equations, P, dict=True)
-        if len(solution) != 1 or len(solution[0]) != 2 * n:
+        matrix, rhs = sp.linear_eq_to_matrix(equations, P)
+        impulses = _exact_solve(matrix, rhs)
+        if impulses is None:  # these states do not fix the impulses
             return None
-        impulses = sp.Matrix([tidy(solution[0][p]) for p in P])
         after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
         for i, state in enumerate(pattern):
             p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
@@ -722,6 +736,10 @@ class Collision:
                 continue
             options.append([(sp.Le(v[i], 0), -e[i] * v[i], True),
                             (sp.Ge(v[i], 0), sp.Integer(0), False)])
+        count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
+        if count > MAX_SYMBOLIC_CASES:
+            raise InputError("contacts", _too_many_cases(n, count))
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         cases = []
         for pattern in itertools.product(*options):
             if not poisson and not any(closing for _, _, closing in pattern):
@@ -731,6 +749,8 @@ class Collision:
                 continue
             target = sp.Matrix([t for _, t, _ in pattern])
             for active, compression, after in self._active_sets(v, target):
+                if time.perf_counter() > deadline:
+                    raise InputError("contacts", _too_many_cases(n, count))
                 held = _conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
                                    + [sp.Ge(tidy(after[i] - target[i]), 0)
                                       for i in range(n) if i not in active])
@@ -781,16 +801,48 @@ class Collision:
     def every_order(self) -> tuple[Outcome, ...]:
         """The sequential rule in every order of the contacts."""
         names = [t.name for t in self.touches]
+        count = math.factorial(len(names))  # counted before any order is made
+        if count > MAX_ORDERS:
+            raise InputError("impact.order", f"{len(names)} contacts have {count} orders "
+                             f"(at most {MAX_ORDERS} are run): give one")
         orders = list(itertools.permutations(names))
-        if len(orders) > MAX_ORDERS:
-            raise InputError("impact.order", f"{len(names)} contacts have {len(orders)} "
-                             "orders: give one")
         if self.symbols:
             return tuple(self.sequential_pass(order) for order in orders)
         return tuple(self.sequential(order) for order in orders)
 
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
         return {t.name: impulses[k] for k, t in enumerate(self.touches)}
+
+
+def _too_many_cases(n: int, count: int) -> str:
+    return (f"{n} contacts with symbols make {count} cases (signs before x contacts "
+            f"acting), more than can be solved in {MAX_SYMBOLIC_SECONDS:.0f} s: give "
+            "numbers for the symbols (--set or [values]) and it is solved exactly at them")
+
+
+def _exact_solve(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
+    """The unique solution of a square linear system of numbers, or None when it is
+    singular. The numbers are taken into their own field (the rationals with sqrt(2)
+    adjoined, say), where elimination is exact and fast; SymPy's general expressions
+    would be factored at every step.
+
+    Examples
+    --------
+    >>> _exact_solve(sp.Matrix([[1, sp.sqrt(2)], [0, 2]]), sp.Matrix([1, 2])).T
+    Matrix([[1 - sqrt(2), 1]])
+    """
+    augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
+    reduced, pivots = augmented.rref()
+    size = matrix.shape[1]
+    if tuple(pivots) != tuple(range(size)):
+        return None
+    return reduced.to_Matrix()[:, size]
+
+
+def _too_many_states(n: int, count: int) -> str:
+    return (f"{n} frictional contacts have {count} combinations of states (released, "
+            f"sticking, sliding either way), more than can be solved exactly in "
+            f"{MAX_SYMBOLIC_SECONDS:.0f} s: try the sequential rule with an order")
 
 
 FLIPPED = {sp.GreaterThan: sp.LessThan, sp.LessThan: sp.GreaterThan,

@@ -17,7 +17,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, ClassVar
 
 import sympy as sp
@@ -76,11 +76,14 @@ class Shape:
 class Particle(Shape):
     """A point mass at O; it has no spin an impact could change or use."""
 
-    name, fields, required, spins = "particle", ("mass",), ("mass",), False
+    name, fields, required, spins = "particle", ("mass", "position"), ("mass",), False
 
     @classmethod
     def build(cls, given: Fields) -> Body:
-        return Body.particle(given.expr("mass"), given.velocity, given.name)
+        body = Body.particle(given.expr("mass"), given.velocity, given.name)
+        if "position" not in given.table:  # at O (with several contacts, the origin)
+            return body
+        return replace(body, position=given.vector("position"))
 
 
 class Barbell(Shape):
