@@ -5,10 +5,13 @@ from __future__ import annotations
 
 import json
 import random
+from pathlib import Path
 
 import pytest
 
 from rigidimpact.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
 
 DISC_ON_FLOOR = """
 [values]
@@ -311,3 +314,151 @@ restitution = "1/2"
     # the bead rebounds at -e v along x; the second contact does not close (v_y = 0)
     assert out["bead.vx"] == -1.0 and out["bead.vy"] == 0.0
     assert out["hit.normal_impulse"] == 3.0 and out["graze.normal_impulse"] == 0.0
+
+
+TWO_DISCS = """
+[[bodies]]
+name = "a"
+shape = "disc"
+mass = "1"
+radius = "1"
+position = ["-1", "0"]
+velocity = ["1", "0"]
+[[bodies]]
+name = "b"
+shape = "disc"
+mass = "1"
+radius = "{radius}"
+position = ["{x}", "0"]
+[contact]
+bodies = ["a", "b"]
+normal = {normal}
+restitution = "1"
+"""
+
+
+@pytest.mark.parametrize("normal, x, radius, needle", [
+    ('["1", "1"]', "1", "1", "through its centre"),     # tilted between smooth discs
+    ('["-1", "0"]', "1", "1", "wrong side"),            # driven into the other ball
+    ('["1", "0"]', "2", "1", "radius"),                 # a centre off the radius
+])
+def test_impossible_contact_geometry_is_refused(tmp_path, capsys, normal, x, radius,
+                                                needle):
+    text = TWO_DISCS.format(normal=normal, x=x, radius=radius)
+    refused(capsys, ["derive", scene_file(tmp_path, text)], needle)
+
+
+def test_geometry_through_set_is_checked_as_in_the_file(tmp_path, capsys):
+    # a rod struck beyond its end, and a disc whose radius no longer reaches the contact:
+    # refused when the number comes by --set exactly as when it is written in the file
+    rod = """
+[[bodies]]
+name = "ball"
+shape = "particle"
+mass = "1"
+velocity = ["1", "0"]
+[[bodies]]
+name = "rod"
+shape = "rod"
+mass = "1"
+length = "2"
+angle = "pi/2"
+struck_at = "{at}"
+[contact]
+bodies = ["ball", "rod"]
+restitution = "1"
+"""
+    refused(capsys, ["derive", scene_file(tmp_path, rod.format(at="3"), "a.toml")],
+            "struck_at")
+    path = scene_file(tmp_path, rod.format(at="d"), "b.toml")
+    refused(capsys, ["evaluate", path, "--set", "d=3"], "on the rod")
+    assert main(["evaluate", path, "--set", "d=1"]) == 0  # an end hit is fine
+    capsys.readouterr()
+    disc = TWO_DISCS.format(normal='["1", "0"]', x="1", radius="r")
+    path = scene_file(tmp_path, disc, "c.toml")
+    refused(capsys, ["evaluate", path, "--set", "r=2"], "on its rim")
+
+
+def test_several_contacts_refuse_points_off_their_bodies(tmp_path, capsys):
+    rod = """
+[[bodies]]
+name = "rod"
+shape = "rod"
+mass = "1"
+length = "2"
+angle = "0"
+struck_at = "0"
+velocity = ["0", "-1"]
+[[bodies]]
+name = "floor"
+shape = "fixed"
+[[contacts]]
+name = "left"
+bodies = ["rod", "floor"]
+point = ["-1", "0"]
+normal = ["0", "-1"]
+restitution = "1"
+[[contacts]]
+name = "right"
+bodies = ["{first}", "floor"]
+point = ["{x}", "0"]
+normal = ["0", "-1"]
+restitution = "1"
+"""
+    refused(capsys, ["derive", scene_file(tmp_path, rod.format(first="rod", x="6"))],
+            "between its ends")
+    both = rod.format(first="wall", x="1") + '[[bodies]]\nname = "wall"\nshape = "fixed"\n'
+    both = both.replace('[[contacts]]\nname = "left"', '[[bodies]]\nname = "wall"\n'
+                        'shape = "fixed"\n[[contacts]]\nname = "left"', 1)
+    both = both[:both.rindex('[[bodies]]\nname = "wall"')]
+    refused(capsys, ["derive", scene_file(tmp_path, both, "both.toml")],
+            "two fixed bodies")
+
+
+def test_impact_of_non_bodies_is_one_line():
+    import rigidimpact as ri
+    from rigidimpact.errors import InputError
+
+    with pytest.raises(InputError, match="must be a Body"):
+        ri.Impact(1, 2, ri.Contact(restitution=1))
+
+
+def test_a_swinging_pendulum_bob_can_be_struck(capsys):
+    # the shipped scene: a bullet lodges in a bob already swinging at w; by hand, angular
+    # momentum about the pivot gives (m + M) u = m v + M w
+    import sympy as sp
+
+    from rigidimpact.scene import load_scene
+
+    scene = load_scene(ROOT / "derivations" / "swinging-pendulum.toml")
+    results = scene.derivation().results
+    m, M, v, w, cord = (scene.symbols[n] for n in ("m", "M", "v", "w", "l"))
+    assert sp.simplify(results["bob.vx"] - (m * v + M * w) / (m + M)) == 0
+    assert sp.simplify(results["bob.omega"] - (m * v + M * w) / ((m + M) * cord)) == 0
+    out = evaluated(capsys, ["evaluate", str(ROOT / "derivations" / "swinging-pendulum.toml")])
+    assert out["bob.vx"] == pytest.approx((0.01 * 400 + 2 * -1) / 2.01, rel=1e-15)
+
+
+def test_a_bob_takes_its_swing_rate_or_a_velocity_across_its_cord(tmp_path, capsys):
+    base = (ROOT / "derivations" / "swinging-pendulum.toml").read_text()
+    by_rate = base.replace('velocity = ["w", "0"]     #', 'spin = "w/l"     #')
+    out = evaluated(capsys, ["evaluate", scene_file(tmp_path, by_rate)])
+    assert out["bob.vx"] == pytest.approx((0.01 * 400 + 2 * -1) / 2.01, rel=1e-15)
+    along = base.replace('velocity = ["w", "0"]', 'velocity = ["w", "1"]')
+    refused(capsys, ["evaluate", scene_file(tmp_path, along, "along.toml")],
+            "turning about its pivot")
+
+
+def test_simulate_takes_set(capsys):
+    path = str(ROOT / "derivations" / "restrike.toml")
+    assert main(["simulate", path, "--json"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    assert main(["simulate", path, "--set", "e=1/2", "--json"]) == 0
+    changed = json.loads(capsys.readouterr().out)
+    # by hand (paper, eq. 5): V_x = f v with f = m(1 + e)/(2M + m(1 + sin^2 theta))
+    import math
+
+    f = 1.5 / (2 + 1 + math.sin(math.radians(10)) ** 2)
+    assert changed["final"]["barbell.vx"] == pytest.approx(f, rel=1e-12)
+    assert default["final"]["barbell.vx"] != changed["final"]["barbell.vx"]
+    refused(capsys, ["simulate", path, "--set", "e=3"], "--set e")

@@ -16,6 +16,7 @@ import pytest
 import sympy as sp
 
 from rigidimpact import restrike
+from rigidimpact.cli import main
 from rigidimpact.notation import symbol
 from rigidimpact.paper import REFERENCES
 from rigidimpact.simulate.flight import Flyer, first_contact
@@ -235,3 +236,47 @@ def test_bad_parameters_name_the_field():
 @pytest.mark.parametrize("ratio", [0.2, 0.7, 1.5, 3.0, 8.0, 50.0])
 def test_windows_agree_with_brute_force_over_a_wide_grid(restitution, ratio):
     test_windows_agree_with_a_brute_force_sweep(restitution, ratio)
+
+
+def _flight_restrikes(theta: float, e: float, ratio: float, steps: int = 20000) -> bool:
+    """An independent brute force in the lab frame: the impact from the paper's eq. (5)
+    (L = v = M = 1, m = ratio), then the ball's straight flight and the rod's turn about
+    its drifting centre sampled in time until the ball is out of the rod's reach; a
+    re-strike is the ball crossing the rod's line while within its half-length."""
+    s, c = math.sin(theta), math.cos(theta)
+    f = ratio * (1 + e) / (2 + ratio * (1 + s * s))
+    ball, centre, spin = 1 - 2 * f / ratio, f, f * s
+    rel = ball - centre  # the ball's velocity relative to the centre, along x
+    if rel * c <= 0:  # it starts at distance L and only moves away
+        return False
+    t = np.linspace(2 * c / rel * 1e-7, 2 * c / rel, steps)
+    px, py = -c + rel * t, -s + 0 * t
+    phi = theta + spin * t
+    cross = np.cos(phi) * py - np.sin(phi) * px
+    inside = np.hypot(px, py) <= 1 + 1e-12
+    flips = np.sign(cross[1:]) != np.sign(cross[:-1])
+    return bool(np.any(flips & inside[1:] & inside[:-1]))
+
+
+@pytest.mark.parametrize("e, ratio", [
+    ("0.1", "0.01"), ("0.1", "1"), ("0.1", "100"), ("0.5", "0.01"), ("0.5", "100"),
+    ("0.9", "0.01"), ("0.9", "1"), ("0.9", "100"), ("0.3", "1"),
+    # e (1 + 2M/m) = 1 + e: the condition's root at 180 degrees is of fifth order
+    ("0.5", "1"), ("0.25", "0.5"),
+])
+def test_windows_agree_with_a_brute_force_flight(e, ratio):
+    windows = restrike.critical_angle(e, ratio).windows_deg  # never refused on this grid
+    edges = [float(x) for w in windows for x in w] + [0.0, 90.0, 180.0]
+    for degrees in np.arange(1.0, 180.0, 1.0):
+        if min(abs(degrees - x) for x in edges) < 0.5:
+            continue  # at 90 degrees the ball leaves the reach at once (T = 0)
+        inside = any(float(a) < degrees < float(b) for a, b in windows)
+        assert _flight_restrikes(math.radians(degrees), float(e), float(ratio)) == inside
+
+
+def test_no_window_at_the_fifth_order_root(capsys):
+    # e = 1/2, m/M = 1: sphere B reaches the ball's exit direction just after the ball
+    # has left (short by 7e-5 rad at 168 degrees, 3e-10 at 179, computed to 50 digits)
+    assert restrike.critical_angle("0.5", "1").windows_deg == []
+    assert main(["critical-angle", "--e", "0.5", "--mass-ratio", "1"]) == 0
+    assert "no re-strike" in capsys.readouterr().out

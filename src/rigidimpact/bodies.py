@@ -187,7 +187,14 @@ class Body:
         if self.inertia_about_pivot.is_zero:
             raise InputError(f"{self.name}.pivot", "a point mass pivoted at its own place "
                              "cannot move: put the pivot elsewhere or make the body fixed")
-        expected = spin_cross(self.spin, self.position - pivot)
+        offset = self.position - pivot
+        if sp.sympify(self.spin).is_zero and not all(v.is_zero for v in self.velocity):
+            # no spin given but a velocity: the turn about the pivot that gives it (a
+            # pendulum bob has no spin of its own; its swing rate is this)
+            spin = tidy((offset[0] * self.velocity[1] - offset[1] * self.velocity[0])
+                        / (offset[0] ** 2 + offset[1] ** 2))
+            object.__setattr__(self, "spin", spin)
+        expected = spin_cross(self.spin, offset)
         for axis, (v, w) in enumerate(zip(self.velocity, expected, strict=True)):
             if v != w and not _negligible(tidy(v - w), v, w):  # shown consistent
                 raise InputError(f"{self.name}.velocity", f"a pivoted body moves only by "

@@ -420,6 +420,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rigidimpact.simulate import explain, run
 
     scene = load_scene(args.scene)
+    if args.set:
+        values, sources = _settings({}, args.set)
+        scene = scene.with_values(values, sources)
     if args.plot:
         _check_plot_path(Path(args.plot))
     if args.animate:
@@ -441,10 +444,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     for event in outcome.events:
         extra = ", ".join(f"{k} {', '.join(v) if k in ('acted', 'contacts') else v}"
                           for k, v in event.items() if k not in ("kind", "t", "why"))
-        print(f"t = {event['t']:.12g}: {event['kind']}" + (f" ({extra})" if extra else "")
+        print(f"t = {event['t'] + 0.0:.12g}: {event['kind']}"  # + 0.0: no "-0"
+              + (f" ({extra})" if extra else "")
               + (f": {event['why']}" if "why" in event else ""))
     for key, value in outcome.final.items():
-        print(f"{key} = {value!r}")
+        print(f"{key} = {value + 0.0 if isinstance(value, float) else value!r}")
     if "rule" in outcome.details:
         print(f"rule = {outcome.details['rule']}; contacts that acted: "
               f"{', '.join(outcome.details['acted']) or 'none'}")
@@ -676,6 +680,8 @@ def _build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("simulate", help="run the model a scene's [simulate] table asks for")
     p.add_argument("scene", metavar="SCENE")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a value for a symbol (repeat); a scene's [values] are defaults")
     p.add_argument("--explain", action="store_true", help="print the plan")
     p.add_argument("--plot", metavar="FILE", help="draw the trajectories to a PNG file")
     p.add_argument("--animate", metavar="FILE",

@@ -257,6 +257,10 @@ class Collision:
                     raise InputError(f"{touch.name}.bodies", f"no body named {side!r}")
             if touch.first == touch.second:
                 raise InputError(f"{touch.name}.bodies", "a contact needs two bodies")
+            if all(self._body(side).support == "fixed" for side in (touch.first,
+                                                                     touch.second)):
+                raise InputError(f"{touch.name}.bodies", "two fixed bodies cannot collide: "
+                                 "at least one must move")
             for side in (touch.first, touch.second):
                 body = self._body(side)
                 if body.inertia.is_zero and body.support != "fixed" and \

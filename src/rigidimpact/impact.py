@@ -86,6 +86,13 @@ class Impact:
     numbers: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self) -> None:
+        for where, body in (("first", self.first), ("second", self.second)):
+            if not isinstance(body, Body):
+                raise InputError(where, f"must be a Body (Body.particle, Body.rod, ...), got "
+                                 f"{type(body).__name__} {body!r}")
+        if not isinstance(self.contact, Contact):
+            raise InputError("contact", f"must be a Contact, got "
+                             f"{type(self.contact).__name__} {self.contact!r}")
         if self.first.name == self.second.name:
             raise InputError("bodies", f"the two bodies share the name {self.first.name!r}")
         for body in (self.first, self.second):

@@ -293,9 +293,45 @@ def _roots(expr: sp.Expr, lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
     change, the derivative's root there is found and, if f changes sign at it, both roots
     of the pair are taken. Roots closer than ``ENDS`` to the ends are not resolved.
     """
-    f = sp.lambdify(theta, expr / _scale(expr), modules="mpmath")
-    df = sp.lambdify(theta, sp.diff(expr, theta) / _scale(sp.diff(expr, theta)),
-                     modules="mpmath")
+    # a root at an end (pi always, for the outrace factor: there the ball is struck where
+    # it stands) is divided out, to its order: so a multiple root there (order 5 where
+    # e (1 + 2M/m) = 1 + e) leaves a factor that is not flat, and the digits that the
+    # division cancels near the end are worked with
+    orders = [_order_at(expr, end) for end in (lo, hi)]
+    ends = (theta - _sp_value(lo)) ** orders[0] * (_sp_value(hi) - theta) ** orders[1]
+    reduced = expr / (_scale(expr) * ends)
+    with mpmath.workdps(mpmath.mp.dps + 12 * sum(orders)):
+        return _scan(sp.lambdify(theta, reduced, modules="mpmath"),
+                     sp.lambdify(theta, sp.diff(reduced, theta) /
+                                 _scale(sp.diff(expr, theta) / ends), modules="mpmath"),
+                     lo, hi)
+
+
+def _sp_value(x: mpmath.mpf) -> sp.Expr:
+    """0 and pi exactly (the ends of the scan)."""
+    return sp.Integer(0) if x == 0 else sp.pi
+
+
+def _order_at(expr: sp.Expr, end: mpmath.mpf) -> int:
+    """The order of the root of `expr` at an end of (0, pi), 0 where it has none.
+
+    Examples
+    --------
+    >>> _order_at(sp.sin(theta) ** 3, mpmath.pi)
+    3
+    """
+    x = sp.Dummy("x", positive=True)
+    near = expr.xreplace({theta: _sp_value(end) + (x if end == 0 else -x)})
+    if sp.nsimplify(near.subs(x, 0)) != 0:
+        return 0
+    series = sp.series(near, x, 0, 12).removeO()
+    if series == 0:
+        raise InputError("--e", "the re-strike condition vanishes to 12th order at an end "
+                         "of (0, 180) degrees: its windows there cannot be told apart")
+    return int(min(sp.Poly(series, x).monoms())[0])
+
+
+def _scan(f, df, lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
     xs = _grid(lo, hi)
     ys = [f(x) for x in xs]
     found: list[mpmath.mpf] = []

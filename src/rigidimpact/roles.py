@@ -57,12 +57,16 @@ class Role:
     low: Any = None
     high: Any = None
     open_low: bool = False
+    zero: bool = False  # the role asks for zero (a point on a surface), to 40 digits
 
     def allows(self, value: sp.Expr) -> bool | None:
         """Whether a value fits the range (None while it is not a number)."""
         value = sp.sympify(value)
         if not value.is_number:
             return None
+        if self.zero:  # exact zeros of sums of radicals need not simplify to 0 by
+            # themselves: decided at 60 digits, far beyond any stated number's digits
+            return bool(abs(sp.N(value, 60)) < sp.Float("1e-40", 60))
         if value.is_real is False:
             return False
         low_ok = (self.low is None or (value > self.low if self.open_low
@@ -78,6 +82,8 @@ class Role:
 
     def describe(self, value: sp.Expr) -> str:
         """The refusal for `value`, naming the role and its range."""
+        if self.zero:
+            return f"{self.meaning}; here it is off by {_short(value)}"
         if self.high is None and self.low == 0:
             bound = "must be positive" if self.open_low else "must not be negative"
         else:
@@ -140,10 +146,67 @@ def check_roles(roles: Iterable[Role], values: Mapping[sp.Symbol, sp.Expr],
         raise InputError(", ".join(doors) or role.field, role.describe(value))
 
 
-def roles_of(bodies: Iterable[Any], contacts: Iterable[Any]) -> tuple[Role, ...]:
+@dataclass(frozen=True)
+class _AtOrigin:
+    """The one contact of a two-body impact: at O."""
+
+    name: str
+    first: str
+    second: str
+    normal: Any
+    point: Any = (0, 0)
+
+
+def _geometry(bodies: tuple[Any, ...], touches: Iterable[Any]) -> list[Role]:
+    """Where each contact must be on the bodies it touches, as roles (so a value that
+    arrives later, by ``--set`` or ``[values]``, is checked as if written in the file):
+    a round body is touched on its rim, along the line through its centre, from outside
+    (the normal points out of the first body and into the second); a rod is touched
+    between its ends; a point mass where it is."""
+    found: list[Role] = []
+    by_name = {b.name: b for b in bodies}
+    for touch in touches:
+        point = sp.Matrix(list(touch.point))
+        normal = sp.Matrix(list(touch.normal))
+        for side, name in ((1, touch.first), (-1, touch.second)):
+            body = by_name.get(name)
+            if body is None or getattr(body, "support", "free") == "fixed":
+                continue
+            where = f"{touch.name}.point"
+            dims = dict(body.dimensions)
+            outward = side * (point - sp.Matrix(list(body.position)))  # along the normal
+            if "radius" in dims:
+                found += [
+                    Role(where, f"{name} is round: the contact must lie on its rim, "
+                         f"{dims['radius']} from its centre",
+                         outward.dot(outward) - dims["radius"] ** 2, zero=True),
+                    Role(f"{touch.name}.normal", f"{name} is round: the normal must pass "
+                         "through its centre", outward[0] * normal[1] - outward[1] * normal[0],
+                         zero=True),
+                    Role(f"{touch.name}.normal", f"the normal must point out of the first "
+                         f"body and into the second ({name}'s centre is on the wrong side)",
+                         outward.dot(normal), 0, None, open_low=True)]
+            if body.shape == "rod" and "struck_at" in dims:
+                found.append(Role(f"{name}.struck_at", "the contact must lie on the rod: "
+                                  "half the length minus |struck_at|",
+                                  dims["length"] / 2 - sp.Abs(dims["struck_at"]), 0))
+            if body.shape == "rod" and isinstance(touch, _AtOrigin) is False:
+                axis = sp.Matrix([sp.cos(dims["angle"]), sp.sin(dims["angle"])])
+                offset = point - sp.Matrix(list(body.position))
+                found += [
+                    Role(where, f"{name} is a thin rod: the contact must lie on its axis",
+                         offset[0] * axis[1] - offset[1] * axis[0], zero=True),
+                    Role(where, f"{name} is a thin rod: the contact must lie between its "
+                         "ends (half the length minus the distance from its centre)",
+                         dims["length"] / 2 - sp.Abs(offset.dot(axis)), 0)]
+    return found
+
+
+def roles_of(bodies: Iterable[Any], contacts: Iterable[Any],
+             touches: Iterable[Any] | None = None) -> tuple[Role, ...]:
     """The roles of an impact's data: masses positive, inertias and sizes not negative,
     restitution in [0, 1] (and, as laws are added, the friction and tangential
-    coefficients in theirs).
+    coefficients in theirs), and where each contact lies on its bodies.
 
     Examples
     --------
@@ -152,6 +215,11 @@ def roles_of(bodies: Iterable[Any], contacts: Iterable[Any]) -> tuple[Role, ...]
     >>> k = sp.Symbol("k")
     >>> [r.field for r in roles_of([Body.particle(1)], [Contact(restitution=k)])]
     ['ball.mass', 'ball.inertia', 'contact.restitution']
+    >>> r = sp.Symbol("r", positive=True)
+    >>> pair = [Body.particle(1, name="a"), Body.disc(1, r, (r, 0), name="b")]
+    >>> [role.meaning for role in roles_of(pair, [Contact()]) if role.zero][0]
+    'b is round: the contact must lie on its rim, r from its centre'
+
     """
     roles: list[Role] = []
     for body in bodies:
@@ -163,6 +231,13 @@ def roles_of(bodies: Iterable[Any], contacts: Iterable[Any]) -> tuple[Role, ...]
             if key in ("length", "radius", "half_length", "mass_each"):
                 roles.append(Role(f"{body.name}.{key}", f"a {key.replace('_', ' ')}", size,
                                   0, None, open_low=True))
+    contacts = tuple(contacts)
+    if touches is None and len(contacts) == 1:  # one contact: at O, between the two
+        bodies = tuple(bodies)
+        names = [b.name for b in bodies]
+        if len(names) == 2:
+            touches = (_AtOrigin(contacts[0].name, names[0], names[1], contacts[0].normal),)
+    roles += _geometry(tuple(bodies), touches or ())
     for contact in contacts:
         name = getattr(contact, "name", "contact")
         roles.append(Role(f"{name}.restitution", "the restitution coefficient",

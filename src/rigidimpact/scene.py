@@ -39,10 +39,9 @@ from rigidimpact.errors import InputError
 from rigidimpact.geometry import spin_cross
 from rigidimpact.impact import Impact
 from rigidimpact.notation import SYMBOLS, make_symbol
-from rigidimpact.problems import Derivation, model_warnings
-from rigidimpact.rewrite import tidy
+from rigidimpact.problems import Derivation, model_warnings, read_values
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
-from rigidimpact.shapes import SHAPES, Fields, is_round
+from rigidimpact.shapes import SHAPES, Fields
 
 __all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
 
@@ -112,7 +111,7 @@ class Scene:
     @property
     def roles(self) -> tuple[Role, ...]:
         """What bounds the scene's data by role (see :mod:`rigidimpact.roles`)."""
-        return roles_of(self.bodies, self.contacts or (self.contact,))
+        return roles_of(self.bodies, self.contacts or (self.contact,), self.touches or None)
 
     def impact(self) -> Impact:
         """The scene's impact (one contact)."""
@@ -140,7 +139,45 @@ class Scene:
         for t in self.touches:
             found |= sp.Tuple(t.restitution, *t.point, *t.normal,
                               t.friction or 0).free_symbols
+        for c in self.contacts or (self.contact,):
+            found |= sp.Tuple(c.restitution, *c.normal, c.friction or 0,
+                              c.tangential_restitution or 0).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
+
+    def with_values(self, settings: Mapping[str, Any], sources: Mapping[str, str]) -> Scene:
+        """The scene with other numbers for its symbols (``--set``), checked through the
+        same door as ``[values]``: assumptions, roles, geometry, and (one contact) that
+        the bodies still approach.
+
+        Examples
+        --------
+        >>> scene = parse_scene('''
+        ... [values]
+        ... v = 1
+        ... [[bodies]]
+        ... name = "a"
+        ... shape = "particle"
+        ... mass = "1"
+        ... velocity = ["v", "0"]
+        ... [[bodies]]
+        ... name = "b"
+        ... shape = "particle"
+        ... mass = "1"
+        ... [contact]
+        ... restitution = "1"
+        ... ''')
+        >>> scene.with_values({"v": "2"}, {"v": "--set v"}).values
+        {v: 2}
+        """
+        values: dict[str, Any] = {s.name: v for s, v in self.values.items()}
+        values.update(settings)
+        every = {s.name: f"values.{s.name}" for s in self.values}
+        every.update(sources)
+        exact = read_values(values, every, self.data_symbols, self.roles, self.name)
+        scene = replace(self, values=exact)
+        if not self.several:
+            _check_scene(scene)
+        return scene
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
         """The scene's several contacts with numbers for its symbols."""
@@ -309,7 +346,7 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     allowed = set(kind.fields) | {"name", "shape"}
     if kind.moves:
         allowed |= {"velocity", "pivot"}
-    if kind.spins:
+    if kind.spins or (kind.moves and "pivot" in table):  # a bob's spin: its swing rate
         allowed |= {"spin"}
     for key in table:
         if key not in allowed:
@@ -332,7 +369,7 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
                 body = replace(body, pivot=pivot)
             else:  # the velocity follows from the spin
                 turn = spin_cross(spin, body.position - sp.ImmutableMatrix(pivot))
-                body = replace(body, pivot=pivot, velocity=turn)
+                body = replace(body, pivot=pivot, velocity=turn, spin=spin)
         return body
     except InputError as exc:
         # name the entry in the file, not only the body
@@ -441,20 +478,12 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
     bodies = []
     for index, table in by_name.values():
         bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
-    for touch in touches:  # round bodies touch at their radius
-        for body in bodies:
-            if body.name in (touch.first, touch.second) and is_round(body.shape):
-                radius = dict(body.dimensions)["radius"]
-                gap = body.position - touch.point
-                if tidy(gap[0] ** 2 + gap[1] ** 2 - radius**2).is_zero is False:
-                    raise InputError(f"{touch.name}.point", f"{body.name} is round: the "
-                                     f"contact must lie at its radius {radius} from its "
-                                     "centre")
     scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
                   contacts=tuple(contacts), touches=tuple(touches), rule=rule, order=order,
                   compliance=compliance)
-    if values:
-        check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
+    # the roles hold the geometry too (a contact on each body's outline): checked now
+    # with what the file says, again whenever values arrive
+    check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
     return scene
 
 
@@ -569,9 +598,10 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
 
 def _check_scene(scene: Scene) -> None:
     """Checks that need the whole scene: roles and approach with the given values."""
+    # geometry first (a normal pointing the wrong way also makes the bodies recede)
+    check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
     impact = scene.impact()  # refuses bodies known not to approach
     if scene.values:
-        check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
         approach = impact.approach_speed.xreplace(dict(scene.values))
         if approach.is_number and approach <= 0:
             raise InputError("bodies", f"the bodies are not approaching at O with [values] "
