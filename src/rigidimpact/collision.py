@@ -453,6 +453,11 @@ class Collision:
             raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
                              "friction here (a Painleve-type inconsistency); try the "
                              "sequential rule")
+        acting = {tuple(i for i in range(n) if f[i] > 0) for f, _ in found}
+        if len(acting) == 1 and len(next(iter(acting))) == 1:
+            (k,), = acting
+            if mu[k]:  # one contact acts: its own exact answer, not the velocity level's
+                return self._one_acting(k, target)
         impulses, pattern = found[0]
         motions = [(self.u_before + self.M_inverse * rows.T * f).applyfunc(tidy)
                    for f, _ in found]
@@ -482,6 +487,31 @@ class Collision:
                        courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                      zip(self.touches, pattern, strict=True)),
                        notes=notes)
+
+    def _one_acting(self, k: int, target: list[sp.Expr]) -> Outcome:
+        """Only contact k acts: its frictional impact alone by Routh's method (the answer
+        for one contact under every rule), if that leaves every other contact opening
+        at least as fast as its law asks; otherwise one line saying so."""
+        normal, along, course = self._routh_step(k, self.u_before)
+        u = (self.u_before + self.M_inverse * (self.J[k, :].T * normal
+                                               + self.J_t[k, :].T * along)).applyfunc(tidy)
+        after = (self.J * u).applyfunc(tidy)
+        blocked = [t.name for i, t in enumerate(self.touches)
+                   if i != k and after[i] < target[i]]
+        name = self.touches[k].name
+        if blocked:
+            raise InputError("impact.rule", f"only {name} acts at the velocity level, but "
+                             f"its exact (Routh) impulse leaves {', '.join(blocked)} "
+                             "closing: the simultaneous rule has no consistent answer here; "
+                             "try the sequential rule")
+        zeros = sp.zeros(len(self.touches), 1)
+        normals, tangentials = zeros.copy(), zeros.copy()
+        normals[k], tangentials[k] = normal, along
+        return Outcome("simultaneous", (), self.bodies, self._after(u),
+                       self._named(normals), (name,), tangential=self._named(tangentials),
+                       courses=tuple(f"{t.name}: {course}" if i == k else
+                                     f"{t.name}: {_STATE['off']}"
+                                     for i, t in enumerate(self.touches)))
 
     def _friction_pattern(self, pattern, W, v_n, v_t, target, mu) -> sp.Matrix | None:
         """The impulses (normal then tangential) for one choice of contact states, if
