@@ -264,7 +264,8 @@ def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None
         extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
                             "results": {k: float(v) for k, v in o.results().items()}}
                            for o in outcomes]
-    warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule")
+    warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule",
+                                outcomes[0].energy_tolerance)
     warnings = (*warnings, *outcomes[0].notes)
     return Evaluation(numbers, warnings, None, extra)
 
@@ -548,7 +549,11 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         if unknown or not chosen:
             raise InputError("--keys", f"no result {unknown[0] if unknown else ''!r}; the "
                              f"results are {', '.join(results)}")
-        results = {k: results[k] for k in chosen}
+        # the energy lost and the normal impulses are always evaluated, for the warnings
+        watched = [k for k in derivation.results if k == "energy_loss_fraction"
+                   or k.endswith("normal_impulse")]
+        results = {k: results[k] for k in [*chosen, *(w for w in watched
+                                                      if w not in chosen)]}
     fixed_names = [n for n in values if n not in grid]
     names = list(grid)
     corners = list(itertools.islice(itertools.product(*((a[0], a[-1])
@@ -571,6 +576,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             _progress_bar(done, count, "parameter sets")
 
     summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress)
+    for warning in summary["warnings"]:
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
         _print_json(summary)
         return 0

@@ -327,7 +327,8 @@ def model_warnings(contact: Contact) -> tuple[str, ...]:
 
 
 def physics_warnings(numbers: Mapping[str, Any], dps: int | None = None,
-                     model: str = "the model") -> tuple[str, ...]:
+                     model: str = "the model",
+                     energy_tolerance: float | None = None) -> tuple[str, ...]:
     """Where numbers break what an impact must obey, in words (empty when nothing does).
 
     An impact may not create kinetic energy, and a contact can only push: a negative
@@ -342,10 +343,12 @@ def physics_warnings(numbers: Mapping[str, Any], dps: int | None = None,
     tolerance = 1e-12 if dps is None else 10.0 ** (3 - dps)
     found = []
     loss = numbers.get("energy_loss_fraction")
-    if loss is not None and loss < -tolerance:
-        found.append(f"kinetic energy is created: the energy lost is {float(loss):.6g} of "
-                     f"the energy before; {model} cannot honour the physics at these "
-                     "values")
+    beyond = "" if energy_tolerance is None else \
+        f" (beyond the integration's tolerance, {energy_tolerance:.0e})"
+    if loss is not None and loss < -max(tolerance, energy_tolerance or 0.0):
+        found.append(f"kinetic energy is created{beyond}: the energy lost is "
+                     f"{float(loss):.6g} of the energy before; {model} cannot honour the "
+                     "physics at these values")
     # a scene's results carry the normal impulse twice (impulse, contact.normal_impulse)
     keys = [k for k in numbers if k.endswith("normal_impulse")] or \
         [k for k in numbers if k == "impulse"]

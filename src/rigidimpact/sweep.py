@@ -132,7 +132,7 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
             "fixed": {n: float(v) for n, v in fixed.items() if n in kernel.arguments},
             "order": list(grid), "shape": list(shape), "sets": total, "backend": backend,
             "seconds": seconds, "sets_per_s": total / seconds if seconds > 0 else None,
-            "results": stats})
+            "results": stats, "warnings": sweep_warnings(stats, total)})
         del outputs
         (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
                                               encoding="utf-8")
@@ -142,15 +142,45 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
     return summary
 
 
+NEGATIVE = 1e-12  # below this a value counts as negative (a warning), not as rounding
+
+
 def _stats(values: np.ndarray, block: int = 1 << 22) -> dict[str, Any]:
     """Least and greatest finite value and the count of values that are not finite,
     read block by block (the array may be larger than memory)."""
-    low, high, bad = np.inf, -np.inf, 0
+    low, high, bad, negative = np.inf, -np.inf, 0, 0
     for start in range(0, len(values), block):
         part = np.asarray(values[start:start + block])
         finite = np.isfinite(part)
         bad += int(part.size - finite.sum())
+        negative += int(np.count_nonzero(part[finite] < -NEGATIVE))
         if finite.any():
             low, high = min(low, float(part[finite].min())), max(high, float(part[finite].max()))
     return {"min": low if np.isfinite(low) else None,
-            "max": high if np.isfinite(high) else None, "not_finite": bad}
+            "max": high if np.isfinite(high) else None, "not_finite": bad,
+            "negative": negative}
+
+
+def sweep_warnings(stats: Mapping[str, Mapping[str, Any]], sets: int) -> list[str]:
+    """What `evaluate` would warn at each point, counted over the grid: kinetic energy
+    created (a negative energy lost) and contacts that would have to pull (a negative
+    normal impulse), beyond rounding (1e-12).
+
+    Examples
+    --------
+    >>> sweep_warnings({"energy_loss_fraction": {"negative": 3, "min": -0.165}}, 100)
+    ['kinetic energy is created at 3 of 100 parameter sets (down to -0.165 of the energy before): the model cannot honour the physics there']
+    """  # noqa: E501
+    found = []
+    for key, stat in stats.items():
+        if not stat.get("negative"):
+            continue
+        if key == "energy_loss_fraction":
+            found.append(f"kinetic energy is created at {stat['negative']} of {sets} "
+                         f"parameter sets (down to {stat['min']:.6g} of the energy before): "
+                         "the model cannot honour the physics there")
+        elif key.endswith("normal_impulse") or key == "impulse":
+            found.append(f"{key} is negative at {stat['negative']} of {sets} parameter "
+                         f"sets (down to {stat['min']:.6g}): the contact would have to "
+                         "pull; the model cannot honour the physics there")
+    return found

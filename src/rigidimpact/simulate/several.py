@@ -262,7 +262,8 @@ def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
         details["orders"] = [{"order": list(o.order), "acted": list(o.acted),
                               "final": _final(f, t), "ends": w} for o, f, _, t, w in runs]
     energy = {"energy_loss_fraction": float(outcome.energy_loss_fraction)}
-    warnings = physics_warnings(energy, None, f"the {scene.rule} rule")
+    warnings = (*physics_warnings(energy, None, f"the {scene.rule} rule",
+                                  outcome.energy_tolerance), *outcome.notes)
     if warnings:
         details["warnings"] = list(warnings)
     order = list(flyers)
