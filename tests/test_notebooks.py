@@ -46,3 +46,35 @@ def test_nbval_fails_when_a_stored_result_differs(tmp_path):
 def test_the_bench_notebook_reads_a_committed_run():
     report = json.loads((NOTEBOOKS / "data" / "bench.json").read_text())
     assert {"rows", "throughput", "auto_choice"} <= set(report)
+
+
+def _imported_modules(name: str) -> set[str]:
+    import ast
+
+    nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
+    found = set()
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        for node in ast.walk(ast.parse(cell.source)):
+            if isinstance(node, ast.Import):
+                found |= {alias.name.split(".")[0] for alias in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                found.add(node.module.split(".")[0])
+    return found
+
+
+@pytest.mark.parametrize("name", STORY)
+def test_each_notebook_needs_only_the_package_and_its_notebook_extra(name):
+    # a user installs `rigidimpact[notebooks]` and Jupyter: nothing from the developers'
+    # extra may be imported (notebook 02's slider once needed ipywidgets from it)
+    import tomllib
+
+    project = tomllib.loads((NOTEBOOKS.parent / "pyproject.toml").read_text())["project"]
+    installed = [d.split("==")[0] for d in
+                 project["dependencies"] + project["optional-dependencies"]["notebooks"]]
+    modules = {"ipykernel": {"ipykernel", "IPython"}}  # ipykernel brings IPython
+    allowed = {"rigidimpact"} | set(sys.stdlib_module_names)
+    for dist in installed:
+        allowed |= modules.get(dist, {dist})
+    assert _imported_modules(name) <= allowed
