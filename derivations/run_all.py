@@ -50,7 +50,28 @@ def _figures():
             rigid_limit(ri.load_scene(HERE / "barbell.toml"), [1e3, 1e4, 1e5]))),
         ("accuracy-vs-time.png", _accuracy_vs_time),
         ("hard-case-v_fx.png", _hard_case),
+        ("kharaz-comparison.png", kharaz_figure),
     )
+
+
+def kharaz_figure():
+    """The rigid Coulomb model, fitted in the gross-slip range, against both digitisations
+    of Kharaz, Gorham and Salman (2001) and the spring-dashpot simulation (notebook 11)."""
+    from rigidimpact import experiment
+
+    data = experiment.load_kharaz()
+    found = experiment.fit()
+    model = experiment.sphere_on_flat()
+    angles = np.linspace(0.5, 65.0, 260)
+    curves = {q: (angles, model.predict(q, angles, found.mu, found.e))
+              for q in ("e_t", "rebound_angle", "omega")}
+    shown = {"measured (MFiX digitisation)": data["mfix"].points,
+             "measured (Lethe digitisation)": data["lethe"].points,
+             "spring-dashpot simulation": data["simulation"].points}
+    return plots.experiment_comparison(
+        curves, shown, f"rigid, mu = {found.mu:.4f}, e = {found.e:.4f}",
+        "Alumina spheres on glass (Kharaz et al. 2001): rigid Coulomb model fitted from "
+        f"{found.from_deg:g} deg up")
 
 
 def _impulse_vs_offset():

@@ -25,7 +25,8 @@ from rigidimpact.problems import derive  # noqa: E402
 
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
-    "convergence", "naive_vs_stable", "routh_diagram", "animation", "FIGSIZE", "DPI"]
+    "convergence", "naive_vs_stable", "routh_diagram", "animation", "experiment_comparison",
+           "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -488,3 +489,45 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         return [*trails.values(), *dots.values(), *rods.values(), clock]
 
     return FuncAnimation(fig, draw, frames=frames, blit=False)
+
+
+def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
+                          data: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]],
+                          label: str, title: str) -> Figure:
+    """A model's curves against measured points, one panel per quantity (e_t, rebound
+    angle, spin) over the impact angle.
+
+    Parameters
+    ----------
+    model : quantity -> (angles in degrees, values)
+    data : data set name -> quantity -> (angles, values)
+    label : the model's legend entry
+
+    Examples
+    --------
+    >>> a = np.array([10.0, 40.0])
+    >>> fig = experiment_comparison({"e_t": (a, a / 50)}, {"x": {"e_t": (a, a / 40)}},
+    ...                             "model", "t")
+    >>> len(fig.axes), len(fig.axes[0].lines)
+    (1, 2)
+    """
+    names = {"e_t": r"tangential restitution $e_t$", "rebound_angle": "rebound angle (deg)",
+             "omega": r"spin after $\omega$ (rad/s)"}
+    shown = [q for q in names if q in model]
+    fig, axes = plt.subplots(1, len(shown), figsize=(FIGSIZE[0] * 1.5, FIGSIZE[1]), dpi=DPI,
+                             squeeze=False)
+    markers = ("o", "s", "^", "D")
+    for ax, quantity in zip(axes[0], shown, strict=True):
+        angles, values = model[quantity]
+        ax.plot(angles, values, color="black", label=label)
+        for marker, (name, points) in zip(markers, data.items(), strict=False):
+            if quantity in points:
+                ax.plot(*points[quantity], marker, fillstyle="none", linestyle="none",
+                        label=name)
+        ax.set_xlabel("impact angle from the normal (deg)")
+        ax.set_ylabel(names[quantity])
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize="x-small")
+    fig.suptitle(title, fontsize="medium")
+    fig.tight_layout()
+    return fig
