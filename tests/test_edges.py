@@ -576,9 +576,9 @@ law = "{law}"
 
 @pytest.mark.parametrize("law", ["poisson", "newton"])
 def test_a_contact_still_approaching_after_the_impact_is_said(tmp_path, capsys, law):
-    # three discs around a fourth (found by a random search with random.Random(5) over
-    # such clusters: 7 of 123 were left closing): under Poisson's law each compression impulse is scaled by its own
-    # 1 + e, and contact t0 is left closing; under Newton's law none is
+    # three discs around a fourth, found by a random search (random.Random(5)) over such
+    # clusters: under Poisson's law each compression impulse is scaled by its own 1 + e,
+    # and contact t0 is left closing; under Newton's law none is
     path = scene_file(tmp_path, CLUSTER.format(law=law))
     assert main(["evaluate", path, "--json"]) == 0
     captured = capsys.readouterr()
