@@ -135,7 +135,7 @@ struck_at = "1"
 
 
 @pytest.mark.parametrize("extra, needle", [
-    ('pivot = ["0", "2"]\nvelocity = ["1", "0"]', "moves only by turning"),
+    ('pivot = ["0", "2"]\nvelocity = ["1", "1"]', "moves only by turning"),
     ('pivot = ["0", "2"]\n[[bodies]]\nname = "w"\nshape = "fixed"', "exactly two"),
     ('[contact]\nbodies = ["ball", "rod"]\nrestitution = "1"', ""),
 ])

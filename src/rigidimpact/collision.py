@@ -182,7 +182,7 @@ class Outcome:
     courses: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
     # the relative energy error the rule's numbers carry (an integration's), else None
-    energy_tolerance: float | None = None
+    energy_tolerance: float | None = field(default=None, repr=False)
 
     @property
     def kinetic_energy_before(self) -> sp.Expr:
