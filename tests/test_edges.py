@@ -653,3 +653,25 @@ def test_sweep_of_a_smooth_impact_does_not_warn(tmp_path, capsys):
                  str(tmp_path / "out"), "--json"]) == 0
     captured = capsys.readouterr()
     assert json.loads(captured.out)["warnings"] == [] and captured.err == ""
+
+
+def test_a_long_compliant_run_is_refused_before_it_starts(tmp_path, capsys):
+    # the compliant barbell followed for 10 s would take about 80,000 steps (23 s here):
+    # refused at once by its estimate, in one line that says how large it is
+    text = (ROOT / "derivations" / "compliant.toml").read_text().replace(
+        'until = "separation"', "until = 10")
+    import time
+
+    start = time.perf_counter()
+    refused(capsys, ["simulate", scene_file(tmp_path, text)], "integration steps")
+    assert time.perf_counter() - start < 5
+
+
+def test_a_compliant_run_past_its_time_budget_stops_in_one_line(tmp_path, capsys,
+                                                                 monkeypatch):
+    # a stiff run (an implicit method, so no step estimate refuses it) given no time
+    monkeypatch.setattr("rigidimpact.simulate.compliant.MAX_SECONDS", 0.0)
+    text = (ROOT / "derivations" / "compliant.toml").read_text().replace(
+        "rod_stiffness = 1e8", "rod_stiffness = 1e11").replace(
+        "contact_stiffness = 1e5", "contact_stiffness = 1e3")
+    refused(capsys, ["simulate", scene_file(tmp_path, text)], "passed its budget")

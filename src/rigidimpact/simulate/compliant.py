@@ -53,6 +53,10 @@ __all__ = ["restitution_of", "damping_ratio_for", "run_compliant", "prepare", "M
 SETTLE_PERIODS = 3  # after the last contact, watch this many of the slowest periods
 MAX_SEGMENTS = 2000  # contact changes (or instant impacts) before giving up
 MAX_STEPS = 200_000  # an estimate above this is refused: the run would take minutes
+# an explicit method's step of the barbell's compliant model took about 0.3 ms here
+# (80,030 steps in 23 s): above this estimate (about 12 s) the run is refused
+MAX_EXPLICIT_STEPS = 40_000
+MAX_SECONDS = 20.0  # a run still going after this long is stopped, in one line
 STEPS_PER_PERIOD = 4  # explicit methods step at most a quarter of the fastest period
 SAMPLES_PER_PERIOD = 40  # plot samples per fastest period, from the dense output
 MAX_SAMPLES = 4000  # per segment between events
@@ -357,15 +361,26 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     watched = SETTLE_PERIODS * slow if plan.until == "separation" else float(plan.until)
     # the fast mode is followed as long as a rod spring rings, else only while touching
     estimate = STEPS_PER_PERIOD * (watched if springs else SETTLE_PERIODS * slow) / fast
-    if estimate > MAX_STEPS:
+    integrator = choose_integrator(fast, slow, plan.settings["tolerance"])
+    if plan.integrator != "auto":
+        integrator |= {"method": plan.integrator, "why": "asked for by the scene"}
+    # an explicit method takes about the estimated steps; an implicit one far fewer on a
+    # stiff problem, where the run's own time budget (MAX_SECONDS) is the bound
+    explicit = integrator["method"] in ("RK45", "DOP853")
+    if estimate > (MAX_EXPLICIT_STEPS if explicit else MAX_STEPS):
         raise InputError("simulate", f"this run would take about {estimate:.1e} integration "
                          f"steps (the fastest period is {fast:.2e} s, followed for "
                          f"{watched:.3g} s); ask for a shorter time or stiffnesses closer "
                          "together")
-    integrator = choose_integrator(fast, slow, plan.settings["tolerance"])
-    if plan.integrator != "auto":
-        integrator |= {"method": plan.integrator, "why": "asked for by the scene"}
     return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
+
+
+class _OutOfTime(Exception):
+    """Raised from the right-hand side when a run passes its time budget."""
+
+    def __init__(self, t: float) -> None:
+        super().__init__(t)
+        self.t = t
 
 
 def _scales(parts: list[_Part], y0: np.ndarray, normal: np.ndarray,
@@ -471,6 +486,14 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         y[-1] += _energy(parts, y)[0] - before
         return y
 
+    deadline, calls = time.perf_counter() + MAX_SECONDS, [0]
+
+    def timed(t_now: float, y_now: np.ndarray) -> np.ndarray:
+        calls[0] += 1
+        if calls[0] % 512 == 0 and time.perf_counter() > deadline:
+            raise _OutOfTime(t_now)
+        return rhs(t_now, y_now)
+
     horizon = math.inf if plan.until == "separation" else float(plan.until)
     touching = compliant_contact  # at t = 0 the points meet, approaching
     t, y = 0.0, y0 if compliant_contact else impulse(y0)
@@ -492,11 +515,17 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
                    f"separated, and no new contact within {SETTLE_PERIODS} of the slowest "
                    f"periods ({slow:.3g} s) after the last one")
             break
-        sol = solve_ivp(rhs, (t, stop), y, method=integrator["method"],
-                        rtol=integrator["rtol"], atol=atol,
-                        events=[lets_go] if touching else [touches],
-                        max_step=_max_step(parts, y, fast, touching or springs, explicit),
-                        dense_output=True)
+        try:
+            sol = solve_ivp(timed, (t, stop), y, method=integrator["method"],
+                            rtol=integrator["rtol"], atol=atol,
+                            events=[lets_go] if touching else [touches],
+                            max_step=_max_step(parts, y, fast, touching or springs, explicit),
+                            dense_output=True)
+        except _OutOfTime as late:
+            raise InputError("simulate", f"the run passed its budget of {MAX_SECONDS:g} s "
+                             f"at t = {late.t:.3g} s (until = {plan.until}) after about "
+                             f"{steps} steps; ask for a shorter time, a looser tolerance or "
+                             "stiffnesses closer together") from None
         if sol.status == -1:
             raise InputError("simulate", f"the integrator failed: {sol.message}")
         steps += len(sol.t) - 1
