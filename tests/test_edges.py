@@ -7,6 +7,7 @@ import json
 import random
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from rigidimpact.cli import main
@@ -675,3 +676,41 @@ def test_a_compliant_run_past_its_time_budget_stops_in_one_line(tmp_path, capsys
         "rod_stiffness = 1e8", "rod_stiffness = 1e11").replace(
         "contact_stiffness = 1e5", "contact_stiffness = 1e3")
     refused(capsys, ["simulate", scene_file(tmp_path, text)], "passed its budget")
+
+
+def test_a_run_that_ends_at_the_impact_is_drawn_as_the_impact(tmp_path, capsys):
+    # the hinged rod stops at separation: --plot draws the bodies with their shapes and
+    # velocities (not an empty frame), --animate says there is nothing to animate
+    import matplotlib.image
+
+    from rigidimpact.plots import impact_picture
+    from rigidimpact.scene import load_scene
+    from rigidimpact.simulate import impact_view, run
+
+    path = ROOT / "derivations" / "hinged-rod.toml"
+    picture = tmp_path / "hinged.png"
+    assert main(["simulate", str(path), "--plot", str(picture)]) == 0
+    assert matplotlib.image.imread(picture).shape[:2] == (400, 800)
+    refused(capsys, ["simulate", str(path), "--animate", str(tmp_path / "m.gif")],
+            "nothing moves")
+    assert not (tmp_path / "m.gif").exists()
+    scene = load_scene(path)
+    figure = impact_picture(*impact_view(scene, run(scene)), scene.title)
+    lines = figure.axes[0].lines
+    rod = next(line for line in lines if line.get_label() == "rod")
+    assert np.ptp(rod.get_ydata()) == pytest.approx(1.2)  # its length, end to end
+    assert any(line.get_marker() == "^" for line in lines)  # the hinge
+
+
+def test_several_bodies_are_drawn_with_their_shapes_and_the_floor(tmp_path):
+    from rigidimpact.plots import impact_picture
+    from rigidimpact.scene import load_scene
+    from rigidimpact.simulate import impact_view, run
+
+    scene = load_scene(ROOT / "derivations" / "two-ball-drop.toml")
+    figure = impact_picture(*impact_view(scene, run(scene)), scene.title)
+    circles = [p for p in figure.axes[0].patches if type(p).__name__ == "Circle"]
+    assert len(circles) == 2
+    floor = [line for line in figure.axes[0].lines if line.get_color() == "k"
+             and len(line.get_xdata()) == 2 and np.ptp(line.get_ydata()) == 0]
+    assert floor  # the fixed floor, a black line through its contact

@@ -485,6 +485,10 @@ def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
     from rigidimpact.atomic import write_file
     from rigidimpact.plots import animation
 
+    if _ends_at_impact(outcome):
+        raise InputError("--animate", "this run ends at the impact (until = "
+                         f"{outcome.plan.until!r}): nothing moves to animate; give "
+                         "[simulate] until a time, or draw the impact with --plot")
     track = outcome.trajectory
     movie = animation(np.asarray(track.t), track.points(), scene.title)
     mp4 = path.suffix.lower() == ".mp4"
@@ -499,17 +503,34 @@ def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
         _close(movie._fig)
 
 
-def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
-    """Draw a run's trajectories to a PNG, written whole or not at all."""
-    from rigidimpact.atomic import write_file
-    from rigidimpact.plots import trajectories
+def _ends_at_impact(outcome: Any) -> bool:
+    """Whether a run has nothing after the impact to draw (it stops at separation)."""
+    return float(outcome.final.get("t", 0.0)) == 0.0 and outcome.ode_steps == 0
 
+
+def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
+    """Draw a run's trajectories to a PNG (or, for a run that ends at the impact, the
+    bodies at the impact with their velocities), written whole or not at all."""
+    from rigidimpact.atomic import write_file
+    from rigidimpact.plots import impact_picture, trajectories
+    from rigidimpact.simulate import impact_view
+
+    if _ends_at_impact(outcome):
+        figure = impact_picture(*impact_view(scene, outcome), scene.title)
+        try:
+            write_file(path, lambda temporary: figure.savefig(temporary, format="png"),
+                       "--plot")
+        finally:
+            _close(figure)
+        return
     track = outcome.trajectory
     velocity = None
     if hasattr(track, "contact_velocity"):
         name = scene.bodies[1].name
         velocity = (f"{name} at O", track.contact_velocity(name))
-    figure = trajectories(track.t, track.points(), scene.title, velocity)
+    bodies, contacts, _ = impact_view(scene, outcome)
+    figure = trajectories(track.t, track.points(), scene.title, velocity,
+                          (bodies, contacts) if scene.several else None)
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
     finally:

@@ -26,7 +26,7 @@ from rigidimpact.problems import derive  # noqa: E402
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
     "convergence", "naive_vs_stable", "routh_diagram", "animation", "experiment_comparison",
-           "FIGSIZE", "DPI"]
+           "impact_picture", "draw_bodies", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -165,7 +165,8 @@ def strobe(frames: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], title: s
 
 
 def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
-                 velocity: tuple[str, np.ndarray] | None = None) -> Figure:
+                 velocity: tuple[str, np.ndarray] | None = None,
+                 outlines: tuple[Sequence, Sequence[tuple]] | None = None) -> Figure:
     """Paths of the tracked points in the plane; optionally one point's velocity in time.
 
     Examples
@@ -185,6 +186,12 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         ax.plot(xy[:, 0], xy[:, 1], styles[k % len(styles)], lw=2.2 if k == 0 else 1.4,
                 zorder=3 if k == 0 else 2, label=name)
         ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4, zorder=4)
+    if outlines is not None:  # the bodies as they were at the impact, faint
+        bodies, contacts = outlines
+        drawn = len(ax.lines)
+        draw_bodies(ax, bodies, contacts)
+        for artist in [*ax.patches, *ax.lines[drawn:]]:
+            artist.set_alpha(0.35)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
@@ -531,3 +538,129 @@ def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
     fig.suptitle(title, fontsize="medium")
     fig.tight_layout()
     return fig
+
+
+def impact_picture(bodies: Sequence, contacts: Sequence[tuple], after: dict[str, tuple],
+                   title: str) -> Figure:
+    """The bodies at the instant of impact, drawn with their shapes, with each centre's
+    velocity before (grey, dashed) and after (coloured): the picture of a run that ends
+    at the impact (``until = "separation"``), where there is no flight to draw.
+
+    Parameters
+    ----------
+    bodies : sequence of Body
+        With numbers for every field, in the scene frame.
+    contacts : sequence of (point, normal, first name, second name)
+        Numbers; a fixed body is drawn as a hatched line through each of its contacts.
+    after : body name -> (vx, vy, omega)
+
+    Examples
+    --------
+    >>> from rigidimpact.bodies import Body
+    >>> ball, floor = Body.disc(1, 1, (0, 1), velocity=(0, -1), name="b"), Body.fixed("f")
+    >>> fig = impact_picture([ball, floor], [((0, 0), (0, -1), "b", "f")],
+    ...                      {"b": (0.0, 0.5, 0.0)}, "a disc on a floor")
+    >>> len(fig.axes[0].patches) >= 3
+    True
+    """
+    from matplotlib.patches import FancyArrowPatch
+
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    size = _picture_size(bodies, contacts)
+    colours = draw_bodies(ax, bodies, contacts, label=True)
+    speeds = [float(np.hypot(*_xy(b.velocity))) for b in bodies if b.support != "fixed"]
+    speeds += [float(np.hypot(v[0], v[1])) for v in after.values()]
+    scale = 0.35 * size / max(max(speeds, default=0.0), 1e-300)
+    for body in bodies:
+        if body.support == "fixed":
+            continue
+        centre = _xy(body.position)
+        for velocity, style in ((_xy(body.velocity), dict(color="grey", linestyle="--")),
+                                (np.asarray(after[body.name][:2], dtype=float),
+                                 dict(color=colours[body.name]))):
+            if np.hypot(*velocity) > 0:
+                ax.add_patch(FancyArrowPatch(tuple(centre), tuple(centre + scale * velocity),
+                                             arrowstyle="-|>", mutation_scale=12, lw=1.5,
+                                             **style))
+    ax.plot([], [], color="grey", linestyle="--", label="velocity before")
+    ax.plot([], [], color="black", label="velocity after")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.autoscale_view()
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(fontsize="small", loc="best")
+    ax.grid(alpha=0.3)
+    ax.set_title(title + ": at the impact", fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
+def draw_bodies(ax, bodies: Sequence, contacts: Sequence[tuple],
+                label: bool = False) -> dict[str, str]:
+    """Draw each body's outline at the impact on `ax` (discs, rings and spheres as
+    circles, rods and barbells as bars, particles and rigid bodies by their centre joined
+    to their contacts, pivots as triangles) and each fixed body as a hatched line through
+    its contacts; returns the colour given to each movable body."""
+    from matplotlib.patches import Circle
+
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    size = _picture_size(bodies, contacts)
+    colours: dict[str, str] = {}
+    for k, body in enumerate(b for b in bodies if b.support != "fixed"):
+        colour = colours[body.name] = palette[k % len(palette)]
+        name = body.name if label else None
+        centre = _xy(body.position)
+        dims = {key: float(value) for key, value in body.dimensions}
+        if "radius" in dims:
+            ax.add_patch(Circle(tuple(centre), dims["radius"], fill=False, color=colour,
+                                lw=1.8, label=name))
+        elif body.shape == "rod":
+            axis = np.array([np.cos(dims["angle"]), np.sin(dims["angle"])])
+            ends = np.array([centre - axis * dims["length"] / 2,
+                             centre + axis * dims["length"] / 2])
+            ax.plot(ends[:, 0], ends[:, 1], color=colour, lw=3, label=name)
+        elif body.parts and len(body.parts) > 1:
+            places = np.array([_xy(p.position) for p in body.parts])
+            ax.plot(places[:, 0], places[:, 1], "-o", color=colour, lw=1.5, ms=7, label=name)
+        else:  # a particle or a rigid body: its centre, joined to its contact points
+            ax.plot(*centre, "o", color=colour, ms=7, label=name)
+            for point, _, first, second in contacts:
+                if body.name in (first, second):
+                    ax.plot([centre[0], float(point[0])], [centre[1], float(point[1])],
+                            color=colour, lw=1)
+        if body.pivot is not None:
+            pivot = _xy(body.pivot)
+            ax.plot([centre[0], pivot[0]], [centre[1], pivot[1]], color=colour, lw=0.8)
+            ax.plot(*pivot, "k^", ms=9)
+    fixed = {b.name for b in bodies if b.support == "fixed"}
+    for point, normal, first, second in contacts:
+        point, normal = _xy(point), _xy(normal)
+        normal = normal / np.hypot(*normal)
+        tangent = np.array([-normal[1], normal[0]])
+        if second in fixed or first in fixed:
+            side = normal if second in fixed else -normal  # into the fixed body
+            line = np.array([point - 0.3 * size * tangent, point + 0.3 * size * tangent])
+            ax.plot(line[:, 0], line[:, 1], "k-", lw=1.5)
+            for s in np.linspace(-0.3, 0.3, 9):
+                start = point + s * size * tangent
+                tick = np.array([start, start + 0.04 * size * (side - tangent)])
+                ax.plot(tick[:, 0], tick[:, 1], "k-", lw=0.8)
+        ax.plot(*point, "kx", ms=6)
+    return colours
+
+
+def _picture_size(bodies: Sequence, contacts: Sequence[tuple]) -> float:
+    """The extent of what is drawn: the distances between centres and contact points."""
+    places = [_xy(b.position) for b in bodies if b.support != "fixed"]
+    places += [_xy(p) for p, *_ in contacts]
+    for b in bodies:
+        dims = {key: float(value) for key, value in b.dimensions}
+        places += [_xy(b.position) + dims.get("radius", 0.0),
+                   _xy(b.position) + dims.get("length", 0.0) / 2]
+    spread = np.ptp(np.array(places), axis=0)
+    return float(max(spread.max(), 1e-300))
+
+
+def _xy(vector) -> np.ndarray:
+    """A 2-vector (a SymPy column of numbers, a tuple) as floats."""
+    return np.array([float(c) for c in vector])

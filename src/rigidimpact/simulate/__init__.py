@@ -5,6 +5,6 @@ answers it; :func:`run` carries it out.
 """
 
 from rigidimpact.simulate.planner import EFFECTS, Plan, make_plan
-from rigidimpact.simulate.runner import Outcome, explain, run
+from rigidimpact.simulate.runner import Outcome, explain, impact_view, run
 
-__all__ = ["EFFECTS", "Plan", "make_plan", "Outcome", "run", "explain"]
+__all__ = ["EFFECTS", "Plan", "make_plan", "Outcome", "run", "explain", "impact_view"]

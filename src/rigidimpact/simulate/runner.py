@@ -30,7 +30,7 @@ from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.planner import Plan, make_plan
 
-__all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack"]
+__all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack", "impact_view"]
 
 
 @dataclass(frozen=True)
@@ -237,3 +237,19 @@ def _finite(outcome: Outcome) -> Outcome:
         raise InputError("simulate", f"{', '.join(bad)} left float64's range in this run; "
                          "scale the scene's numbers closer to 1")
     return outcome
+
+
+def impact_view(scene: Scene, outcome: Outcome) -> tuple[list, list, dict]:
+    """What a picture of the impact needs, in numbers: the bodies (scene frame), each
+    contact as (point, normal, first, second), and each body's (vx, vy, omega) after."""
+    values = dict(scene.values)
+    bodies = [b if b.support == "fixed" else b.at(values) for b in scene.bodies]
+    if scene.several:
+        contacts = [(t.point.xreplace(values), t.normal.xreplace(values), t.first, t.second)
+                    for t in scene.touches]
+    else:
+        contacts = [((0, 0), scene.contact.normal.xreplace(values), scene.bodies[0].name,
+                     scene.bodies[1].name)]
+    after = {b.name: tuple(outcome.final[f"{b.name}.{k}"] for k in ("vx", "vy", "omega"))
+             for b in bodies if b.support != "fixed"}
+    return bodies, contacts, after
