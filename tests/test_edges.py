@@ -714,3 +714,25 @@ def test_several_bodies_are_drawn_with_their_shapes_and_the_floor(tmp_path):
     floor = [line for line in figure.axes[0].lines if line.get_color() == "k"
              and len(line.get_xdata()) == 2 and np.ptp(line.get_ydata()) == 0]
     assert floor  # the fixed floor, a black line through its contact
+
+
+@pytest.mark.slow
+def test_energetic_rough_floor_at_50_degrees_derives_in_bounded_time(tmp_path):
+    # it ran past 20 minutes (a huge formula asked whether it is real); now about 45 s.
+    # Each course's impulse must agree with the numbers-first solution at a point.
+    import time
+
+    text = (ROOT / "derivations" / "rod-rough-floor.toml").read_text().replace(
+        "45 deg", "50 deg").replace('law = "newton"', 'law = "energetic"').replace(
+        "[values]\ne = 1\nmu = 0.4\n", "")
+    from rigidimpact.scene import load_scene
+
+    path = scene_file(tmp_path, text)
+    start = time.perf_counter()
+    derivation = load_scene(path).derivation()
+    assert time.perf_counter() - start < 120
+    at = {"mu": "1/5", "e": "1/2"}
+    numbers = derivation.evaluate(at).numbers
+    formula = derivation.results["contact.normal_impulse"].subs(
+        {derivation.symbols["mu"]: 0.2, derivation.symbols["e"]: 0.5})
+    assert float(formula) == pytest.approx(numbers["contact.normal_impulse"], rel=1e-9)
