@@ -736,3 +736,34 @@ def test_energetic_rough_floor_at_50_degrees_derives_in_bounded_time(tmp_path):
     formula = derivation.results["contact.normal_impulse"].subs(
         {derivation.symbols["mu"]: 0.2, derivation.symbols["e"]: 0.5})
     assert float(formula) == pytest.approx(numbers["contact.normal_impulse"], rel=1e-9)
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+@pytest.mark.parametrize("tilt", [(4, 3), (12, 5), (3, 4)])
+def test_one_frictional_contact_gives_one_answer_by_every_path(law, tilt):
+    # a rod (half-length 1) striking a wall with one end through one Coulomb contact
+    # (mu = 1/10, e = 1/2), tilted so that its centre is at -(cos, sin) of a rational
+    # direction: the slip reverses; the two-body impact and both rules of the
+    # several-contact engine must agree (at tilts 0.3, 0.6 and 0.9 rad the simultaneous
+    # rule's velocity-level friction was 0.28, 0.19 and 0.10 apart in v_x + omega)
+    import sympy as sp
+
+    from rigidimpact.bodies import Body
+    from rigidimpact.collision import Collision, Touch
+    from rigidimpact.contact import Contact
+    from rigidimpact.impact import Impact
+
+    half, tenth = sp.Rational(1, 2), sp.Rational(1, 10)
+    a, b = tilt
+    length = sp.sqrt(a**2 + b**2)
+    rod = Body.rigid(1, sp.Rational(1, 3), (-a / length, -b / length), (1, -half), 0, "rod")
+    wall = Body.fixed("wall")
+    alone = Impact(rod, wall, Contact(restitution=half, tangential="coulomb",
+                                      friction=tenth, law=law)).solve()
+    assert alone.regime.startswith("slip-reversal")
+    collision = Collision((rod, wall), (Touch("contact", "rod", "wall", (0, 0), (1, 0), half,
+                                              law, tenth),))
+    for outcome in (collision.simultaneous(), collision.sequential(["contact"])):
+        for key in ("rod.vx", "rod.vy", "rod.omega"):
+            assert float(outcome.results()[key]) == pytest.approx(
+                float(alone.results()[key]), rel=1e-15, abs=1e-15)

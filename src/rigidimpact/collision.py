@@ -441,6 +441,8 @@ class Collision:
         states is solved exactly; with friction the problem can have several solutions,
         or none (Painleve's paradox), and the outcome says so.
         """
+        if len(self.touches) == 1:  # one contact: its own exact answer, under any law
+            return self._one_acting(0, [sp.Integer(0)])
         if any(t.law != "newton" for t in self.touches):
             raise InputError("contacts", "with friction the simultaneous rule takes "
                              "Newton's law at every contact (the sequential rule takes "
