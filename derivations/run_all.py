@@ -16,6 +16,10 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")  # this script draws to files only
+
 import numpy as np  # noqa: E402
 import section1_barbell  # noqa: E402
 import section2_implications  # noqa: E402

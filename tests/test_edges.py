@@ -767,3 +767,14 @@ def test_one_frictional_contact_gives_one_answer_by_every_path(law, tilt):
         for key in ("rod.vx", "rod.vy", "rod.omega"):
             assert float(outcome.results()[key]) == pytest.approx(
                 float(alone.results()[key]), rel=1e-15, abs=1e-15)
+
+
+def test_importing_the_plots_leaves_the_backend_alone():
+    import subprocess
+    import sys
+
+    code = ("import matplotlib; matplotlib.use('svg'); import rigidimpact.plots; "
+            "print(matplotlib.get_backend())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "svg"

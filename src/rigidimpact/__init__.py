@@ -13,7 +13,27 @@ L*m/(2*M + m)
 from __future__ import annotations
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on first use
+    from rigidimpact.bodies import Body as Body
+    from rigidimpact.bodies import join as join
+    from rigidimpact.contact import Contact as Contact
+    from rigidimpact.errors import InputError as InputError
+    from rigidimpact.impact import Impact as Impact
+    from rigidimpact.laws import Equation as Equation
+    from rigidimpact.notation import symbol as symbol
+    from rigidimpact.problems import PROBLEMS as PROBLEMS
+    from rigidimpact.problems import Derivation as Derivation
+    from rigidimpact.problems import derive as derive
+    from rigidimpact.restrike import critical_angle as critical_angle
+    from rigidimpact.scene import Scene as Scene
+    from rigidimpact.scene import load_scene as load_scene
+    from rigidimpact.scene import parse_scene as parse_scene
+    from rigidimpact.simulate import make_plan as make_plan
+    from rigidimpact.simulate import run as run
+    from rigidimpact.solution import Solution as Solution
+    from rigidimpact.verify import run_checks as run_checks
 
 # name -> module; imported on first use, so `import rigidimpact` (and the command line's
 # start) costs only what is used

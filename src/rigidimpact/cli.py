@@ -324,6 +324,7 @@ def _cmd_routh(args: argparse.Namespace) -> int:
     found = diagram(scene.impact(), {derivation.symbols[k]: v for k, v in exact.items()})
     if args.plot:
         from rigidimpact.atomic import write_file
+        _files_only()
         from rigidimpact.plots import routh_diagram
 
         figure = routh_diagram(found, scene.title)
@@ -483,6 +484,7 @@ def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
     from matplotlib.animation import FFMpegWriter, PillowWriter
 
     from rigidimpact.atomic import write_file
+    _files_only()
     from rigidimpact.plots import animation
 
     if _ends_at_impact(outcome):
@@ -512,6 +514,7 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
     """Draw a run's trajectories to a PNG (or, for a run that ends at the impact, the
     bodies at the impact with their velocities), written whole or not at all."""
     from rigidimpact.atomic import write_file
+    _files_only()
     from rigidimpact.plots import impact_picture, trajectories
     from rigidimpact.simulate import impact_view
 
@@ -622,7 +625,15 @@ def _progress_bar(done: int, total: int, label: str) -> None:
         print(line, file=sys.stderr, flush=True)
 
 
+def _files_only() -> None:
+    """The command line draws to files: the Agg backend, whatever the machine has."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+
+
 def _cmd_bench(args: argparse.Namespace) -> int:
+    _files_only()
     from rigidimpact.bench import run_bench, write_outputs
 
     out = Path(args.out)

@@ -11,17 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import matplotlib
+# the backend is the caller's: matplotlib picks Agg itself where there is no screen, a
+# notebook keeps its inline one, and the command line asks for Agg before it draws
+import matplotlib.pyplot as plt
+import numpy as np
+import sympy as sp
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")  # files only: no screen is assumed
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import sympy as sp  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-from rigidimpact.notation import symbol  # noqa: E402
-from rigidimpact.problems import derive  # noqa: E402
+from rigidimpact.notation import symbol
+from rigidimpact.problems import derive
 
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
