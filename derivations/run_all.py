@@ -31,7 +31,7 @@ import rigidimpact as ri  # noqa: E402
 from rigidimpact import latex, plots, restrike  # noqa: E402
 from rigidimpact.bench import FLOOR, pareto  # noqa: E402
 from rigidimpact.numeric import Kernel  # noqa: E402
-from rigidimpact.simulate.compliant import rigid_limit  # noqa: E402
+from rigidimpact.simulate.runner import rigid_limit  # noqa: E402
 
 
 def _figures():

@@ -18,8 +18,8 @@ from rigidimpact.simulate.compliant import (
     MAX_DAMPING_RATIO,
     damping_ratio_for,
     restitution_of,
-    rigid_limit,
 )
+from rigidimpact.simulate.runner import rigid_limit
 
 DERIVATIONS = Path(__file__).resolve().parent.parent / "derivations"
 RIGID_SCENES = ["barbell", "disc-rod", "discs", "restrike", "sticking"]

@@ -47,7 +47,7 @@ def _alive(pid: int) -> bool:
 def clear_stale(folder: Path) -> list[Path]:
     """Remove what a killed writer left in `folder` (its hidden partial, staging and old
     copies whose process is gone); return what was removed."""
-    removed = []
+    removed: list[Path] = []
     if not folder.is_dir():
         return removed
     for entry in folder.iterdir():

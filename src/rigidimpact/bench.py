@@ -32,6 +32,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 import statistics
 import time
@@ -45,13 +46,16 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact import restrike
+from rigidimpact.atomic import write_file
 from rigidimpact.errors import InputError
 from rigidimpact.notation import symbol
 from rigidimpact.numeric import fused, has_numba, kernels
+from rigidimpact.plots import accuracy_vs_time
 from rigidimpact.problems import derive
 from rigidimpact.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
+from rigidimpact.simulate.outcome import flyer
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
            "verify_against_plain", "ladder_scene", "FAMILIES", "FLOOR"]
@@ -256,8 +260,6 @@ def _restrike_reference() -> tuple[float, mpmath.mpf]:
 
 def _restrike_flyers(angle: float):
     """Ball and barbell after a perfectly inelastic hit with m = M at `angle`, as numbers."""
-    from rigidimpact.simulate.runner import flyer
-
     text = SCENE.replace("e = 0.5", "e = 0").replace("M = 2", "M = 1")
     scene = parse_scene(text, "restrike")
     values = {**scene.values, symbol("theta"): sp.Float(angle, 30)}
@@ -269,6 +271,7 @@ def _restrike_event(repeats: int) -> list[dict]:
     angle, exact = _restrike_reference()
     ball, bar = _restrike_flyers(angle)
     hit = first_contact(ball, bar)
+    assert hit is not None  # at 10 degrees the barbell strikes the ball again
     turn = hit.t * bar.spin
     with mpmath.workdps(40):
         error = float(abs(mpmath.mpf(turn) - exact) / exact)
@@ -304,7 +307,7 @@ def _restrike_fixed(repeats: int, steps: Iterable[float]) -> list[dict]:
         with mpmath.workdps(40):
             error = float(abs(mpmath.mpf(turn) - exact) / exact)
         rows.append(_row("restrike-fixed-step", f"h={h:.0e}", error,
-                         _median_time(lambda h=h: _fixed_step_turn(angle, h),
+                         _median_time(functools.partial(_fixed_step_turn, angle, h),
                                       repeats if h >= 1e-5 else 1)))
     return rows
 
@@ -359,7 +362,7 @@ def _pymunk(exact, repeats: int, steps: Iterable[float]) -> list[dict]:
     for dt in steps:
         values = collide(dt)
         rows.append(_row("pymunk", f"dt={dt:.0e}, {pymunk.version}", _error(values, exact),
-                         _median_time(lambda dt=dt: collide(dt), repeats)))
+                         _median_time(functools.partial(collide, dt), repeats)))
     return rows
 
 
@@ -491,7 +494,7 @@ def pareto(rows: list[dict]) -> list[dict]:
     ...                                  _row("a", "z", 1e-3, 3.0)])]
     ['x', 'y']
     """
-    front = []
+    front: list[dict] = []
     for row in sorted(rows, key=lambda r: (r["seconds"], r["error"])):
         if not front or max(row["error"], FLOOR) < max(front[-1]["error"], FLOOR):
             front.append(row)
@@ -707,8 +710,6 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
     """bench.json, bench.md and accuracy-vs-time.png in `out`; returns the paths."""
     import json
 
-    from rigidimpact.atomic import write_file
-    from rigidimpact.plots import accuracy_vs_time
 
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "bench.json", out / "bench.md", out / "accuracy-vs-time.png"]

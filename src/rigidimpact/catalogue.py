@@ -19,12 +19,12 @@ from collections.abc import Callable
 import sympy as sp
 
 from rigidimpact.bodies import Body
+from rigidimpact.compare import Verdict, agree
 from rigidimpact.contact import Contact
 from rigidimpact.impact import Impact
 from rigidimpact.notation import symbol
 from rigidimpact.rewrite import polynomial_roots, tidy
 from rigidimpact.solution import Solution
-from rigidimpact.verify import Verdict, agree
 
 __all__ = ["hinged_rod", "nailed_stick", "free_stick", "bar_on_wall", "centre_of_percussion",
            "sweet_spot", "ballistic_pendulum", "rocking_block", "rod_on_rough_floor",

@@ -19,7 +19,7 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
@@ -556,8 +556,9 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from rigidimpact.scene import load_scene
     from rigidimpact.sweep import parse_grid, run_sweep
 
+    defaults: Mapping[Any, Any] = {}
     if args.target in PROBLEMS:
-        derivation, defaults = _derivation(args.target), {}
+        derivation = _derivation(args.target)
     else:
         scene = load_scene(args.target)
         if scene.several:

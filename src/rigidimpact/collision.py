@@ -54,7 +54,9 @@ from rigidimpact.compliance import damping_ratio_for
 from rigidimpact.errors import InputError
 from rigidimpact.geometry import cross, perp
 from rigidimpact.impulse import Coordinate, coordinates_of, moving
+from rigidimpact.notation import aligned, result_lhs, to_latex
 from rigidimpact.rewrite import tidy
+from rigidimpact.routh import regimes
 
 __all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
            "rule_laws"]
@@ -212,7 +214,6 @@ class Outcome:
         >>> print(chain(2).simultaneous()._repr_latex_()[:45])
         $$\begin{aligned} V_x^{(\mathrm{ball0})} &= 0
         """
-        from rigidimpact.notation import aligned, result_lhs, to_latex
 
         return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
 
@@ -482,7 +483,7 @@ class Collision:
         motions = [(self.u_before + self.M_inverse * rows.T * f).applyfunc(tidy)
                    for f, _ in found]
         u = motions[0]
-        notes = ()
+        notes: tuple[str, ...] = ()
         if len(found) > 1 and all(m == u for m in motions):
             # with the velocities after fixed, the conditions on the impulses are convex:
             # every mixture of the solutions found is one too; the mean is shown
@@ -651,7 +652,6 @@ class Collision:
 
     def _routh_step(self, k: int, u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str]:
         """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course)."""
-        from rigidimpact.routh import regimes
 
         touch = self.touches[k]
         rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])

@@ -44,6 +44,7 @@ SPEED = 3.9  # m/s, the impact speed of the experiment and of the simulation
 RADIUS = 2.5e-3  # m, the spheres' radius
 GROSS_SLIP_DEG = 35.0  # from here up the contact slides throughout (for mu near 0.1)
 QUANTITIES = ("e_t", "rebound_angle", "omega")
+Angles = Sequence[float] | np.ndarray  # impact angles from the normal, in degrees
 
 
 @dataclass(frozen=True)
@@ -96,26 +97,26 @@ class SphereOnFlat:
     speed: float = SPEED
     radius: float = RADIUS
 
-    def _after(self, degrees: Sequence[float], mu: float, e: float) -> dict[str, np.ndarray]:
+    def _after(self, degrees: Angles, mu: float, e: float) -> dict[str, np.ndarray]:
         angle = np.radians(np.asarray(degrees, dtype=float))
         return {k: np.asarray(f(angle, self.speed, self.radius, mu, e), dtype=float)
                 for k, f in self.kernels.items()}
 
-    def e_t(self, degrees: Sequence[float], mu: float, e: float) -> np.ndarray:
+    def e_t(self, degrees: Angles, mu: float, e: float) -> np.ndarray:
         """|v_t after| / |v_t before| of the centre."""
         after = self._after(degrees, mu, e)
         return np.abs(after["vt"]) / (self.speed * np.sin(np.radians(degrees)))
 
-    def rebound_angle(self, degrees: Sequence[float], mu: float, e: float) -> np.ndarray:
+    def rebound_angle(self, degrees: Angles, mu: float, e: float) -> np.ndarray:
         """atan(|v_t after| / |v_n after|) in degrees."""
         after = self._after(degrees, mu, e)
         return np.degrees(np.arctan2(np.abs(after["vt"]), np.abs(after["vn"])))
 
-    def omega(self, degrees: Sequence[float], mu: float, e: float) -> np.ndarray:
+    def omega(self, degrees: Angles, mu: float, e: float) -> np.ndarray:
         """The spin after (rad/s, its size)."""
         return np.abs(self._after(degrees, mu, e)["omega"])
 
-    def predict(self, quantity: str, degrees: Sequence[float], mu: float,
+    def predict(self, quantity: str, degrees: Angles, mu: float,
                 e: float) -> np.ndarray:
         return getattr(self, quantity)(degrees, mu, e)
 

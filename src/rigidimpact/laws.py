@@ -24,6 +24,7 @@ import sympy as sp
 
 from rigidimpact.bodies import Body
 from rigidimpact.geometry import cross
+from rigidimpact.notation import escape_text, to_latex
 
 __all__ = [
     "Equation",
@@ -85,7 +86,6 @@ class Equation:
         >>> print(Equation("restitution", "(4)", symbol("V_x"), 0)._repr_latex_())
         $\displaystyle V_{x} = 0 \qquad \text{restitution (4)}$
         """
-        from rigidimpact.notation import escape_text, to_latex
 
         note = escape_text(self.label + (f" {self.paper}" if self.paper else ""))
         return (rf"$\displaystyle {to_latex(self.lhs)} = {to_latex(self.rhs)} \qquad "

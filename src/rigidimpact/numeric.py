@@ -368,10 +368,10 @@ _LOCAL = threading.local()
 def _scratch(count: int, size: int) -> list[np.ndarray]:
     """`count` arrays of at least `size` floats, kept by the calling thread: the sines of
     chunk after chunk go into the same (cached) memory."""
-    kept = getattr(_LOCAL, "arrays", ())
+    kept: tuple[np.ndarray, ...] = getattr(_LOCAL, "arrays", ())
     if len(kept) < count or (count and kept[0].shape[0] < size):
         kept = _LOCAL.arrays = tuple(np.empty(size) for _ in range(count))
-    return kept[:count]
+    return list(kept[:count])
 
 
 def _pool():

@@ -255,10 +255,11 @@ def oblique_discs(before: Sequence[np.ndarray], after: Sequence[np.ndarray],
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
     centres = (np.array([-radius, 0.0]), np.array([radius, 0.0]))
     for k, centre in enumerate(centres):
-        ax.add_patch(plt.Circle(centre, radius, fill=False, color=f"C{k}", lw=1.5))
+        ax.add_patch(plt.Circle((centre[0], centre[1]), radius, fill=False, color=f"C{k}",
+                                lw=1.5))
         for velocity, style, label in ((before[k], ":", "before"), (after[k], "-", "after")):
             if np.linalg.norm(velocity) > 0:
-                ax.annotate("", centre + velocity, centre,
+                ax.annotate("", tuple(centre + velocity), tuple(centre),
                             arrowprops={"arrowstyle": "->", "ls": style, "color": f"C{k}"})
                 ax.plot([], [], style, color=f"C{k}", label=f"disc {k + 1} {label}")
     ax.plot([0, 0], [-radius, radius], color="grey", lw=0.8, ls="--", label="tangent at O")
@@ -573,13 +574,14 @@ def impact_picture(bodies: Sequence, contacts: Sequence[tuple], after: dict[str,
         if body.support == "fixed":
             continue
         centre = _xy(body.position)
-        for velocity, style in ((_xy(body.velocity), dict(color="grey", linestyle="--")),
-                                (np.asarray(after[body.name][:2], dtype=float),
-                                 dict(color=colours[body.name]))):
+        for velocity, colour, line in ((_xy(body.velocity), "grey", "--"),
+                                       (np.asarray(after[body.name][:2], dtype=float),
+                                        colours[body.name], "-")):
             if np.hypot(*velocity) > 0:
-                ax.add_patch(FancyArrowPatch(tuple(centre), tuple(centre + scale * velocity),
+                tip = centre + scale * velocity
+                ax.add_patch(FancyArrowPatch((centre[0], centre[1]), (tip[0], tip[1]),
                                              arrowstyle="-|>", mutation_scale=12, lw=1.5,
-                                             **style))
+                                             color=colour, linestyle=line))
     ax.plot([], [], color="grey", linestyle="--", label="velocity before")
     ax.plot([], [], color="black", label="velocity after")
     ax.set_aspect("equal", adjustable="datalim")

@@ -28,9 +28,11 @@ from rigidimpact import laws
 from rigidimpact.bodies import Body, join
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
+from rigidimpact.expr import parse_expression
 from rigidimpact.impact import Impact
 from rigidimpact.laws import Equation
-from rigidimpact.notation import symbol
+from rigidimpact.notation import aligned, result_lhs, symbol, to_latex
+from rigidimpact.numeric import evaluate
 from rigidimpact.rewrite import recognise, solve_linear, tidy
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.solution import Solution
@@ -125,7 +127,6 @@ class Derivation:
         >>> print(derive("discs")._repr_latex_()[:42])
         $$\begin{aligned} V_{1ix} m + V_{2ix} m &=
         """
-        from rigidimpact.notation import aligned, result_lhs, to_latex
 
         rows = [(to_latex(eq.lhs), to_latex(eq.rhs),
                  eq.label + (f" {eq.paper}" if eq.paper else "")) for eq in self.equations]
@@ -212,7 +213,6 @@ class Derivation:
         >>> out.numbers["V_2fx"], out.warnings
         (1.0, ())
         """
-        from rigidimpact.numeric import evaluate
 
         exact = self.checked(values, sources)
         if self.solution is None:
@@ -224,8 +224,8 @@ class Derivation:
             # numbers first, then the case analysis: one course, exact (or 50-digit)
             # arithmetic, and no formula over every course evaluated where most of its
             # branches are undefined (a friction coefficient of 0, say)
-            solved = Impact(*(b.at(at) for b in self.solution.before),
-                            contact.at(at)).solve()
+            first, second = (b.at(at) for b in self.solution.before)
+            solved = Impact(first, second, contact.at(at)).solve()
             numbers = evaluate(solved.results(), {}, dps)
             regime = solved.regime
         else:
@@ -268,7 +268,6 @@ def read_values(values: Mapping[str, Any], sources: dict[str, str],
     ...
     rigidimpact.errors.InputError: values.k: not a symbol of demo; it uses e
     """
-    from rigidimpact.expr import parse_expression
 
     exact = {}
     for name, raw in values.items():
@@ -396,8 +395,7 @@ def _timed(build: Callable[[], Derivation]) -> Callable[[], Derivation]:
         derivation = build()
         return replace(derivation, seconds=time.perf_counter() - start)
 
-    run.__doc__ = build.__doc__
-    run.__name__ = build.__name__
+    functools.update_wrapper(run, build)
     return run
 
 
@@ -477,9 +475,9 @@ def _composite_route() -> tuple[tuple[Equation, ...], dict[str, sp.Expr]]:
         laws.angular_momentum(bar, bar_after),
     )
     solved = solve_linear([eq.residual for eq in equations], [u_x, u_y, omega])
-    equations = tuple(Equation(eq.label, p, tidy(eq.lhs), tidy(eq.rhs)) for eq, p in
-                      zip(equations, ("(8)", "(8), y", "(9)"), strict=True))
-    return equations, {"u_x": tidy(solved[u_x]), "omega_z": tidy(solved[omega])}
+    numbered = tuple(Equation(eq.label, p, tidy(eq.lhs), tidy(eq.rhs)) for eq, p in
+                     zip(equations, ("(8)", "(8), y", "(9)"), strict=True))
+    return numbered, {"u_x": tidy(solved[u_x]), "omega_z": tidy(solved[omega])}
 
 
 def sticking_routes() -> dict[str, dict[str, sp.Expr]]:

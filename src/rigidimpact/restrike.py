@@ -40,7 +40,7 @@ from __future__ import annotations
 import functools
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -48,12 +48,13 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from rigidimpact import problems, verify
+from rigidimpact import problems
+from rigidimpact.compare import Verdict, agree, symbolic_zero
 from rigidimpact.errors import InputError
+from rigidimpact.expr import parse_expression
 from rigidimpact.notation import symbol
 from rigidimpact.paper import CRITICAL_ANGLE_EQUATION, F
 from rigidimpact.rewrite import polynomial_roots, tidy
-from rigidimpact.verify import Verdict, agree, symbolic_zero
 
 __all__ = ["Restrike", "derive", "Edge", "CriticalAngle", "critical_angle", "windows",
            "restrike_turn", "sweep", "Sweep", "restrike_map", "strobe_frames", "DIGITS"]
@@ -118,6 +119,7 @@ def derive() -> Restrike:
     """
     start = time.perf_counter()
     solved = problems.barbell().solution
+    assert solved is not None  # a built-in problem keeps its solved impact
     ball, bar = solved.first_after, solved.second_after
     omega = bar.spin
     # free flight from the impact: straight lines and a steady turn; t = tau/omega
@@ -215,7 +217,6 @@ class CriticalAngle:
 
 def _checked(restitution, mass_ratio) -> tuple[Fraction, Fraction]:
     """e and m/M as exact fractions (``"0.3"`` is 3/10), each bounded as scene numbers."""
-    from rigidimpact.expr import parse_expression
 
     exact = []
     for value, where in ((restitution, "--e"), (mass_ratio, "--mass-ratio")):
@@ -603,16 +604,10 @@ def strobe_frames(theta_value: float, restitution: float = 0.0, mass_ratio: floa
 
 # ---- checks for `rigidimpact verify` --------------------------------------------------
 
-@verify.register("restrike.drift", "(5), section 2",
-                 "after the impact the ball drifts from C at k = 1 - e/(f sin^2 theta) "
-                 "(in units of omega L sin theta), so k = 1 when e = 0")
 def _check_drift() -> Verdict:
     return agree(derive().drift, 1 - e / (F * sp.sin(theta) ** 2))
 
 
-@verify.register("restrike.monotone", "section 2",
-                 "the angle from the ball to the rod's B half only grows: the ball's own "
-                 "angle about C turns at most k <= 1 as fast as the rod")
 def _check_monotone() -> Verdict:
     d = derive()
     p = d.relative_position
@@ -625,9 +620,6 @@ def _check_monotone() -> Verdict:
                        f"1 - k = e/(f sin^2): {k_at_most_one.detail}")
 
 
-@verify.register("restrike.critical", "section 2",
-                 "at e = 0 the condition is tan(theta_c) = 1/(pi - theta_c) on (0, pi/2), "
-                 "whatever m/M")
 def _check_critical() -> Verdict:
     critical = derive().critical
     if critical.free_symbols != {theta}:
@@ -643,9 +635,6 @@ def _check_critical() -> Verdict:
                        "free of m, M, L and v_ix")
 
 
-@verify.register("restrike.sphere_b", "section 2",
-                 "at theta_c sphere B reaches the ball as it leaves, after a turn of "
-                 "2(pi - theta_c)")
 def _check_sphere_b() -> Verdict:
     d = derive()
     at_critical = {e: 0}
@@ -655,15 +644,38 @@ def _check_sphere_b() -> Verdict:
     return Verdict(ok, "p(T)/L = (cos(theta + 2(pi - theta)), sin(...)): sphere B's place")
 
 
-@verify.register("restrike.theta_c", "section 2",
-                 "theta_c solved to 30 digits is about 19.7 degrees and two independent "
-                 "root searches agree")
 def _check_theta_c() -> Verdict:
     with mpmath.workdps(DIGITS + 10):
         ours = critical_angle().theta_c
+        assert ours is not None  # at e = 0 the first window ends at the outrace edge
         direct = mpmath.findroot(lambda x: mpmath.tan(x) - 1 / (mpmath.pi - x), 0.34)
         residual = abs(mpmath.tan(ours) - 1 / (mpmath.pi - ours))
         ok = (abs(ours - direct) < mpmath.mpf(10) ** -35 and residual < mpmath.mpf(10) ** -35
               and abs(ours * 180 / mpmath.pi - mpmath.mpf("19.7")) < mpmath.mpf("0.05"))
         return Verdict(ok, f"theta_c = {mpmath.nstr(ours * 180 / mpmath.pi, 32)} deg; "
                            f"residual {mpmath.nstr(residual, 3)}")
+
+
+# the re-strike's checks, run by `rigidimpact verify` with the paper's own
+CHECKS: tuple[tuple[str, str, str, Callable[[], Verdict]], ...] = (
+    ("restrike.drift", "(5), section 2",
+     "after the impact the ball drifts from C at k = 1 - e/(f sin^2 theta) "
+     "(in units of omega L sin theta), so k = 1 when e = 0",
+     _check_drift),
+    ("restrike.monotone", "section 2",
+     "the angle from the ball to the rod's B half only grows: the ball's own "
+     "angle about C turns at most k <= 1 as fast as the rod",
+     _check_monotone),
+    ("restrike.critical", "section 2",
+     "at e = 0 the condition is tan(theta_c) = 1/(pi - theta_c) on (0, pi/2), "
+     "whatever m/M",
+     _check_critical),
+    ("restrike.sphere_b", "section 2",
+     "at theta_c sphere B reaches the ball as it leaves, after a turn of "
+     "2(pi - theta_c)",
+     _check_sphere_b),
+    ("restrike.theta_c", "section 2",
+     "theta_c solved to 30 digits is about 19.7 degrees and two independent "
+     "root searches agree",
+     _check_theta_c),
+)

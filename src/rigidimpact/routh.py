@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.impulse import ImpulseProblem
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
@@ -80,7 +81,7 @@ class Regime:
         >>> Regime("slip", (sp.Symbol("x") > 0,), (0, 0), ()).holds({sp.Symbol("x"): 2})
         True
         """
-        verdict = True
+        verdict: bool | None = True
         for condition in self.conditions:
             value = condition.subs(values) if values else condition
             if value is sp.false or value is False:
@@ -139,7 +140,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
     if v_t.is_zero:
         return _from_rest(W, v_n, mu, e, law)
     signs = [1] if v_t.is_positive else [-1] if v_t.is_negative else [1, -1]
-    found: list[Regime] = []
+    found: list[Regime | None] = []
     for s in signs:
         side = () if len(signs) == 1 else (sp.Gt(s * v_t, 0),)
         found += _slipping(W, v_n, v_t, mu, e, law, s, side)
@@ -168,7 +169,7 @@ def _from_rest(W, v_n, mu, e, law) -> tuple[Regime, ...]:
     return tuple(r for r in found if r is not None and r.holds() is not False)
 
 
-def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime]:
+def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime | None]:
     """The courses that start slipping in direction s.
 
     Where slip stops is told by the normal velocity then, ``v_n(p*)``: below zero, in
@@ -186,7 +187,7 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime]:
     p_star = sp.cancel(-v_t / rate[1])
     at_stop = sp.cancel(v_n + rate[0] * p_star)
     ended = sp.Ge(at_stop, -e * v_n)  # a straight impact would have ended by then
-    found = [_finish((first,), v_n, e, law, SLIP,
+    found: list[Regime | None] = [_finish((first,), v_n, e, law, SLIP,
                      (*side, sp.Gt(rate[0], 0), sp.Or(sp.Not(stops), ended)))]
     stick_slope = sp.cancel(-W[1, 0] / W[1, 1])
     can_stick = sp.Le(sp.Abs(W[1, 0]), mu * W[1, 1])
@@ -353,7 +354,6 @@ def diagram(impact, values: dict) -> Diagram:
     >>> d.regime.name, d.regime.path[-1]
     ('slip', (2, 1/2))
     """
-    from rigidimpact.impulse import ImpulseProblem
 
     contact = impact.contact
     if contact.tangential != "coulomb":

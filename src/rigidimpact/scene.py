@@ -451,7 +451,8 @@ def _read_contact(table: Mapping[str, Any], place: str,
 def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
     """A scene with several contacts: bodies from the world origin, one rule for all."""
     entries = data["contacts"]
-    contacts, touches = [], []
+    contacts: list[Contact] = []
+    touches: list[Touch] = []
     for k, table in enumerate(entries):
         place = f"contacts[{k}]"
         if not isinstance(table, dict):

@@ -28,6 +28,7 @@ import sympy as sp
 from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.laws import Equation
+from rigidimpact.notation import aligned, result_lhs, to_latex
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Solution"]
@@ -87,7 +88,7 @@ class Solution:
     energy_loss_fraction: sp.Expr
     approach_speed: sp.Expr
     regime: str | None = None
-    regimes: tuple[tuple[str, tuple[sp.Basic, ...], Solution], ...] = ()
+    regimes: tuple[tuple[str | None, tuple[sp.Basic, ...], Solution], ...] = ()
     path: tuple[tuple[sp.Expr, sp.Expr], ...] = ()
 
     def regime_at(self, values: Mapping[sp.Symbol, Any]) -> str | None:
@@ -125,7 +126,6 @@ class Solution:
         ...       Contact(restitution=1)).solve()._repr_latex_()[:41])
         $$\begin{aligned} V_x^{(\mathrm{a})} &= 0
         """
-        from rigidimpact.notation import aligned, result_lhs, to_latex
 
         return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
 

@@ -34,6 +34,7 @@ import numpy as np
 
 from rigidimpact.numeric import Kernel, fused, has_numba, kernels
 from rigidimpact.problems import derive
+from rigidimpact.scene import load_scene
 
 __all__ = ["Case", "CASES", "run_suite", "BOUND", "available_backends"]
 
@@ -99,7 +100,6 @@ def _scene_cases() -> tuple[Case, ...]:
 
 def _results(problem: str) -> Mapping:
     if problem.endswith(".toml"):
-        from rigidimpact.scene import load_scene
 
         return load_scene(problem).derivation().results
     return derive(problem).results
@@ -137,9 +137,9 @@ def _floats(results: Mapping, points: list[dict[str, float]],
                 arrays = {n: np.array([p[n] for p in points]) for n in kernel.arguments}
                 out[backend][key] = np.broadcast_to(kernel(**arrays), (len(points),))
             continue
-        kernel = fused(results, "numpy" if backend == "fused" else backend)
-        out[backend] = kernel(**{n: np.array([p[n] for p in points])
-                                 for n in kernel.arguments})
+        together = fused(results, "numpy" if backend == "fused" else backend)
+        out[backend] = together(**{n: np.array([p[n] for p in points])
+                                   for n in together.arguments})
     return out
 
 
@@ -214,7 +214,7 @@ def _run(chosen: set[str] | None, backends: tuple[str, ...]) -> dict:
                          "rel_error": worst_rel, "scaled_error": worst_scaled,
                          "condition": worst_condition, "worst_at": worst_at,
                          "by_backend": by_backend, "passed": worst_scaled <= BOUND})
-    worst = max(rows, key=lambda r: r["scaled_error"])
+    worst = max(rows, key=lambda r: float(r["scaled_error"]))  # type: ignore[arg-type]
     return {"cases": total,
             "worst": {"quantity": f"{worst['problem']}.{worst['quantity']}",
                       "rel_error": worst["scaled_error"]},

@@ -29,7 +29,10 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from rigidimpact.atomic import replace_folder
 from rigidimpact.errors import InputError
+from rigidimpact.expr import parse_expression
+from rigidimpact.numeric import fused
 
 __all__ = ["parse_grid", "run_sweep", "MAX_SETS"]
 
@@ -39,7 +42,6 @@ MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB pe
 def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[str, np.ndarray]:
     """``NAME=START:STOP:COUNT`` ranges (endpoints included; START and STOP are exact
     expressions such as ``pi/2``, read by the safe expression parser)."""
-    from rigidimpact.expr import parse_expression
 
     grid: dict[str, np.ndarray] = {}
     for spec in specs:
@@ -85,8 +87,6 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
         A symbol with neither a range nor a value, or an output folder that cannot be
         written (see :func:`rigidimpact.atomic.replace_folder`).
     """
-    from rigidimpact.atomic import replace_folder
-    from rigidimpact.numeric import fused
 
     kernel = fused(results, backend)
     missing = [n for n in kernel.arguments if n not in grid and n not in fixed]

@@ -24,14 +24,21 @@ from __future__ import annotations
 
 import random
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass
 
-import mpmath
 import sympy as sp
 
-from rigidimpact import problems
+from rigidimpact import catalogue, problems, restrike
 from rigidimpact.bodies import Body
+from rigidimpact.compare import (
+    SEED,
+    Verdict,
+    agree,
+    same_equation,
+    symbolic_zero,
+)
+from rigidimpact.compare import all_of as _all
 from rigidimpact.contact import Contact
 from rigidimpact.impact import Impact
 from rigidimpact.notation import symbol
@@ -41,20 +48,7 @@ from rigidimpact.rewrite import tidy
 __all__ = ["Verdict", "Check", "agree", "same_equation", "symbolic_zero", "run_checks",
            "CHECKS", "register"]
 
-DIGITS = 50
-TOLERANCE = mpmath.mpf(10) ** -40
-SEED = 20070301  # numeric spot checks are reproducible
-SAMPLES = 6
-
 m, M, L, theta, e, v_ix = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """Whether a comparison passed, and what it saw."""
-
-    passed: bool
-    detail: str
 
 
 @dataclass(frozen=True)
@@ -69,111 +63,6 @@ class Check:
     seconds: float
 
 
-def _rational_trig(expr: sp.Expr) -> sp.Expr:
-    """Replace sin, cos, tan of each angle by rational functions of tan(angle/2)."""
-    replacements = {}
-    for k, angle in enumerate(sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos, sp.tan)},
-                                     key=sp.default_sort_key)):
-        t = sp.Dummy(f"t{k}", real=True)
-        replacements[sp.sin(angle)] = 2 * t / (1 + t**2)
-        replacements[sp.cos(angle)] = (1 - t**2) / (1 + t**2)
-        replacements[sp.tan(angle)] = 2 * t / (1 - t**2)
-    return expr.xreplace(replacements)
-
-
-def symbolic_zero(expr: sp.Expr) -> bool:
-    """True when `expr` is exactly zero as a rational function of its symbols and trig.
-
-    Examples
-    --------
-    >>> t = sp.Symbol("t", real=True)
-    >>> symbolic_zero(sp.sin(t)**2 + sp.cos(t)**2 - 1)
-    True
-    """
-    expr = sp.sympify(expr)
-    if sp.expand(expr) == 0:  # cancels term by term: a proof of zero, found cheaply
-        return True
-    return sp.cancel(sp.together(_rational_trig(expr))) == 0
-
-
-def _sample(sym: sp.Symbol, rng: random.Random) -> sp.Rational:
-    """A random exact value allowed by the symbol's assumptions."""
-    if sym.name == "e" or sym.is_nonnegative and not sym.is_positive:
-        value = rng.uniform(0.0, 1.0)
-    elif sym.is_positive:
-        value = 10 ** rng.uniform(-0.7, 0.7)
-    else:
-        value = rng.uniform(-3.0, 3.0)
-    return sp.Rational(repr(value))
-
-
-def _points(exprs: Iterable[sp.Expr], seed: int) -> list[dict[sp.Symbol, sp.Rational]]:
-    symbols = sorted(set().union(*(sp.sympify(x).free_symbols for x in exprs)),
-                     key=lambda s: s.name)
-    rng = random.Random(seed)
-    return [{s: _sample(s, rng) for s in symbols} for _ in range(SAMPLES)]
-
-
-def _value(expr: sp.Expr, point: dict) -> mpmath.mpf:
-    with mpmath.workdps(DIGITS + 10):
-        # exact rationals in, then evalf's adaptive evaluation of a constant
-        return mpmath.mpmathify(sp.sympify(expr).xreplace(point).evalf(DIGITS + 10))
-
-
-def agree(derived: sp.Expr, reference: sp.Expr, seed: int = SEED) -> Verdict:
-    """Do `derived` and `reference` agree symbolically *and* numerically?
-
-    Examples
-    --------
-    >>> agree(e * (1 + e), e + e**2)
-    Verdict(passed=True, detail='symbolic zero; 6 points agree to 1e-40 (seed 20070301)')
-    """
-    derived, reference = sp.sympify(derived), sp.sympify(reference)
-    exact = symbolic_zero(derived - reference)
-    worst = mpmath.mpf(0)
-    with mpmath.workdps(DIGITS + 10):
-        for point in _points((derived, reference), seed):
-            a, b = _value(derived, point), _value(reference, point)
-            scale = max(abs(a), abs(b), mpmath.mpf(10) ** -30)
-            worst = max(worst, abs(a - b) / scale)
-    numeric = worst <= TOLERANCE
-    detail = (f"{'symbolic zero' if exact else 'NOT a symbolic zero'}; "
-              f"{SAMPLES} points {'agree to 1e-40' if numeric else 'differ by'}"
-              f"{'' if numeric else ' ' + mpmath.nstr(worst, 3)} (seed {seed})")
-    return Verdict(exact and numeric, detail)
-
-
-def same_equation(derived: sp.Expr, reference: sp.Expr, unknowns: Iterable[sp.Symbol],
-                  seed: int = SEED) -> Verdict:
-    """Are ``derived = 0`` and ``reference = 0`` the same equation in the `unknowns`?
-
-    They are when one is the other times a factor that is free of the unknowns and
-    cannot vanish (by the symbols' assumptions).
-
-    Examples
-    --------
-    >>> x = sp.Symbol("x")
-    >>> same_equation(2 * M * x - 4 * M, x - 2, [x]).passed
-    True
-    >>> same_equation(x - 2, x - 3, [x]).passed
-    False
-    """
-    ratio = tidy(_rational_trig(sp.sympify(derived) / sp.sympify(reference)))
-    if ratio.free_symbols & set(unknowns) or not ratio.is_nonzero:
-        return Verdict(False, f"not proportional: ratio {ratio}")
-    verdict = agree(derived, ratio * reference, seed)
-    return Verdict(verdict.passed, f"proportional with factor {ratio}; {verdict.detail}")
-
-
-def _all(verdicts: Iterable[tuple[str, Verdict]]) -> Verdict:
-    verdicts = list(verdicts)
-    failed = [f"{name}: {v.detail}" for name, v in verdicts if not v.passed]
-    if failed:
-        return Verdict(False, "; ".join(failed))
-    return Verdict(True, "; ".join(f"{name}: {v.detail}" for name, v in verdicts[:1])
-                   + (f" (and {len(verdicts) - 1} more)" if len(verdicts) > 1 else ""))
-
-
 def _ref(key: str) -> sp.Expr:
     return REFERENCES[key].expr
 
@@ -184,7 +73,8 @@ CHECKS: list[tuple[str, str, str, Callable[[], Verdict]]] = []
 
 
 def register(check_id: str, paper: str, description: str):
-    """Add a check to ``rigidimpact verify`` (a decorator; higher layers use it too).
+    """Add one of the paper's checks to this module's list (a decorator for the checks
+    below; other modules give their checks as an explicit ``CHECKS`` tuple).
 
     Examples
     --------
@@ -371,6 +261,7 @@ def _two_body_central() -> Verdict:
 @_check("two-body.laws", "(11)-(14)", "the general solution satisfies every law it came from")
 def _two_body_laws() -> Verdict:
     solution = problems.two_body().solution
+    assert solution is not None  # a built-in problem keeps its solved impact
     return _all([(eq.paper, agree(eq.residual.subs(solution.values), 0))
                  for eq in solution.equations])
 
@@ -407,12 +298,9 @@ def _two_body_discs() -> Verdict:
 
 
 def _every() -> list[tuple[str, str, str, Callable[[], Verdict]]]:
-    from rigidimpact import (
-        catalogue,
-        restrike,  # noqa: F401  (section 2's checks are defined there)
-    )
-
-    return [*CHECKS, *((cid, "catalogue", text, fn) for cid, text, fn in catalogue.CHECKS)]
+    """The paper's checks, section 2's re-strike checks and the textbook catalogue."""
+    return [*CHECKS, *restrike.CHECKS,
+            *((cid, "catalogue", text, fn) for cid, text, fn in catalogue.CHECKS)]
 
 
 def _run_one(check_id: str, paper: str, description: str,

@@ -44,7 +44,8 @@ from rigidimpact.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitu
 from rigidimpact.errors import InputError
 from rigidimpact.scene import Scene
 from rigidimpact.shapes import is_round
-from rigidimpact.simulate.numbers import as_array, as_float, scene_values
+from rigidimpact.simulate.numbers import as_array, as_float
+from rigidimpact.simulate.outcome import Outcome
 from rigidimpact.simulate.planner import Plan
 
 __all__ = ["restitution_of", "damping_ratio_for", "run_compliant", "prepare", "Model",
@@ -147,6 +148,7 @@ def _contact_point(part: _Part, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if part.kind == "spring":  # the struck sphere comes first
         return y[s:s + 2], y[s + 4:s + 6]
     c, phi, v, w = y[s:s + 2], y[s + 2], y[s + 3:s + 5], y[s + 5]
+    assert part.contact is not None  # a rigid part keeps its touching point
     if part.round:
         r = part.contact
     else:
@@ -400,6 +402,7 @@ def _scales(parts: list[_Part], y0: np.ndarray, normal: np.ndarray,
         elif p.kind == "spring":
             scales[s:s + 8] = [squeeze] * 4 + [speed] * 4
         else:
+            assert p.contact is not None  # a rigid part keeps its touching point
             arm = float(np.linalg.norm(p.contact)) or 1.0
             scales[s:s + 6] = [squeeze, squeeze, squeeze / arm, speed, speed, speed / arm]
     scales[-1] = sum(_energy(parts, y0)) or 1.0
@@ -424,8 +427,6 @@ def _max_step(parts: list[_Part], y: np.ndarray, fast: float, resolving: bool,
 
 def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     """Integrate the compliant model until the bodies have separated (or the set time)."""
-    from rigidimpact.simulate.runner import Outcome
-
     model = prepare(scene, plan, values)
     parts, y0, normal, e = list(model.parts), model.y0, model.normal, model.e
     first, second = parts
@@ -461,10 +462,11 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         d, rate = penetration(y)
         return k_c * d + c_c * rate if d > 0 else -1.0
 
-    touches.terminal = True
-    lets_go.terminal = True
-    touches.direction = 1.0
-    lets_go.direction = -1.0
+    # solve_ivp reads these attributes of an event function
+    touches.terminal = True  # type: ignore[attr-defined]
+    lets_go.terminal = True  # type: ignore[attr-defined]
+    touches.direction = 1.0  # type: ignore[attr-defined]
+    lets_go.direction = -1.0  # type: ignore[attr-defined]
 
     def impulse(y: np.ndarray) -> np.ndarray:
         """Newton's e in an instant between the touching points (rigid contact)."""
@@ -587,40 +589,3 @@ def _check_balance(energy: Mapping[str, float], tolerance: float, method: str) -
                          f"{off:.1e} of the energy, against a tolerance of {tolerance:g}): "
                          f"{method} did not follow the model here; use integrator = "
                          '"auto" or another method')
-
-
-def rigid_limit(scene: Scene, contact_stiffnesses: list[float], rod_exponent: float = 1.5,
-                rod_scale: float = 100.0) -> list[dict[str, float]]:
-    """Compliant runs against the rigid closed form as the contact stiffens.
-
-    The rod stiffens faster: ``k_rod = rod_scale * k_contact ** rod_exponent``. Each row
-    gives both stiffnesses, the largest difference of any final velocity or spin from
-    the rigid solution, and the run's cost. ``order`` is the slope of log(error) against
-    log(k_contact) between neighbouring rows.
-    """
-    from dataclasses import replace
-
-    from rigidimpact.simulate.runner import run
-
-    values = scene_values(scene)
-    solution = scene.impact().solve()
-    rigid = {}
-    for body in (solution.first_after, solution.second_after):
-        for key, x in ((f"{body.name}.vx", body.velocity[0]),
-                       (f"{body.name}.vy", body.velocity[1]),
-                       (f"{body.name}.omega", body.spin)):
-            rigid[key] = as_float(x, values)
-    rows: list[dict[str, float]] = []
-    for k_c in contact_stiffnesses:
-        table = {**scene.simulate, "effects": ["rod-compliance", "contact-compliance"],
-                 "contact_stiffness": k_c, "rod_stiffness": rod_scale * k_c**rod_exponent,
-                 "until": "separation"}
-        outcome = run(replace(scene, simulate=table))
-        error = max(abs(outcome.final[k] - v) for k, v in rigid.items())
-        row = {"contact_stiffness": k_c, "rod_stiffness": table["rod_stiffness"],
-               "error": error, "ode_steps": outcome.ode_steps, "wall_s": outcome.wall_s}
-        if rows:
-            row["order"] = -math.log(error / rows[-1]["error"]) / math.log(
-                k_c / rows[-1]["contact_stiffness"])
-        rows.append(row)
-    return rows

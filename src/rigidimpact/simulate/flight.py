@@ -69,10 +69,10 @@ class Flyer:
 
     name: str
     shape: str
-    position: tuple[float, float]
-    velocity: tuple[float, float]
+    position: tuple[float, ...]  # two components
+    velocity: tuple[float, ...]
     spin: float
-    ends: tuple[tuple[float, float], tuple[float, float]] | None = None
+    ends: tuple[tuple[float, ...], ...] | None = None  # two points
     labels: tuple[str, str] = ("end 1", "end 2")
     radius: float = 0.0
     gravity: float = 0.0  # downward (-y) acceleration; every body falls alike
@@ -92,7 +92,7 @@ class Flyer:
         """Centre velocity at time `t`."""
         return self._v + np.array([0.0, -self.gravity * t])
 
-    def ends_at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+    def ends_at(self, t: float) -> tuple[np.ndarray, ...]:
         """The two ends of a segment body at time `t` (lab frame).
 
         Examples
@@ -101,6 +101,7 @@ class Flyer:
         >>> [np.round(p, 12) + 0.0 for p in rod.ends_at(0.5)]
         [array([ 0., -1.]), array([0., 1.])]
         """
+        assert self.ends is not None, "only a segment body has ends"
         return tuple(self.carried(q, t) for q in self.ends)
 
     def carried(self, offset, t: float) -> np.ndarray:
@@ -128,7 +129,7 @@ class Meeting:
 
     t: float
     part: str
-    point: tuple[float, float]
+    point: tuple[float, ...]  # two components
     s: float = 0.0
 
 
@@ -190,6 +191,7 @@ def segment_gap(ball: Flyer, body: Flyer):
     Returns ``(g, dg, p0, u, n0, half)``: p is the ball relative to the segment's centre
     and n the unit vector toward the second end.
     """
+    assert body.ends is not None, "only a segment body has ends"
     first, second = (np.asarray(q, dtype=float) for q in body.ends)
     if not np.allclose(first, -second, rtol=0.0, atol=1e-12 * np.linalg.norm(second)):
         raise ValueError("the segment must be centred on the body's centre of mass")
@@ -260,10 +262,11 @@ def first_contact(ball: Flyer, body: Flyer, horizon: float = math.inf,
         start += abs(slope) / curvature  # |g| >= |g'| t - G t^2/2 > 0 until here
         if start >= stop:
             return None
-    t = _certified_first_root(g, dg, start, stop, rate, curvature,
-                              tol * max(stop - start, 1.0) if math.isfinite(stop) else tol)
-    if t is None:
+    root = _certified_first_root(g, dg, start, stop, rate, curvature,
+                                 tol * max(stop - start, 1.0) if math.isfinite(stop) else tol)
+    if root is None:
         return None
+    t = root
     where = ball.at(t)[0]
     phi = math.atan2(n0[1], n0[0]) + float(body.spin) * t
     n = np.array([math.cos(phi), math.sin(phi)])

@@ -14,71 +14,22 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any
 
-import numpy as np
-import sympy as sp
-
-from rigidimpact.bodies import Body
+from rigidimpact.collision import rule_laws
 from rigidimpact.errors import InputError
 from rigidimpact.problems import model_name, physics_warnings
 from rigidimpact.scene import Scene
 from rigidimpact.shapes import is_segment
+from rigidimpact.simulate.compliant import prepare, run_compliant
 from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
-from rigidimpact.simulate.planner import Plan, make_plan
+from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
+from rigidimpact.simulate.planner import make_plan
+from rigidimpact.simulate.several import run_several
 
-__all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack", "impact_view"]
-
-
-@dataclass(frozen=True)
-class Outcome:
-    """What a simulation found, in the keys of docs/scenes.md.
-
-    ``final`` holds each body's ``vx, vy, omega`` and its place ``x, y`` and the angle
-    ``turn`` it has turned through since the impact, at the end time ``t``.
-    """
-
-    plan: Plan
-    final: Mapping[str, float]
-    events: list[dict[str, Any]]
-    wall_s: float
-    ode_steps: int = 0
-    details: Mapping[str, Any] = field(default_factory=dict)
-    trajectory: Any = field(default=None, repr=False)
-
-    def as_json(self) -> dict[str, Any]:
-        return {"effects": list(self.plan.effects),
-                "not_simulated": list(self.plan.not_simulated),
-                "final": dict(self.final), "events": self.events,
-                "cost": {"wall_s": self.wall_s, "ode_steps": self.ode_steps},
-                "until": self.plan.until, **self.details}
-
-
-@dataclass(frozen=True)
-class FlightTrack:
-    """Closed-form free flight from the impact to ``t_end``, sampled on demand for plots."""
-
-    flyers: tuple[Flyer, ...]
-    t_end: float
-
-    @property
-    def t(self) -> np.ndarray:
-        return np.linspace(0.0, self.t_end, 200) if self.t_end > 0 else np.zeros(1)
-
-    def points(self) -> dict[str, np.ndarray]:
-        """Tracked points over time: a segment body's two ends, else its centre."""
-        out = {}
-        for f in self.flyers:
-            if f.ends is not None:
-                ends = [f.ends_at(t) for t in self.t]
-                for k, label in enumerate(f.labels):
-                    out[f"{f.name}.{label}"] = np.array([pair[k] for pair in ends])
-            else:
-                out[f.name] = np.array([f.at(t)[0] for t in self.t])
-        return out
+__all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack", "impact_view", "rigid_limit"]
 
 
 def explain(scene: Scene) -> str:
@@ -93,7 +44,6 @@ def explain(scene: Scene) -> str:
     plan = make_plan(scene.simulate)
     lines = [plan.explain()]
     if scene.several:
-        from rigidimpact.collision import rule_laws
 
         frictional = any(t.friction is not None for t in scene.touches)
         lines.append(f"impact rule: {scene.rule}: {rule_laws(scene.rule, frictional)}")
@@ -102,8 +52,6 @@ def explain(scene: Scene) -> str:
                          "fixed body; ask for effects = [\"gravity\"] to see them land again")
         return "\n".join(lines)
     if any(step.model == "compliant" for step in plan.steps):
-        from rigidimpact.simulate.compliant import prepare
-
         model = prepare(scene, plan, scene_values(scene))
         chosen = model.integrator
         lines.append(f"integrator: {chosen['method']}, rtol {chosen['rtol']:.1e} "
@@ -115,33 +63,6 @@ def explain(scene: Scene) -> str:
         if "note" in contact:
             lines.append(f"note: {contact['note']}")
     return "\n".join(lines)
-
-
-def flyer(body: Body, values: Mapping[sp.Symbol, sp.Expr]) -> Flyer:
-    """A body just after the impact, as numbers for free flight.
-
-    Examples
-    --------
-    >>> flyer(Body.rod(1, 2, 0, 1, velocity=(0, 1)), {}).ends[1]
-    (1.0, 0.0)
-    """
-    position = tuple(as_float(c, values) for c in body.position)
-    velocity = tuple(as_float(c, values) for c in body.velocity)
-    spin = as_float(body.spin, values)
-    dims = dict(body.dimensions)
-    if body.shape == "barbell":
-        first, second = body.parts
-        ends = tuple(tuple(as_float(c, values) for c in part.position - body.position)
-                     for part in (first, second))
-        return Flyer(body.name, body.shape, position, velocity, spin, ends,
-                     (first.label, second.label))
-    if body.shape == "rod":
-        half, angle = as_float(dims["length"] / 2, values), as_float(dims["angle"], values)
-        end = (half * math.cos(angle), half * math.sin(angle))
-        return Flyer(body.name, body.shape, position, velocity, spin,
-                     ((-end[0], -end[1]), end), ("end 1", "end 2"))
-    radius = as_float(dims["radius"], values) if "radius" in dims else 0.0
-    return Flyer(body.name, body.shape, position, velocity, spin, radius=radius)
 
 
 def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], float]:
@@ -175,8 +96,6 @@ def run(scene: Scene) -> Outcome:
         answer (a re-strike search needs one particle).
     """
     if scene.several:
-        from rigidimpact.simulate.several import run_several
-
         return run_several(scene)
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
@@ -187,9 +106,7 @@ def run(scene: Scene) -> Outcome:
                          "itself (until = separation, no effects) is simulated for such "
                          "scenes so far")
     if any(step.model == "compliant" for step in plan.steps):
-        from rigidimpact.simulate.compliant import run_compliant
-
-        return _finite(run_compliant(scene, plan, values, start))
+        return finite(run_compliant(scene, plan, values, start))
     solution = scene.impact().solve()
     after = (solution.first_after, solution.second_after)
     g = plan.settings["g"] if "gravity" in plan.effects else 0.0
@@ -226,17 +143,8 @@ def run(scene: Scene) -> Outcome:
                   f"{body.name}.x": float(place[0]), f"{body.name}.y": float(place[1]),
                   f"{body.name}.turn": turn}
     final["t"] = t_end
-    return _finite(Outcome(plan, final, events, time.perf_counter() - start,
+    return finite(Outcome(plan, final, events, time.perf_counter() - start,
                            details=details, trajectory=FlightTrack(tuple(flyers), t_end)))
-
-
-def _finite(outcome: Outcome) -> Outcome:
-    """The outcome, unless float64 could not hold a number of it (never print NaN)."""
-    bad = sorted(k for k, v in outcome.final.items() if not math.isfinite(v))
-    if bad:
-        raise InputError("simulate", f"{', '.join(bad)} left float64's range in this run; "
-                         "scale the scene's numbers closer to 1")
-    return outcome
 
 
 def impact_view(scene: Scene, outcome: Outcome) -> tuple[list, list, dict]:
@@ -253,3 +161,36 @@ def impact_view(scene: Scene, outcome: Outcome) -> tuple[list, list, dict]:
     after = {b.name: tuple(outcome.final[f"{b.name}.{k}"] for k in ("vx", "vy", "omega"))
              for b in bodies if b.support != "fixed"}
     return bodies, contacts, after
+
+
+def rigid_limit(scene: Scene, contact_stiffnesses: list[float], rod_exponent: float = 1.5,
+                rod_scale: float = 100.0) -> list[dict[str, float]]:
+    """Compliant runs against the rigid closed form as the contact stiffens.
+
+    The rod stiffens faster: ``k_rod = rod_scale * k_contact ** rod_exponent``. Each row
+    gives both stiffnesses, the largest difference of any final velocity or spin from
+    the rigid solution, and the run's cost. ``order`` is the slope of log(error) against
+    log(k_contact) between neighbouring rows.
+    """
+    values = scene_values(scene)
+    solution = scene.impact().solve()
+    rigid = {}
+    for body in (solution.first_after, solution.second_after):
+        for key, x in ((f"{body.name}.vx", body.velocity[0]),
+                       (f"{body.name}.vy", body.velocity[1]),
+                       (f"{body.name}.omega", body.spin)):
+            rigid[key] = as_float(x, values)
+    rows: list[dict[str, float]] = []
+    for k_c in contact_stiffnesses:
+        table = {**scene.simulate, "effects": ["rod-compliance", "contact-compliance"],
+                 "contact_stiffness": k_c, "rod_stiffness": rod_scale * k_c**rod_exponent,
+                 "until": "separation"}
+        outcome = run(replace(scene, simulate=table))
+        error = max(abs(outcome.final[k] - v) for k, v in rigid.items())
+        row = {"contact_stiffness": k_c, "rod_stiffness": table["rod_stiffness"],
+               "error": error, "ode_steps": outcome.ode_steps, "wall_s": outcome.wall_s}
+        if rows:
+            row["order"] = -math.log(error / rows[-1]["error"]) / math.log(
+                k_c / rows[-1]["contact_stiffness"])
+        rows.append(row)
+    return rows

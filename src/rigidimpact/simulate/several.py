@@ -52,6 +52,7 @@ from rigidimpact.problems import physics_warnings, read_values
 from rigidimpact.scene import Scene
 from rigidimpact.shapes import is_round, is_segment
 from rigidimpact.simulate.flight import Flyer, _certified_first_root, first_contact
+from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
 
 __all__ = ["run_several", "Watch", "watches", "SeveralTrack"]
@@ -75,13 +76,11 @@ class SeveralTrack:
     """
 
     flyers: tuple[Flyer, ...]
-    marks: tuple[tuple[str, int, tuple[float, float]], ...]  # (label, flyer index, offset)
+    marks: tuple[tuple[str, int, tuple[float, ...]], ...]  # (label, flyer index, offset)
     t_end: float
 
     @property
     def _track(self):
-        from rigidimpact.simulate.runner import FlightTrack
-
         return FlightTrack(self.flyers, self.t_end)
 
     @property
@@ -98,8 +97,6 @@ class SeveralTrack:
 
 def _flyer(body: Body, gravity: float) -> Flyer:
     """A body just after the impact (exact numbers) as a float flyer in the world frame."""
-    from rigidimpact.simulate.runner import flyer
-
     return replace(flyer(body, {}), gravity=gravity)
 
 
@@ -238,8 +235,6 @@ def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
     With the sequential rule and no order, every order is flown; ``final`` is the first
     order's and ``orders`` in the details gives each one's.
     """
-    from rigidimpact.simulate.runner import Outcome, _finite
-
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
     if any(step.model == "compliant" for step in plan.steps):
@@ -275,7 +270,7 @@ def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
                 offset = tuple(float(c) for c in touch.point - body.position)
                 marks.append((f"{name}@{touch.name}", order.index(name), offset))
     track = SeveralTrack(tuple(flyers.values()), tuple(marks), t_end)
-    return _finite(Outcome(plan, _final(flyers, t_end), events,
+    return finite(Outcome(plan, _final(flyers, t_end), events,
                            time.perf_counter() - start, details=details, trajectory=track))
 
 
