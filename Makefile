@@ -19,8 +19,9 @@ run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and fi
 test: $(STAMP)  ## unit tests, doctests and notebooks (nbval)
 	$(PY) -m pytest
 
-lint: $(STAMP)  ## ruff, and mypy over the package
+lint: $(STAMP)  ## ruff, the import layers (import-linter), and mypy over the package
 	$(PY) -m ruff check src tests derivations notebooks
+	$(VENV)/bin/lint-imports --no-cache
 	$(PY) -m mypy
 
 notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before committing
