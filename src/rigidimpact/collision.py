@@ -54,9 +54,9 @@ from rigidimpact.compliance import damping_ratio_for
 from rigidimpact.errors import InputError
 from rigidimpact.geometry import cross, perp
 from rigidimpact.impulse import Coordinate, coordinates_of, moving
+from rigidimpact.laws import RESTITUTION_LAWS, Coulomb
 from rigidimpact.notation import aligned, result_lhs, to_latex
 from rigidimpact.rewrite import tidy
-from rigidimpact.routh import regimes
 
 __all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
            "rule_laws"]
@@ -652,12 +652,13 @@ class Collision:
 
     def _routh_step(self, k: int, u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str]:
         """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course)."""
-
         touch = self.touches[k]
         rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
-        taken = [r for r in regimes(W, (rows * u).applyfunc(tidy), touch.friction,
-                                    touch.restitution, touch.law) if r.holds() is not False]
+        restitution = RESTITUTION_LAWS[touch.law](touch.restitution)
+        taken = [r for r in Coulomb(touch.friction).regimes(W, (rows * u).applyfunc(tidy),
+                                                            restitution)
+                 if r.holds() is not False]
         regime = taken[0]
         return tidy(regime.impulse[0]), tidy(regime.impulse[1]), regime.name
 

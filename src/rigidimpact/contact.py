@@ -30,7 +30,14 @@ import sympy as sp
 from rigidimpact.bodies import _expr, as_vector
 from rigidimpact.errors import InputError
 from rigidimpact.geometry import frame_of
-from rigidimpact.laws import RESTITUTION_LAWS, TANGENTIAL_LAWS, ContactLaw
+from rigidimpact.laws import (
+    RESTITUTION_LAWS,
+    TANGENTIAL_LAWS,
+    ContactLaw,
+    Coulomb,
+    NewtonRestitution,
+    Rough,
+)
 from rigidimpact.rewrite import tidy
 from rigidimpact.roles import Role
 
@@ -130,7 +137,7 @@ class Contact:
     def frictional(self) -> bool:
         """Whether the tangential law is solved by Routh's method or Walton's law rather
         than as linear conditions."""
-        return self.tangential in ("coulomb", "rough")
+        return getattr(TANGENTIAL_LAWS[self.tangential], "solved_by_regimes", False)
 
     def __repr__(self) -> str:
         n = self.normal
@@ -159,7 +166,7 @@ class Contact:
                        tangential_restitution=put(self.tangential_restitution))
 
     @property
-    def laws(self) -> tuple[ContactLaw, ContactLaw]:
+    def laws(self) -> tuple[NewtonRestitution, ContactLaw]:
         """The restitution law and the tangential law, as objects.
 
         Examples
@@ -167,8 +174,13 @@ class Contact:
         >>> Contact(restitution=1).laws
         (NewtonRestitution(1), Smooth())
         """
-        return (RESTITUTION_LAWS[self.law](self.restitution),
-                TANGENTIAL_LAWS[self.tangential]())
+        tangential = TANGENTIAL_LAWS[self.tangential]
+        if tangential is Rough:
+            return (RESTITUTION_LAWS[self.law](self.restitution),
+                    Rough(self.friction, self.tangential_restitution))
+        if tangential is Coulomb:
+            return RESTITUTION_LAWS[self.law](self.restitution), Coulomb(self.friction)
+        return RESTITUTION_LAWS[self.law](self.restitution), tangential()
 
     @cached_property
     def frame(self) -> sp.ImmutableMatrix:

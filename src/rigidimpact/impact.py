@@ -17,12 +17,13 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from functools import cached_property
+from typing import Any
 
 import sympy as sp
 
-from rigidimpact import laws, routh
+from rigidimpact import laws
 from rigidimpact.bodies import Body
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
@@ -395,14 +396,10 @@ class Impact:
     def _solve_frictional(self, core: ImpulseProblem) -> Solution:
         """Friction: the impulse by Routh's method (Coulomb) or Walton's law (rough), one
         solution per course the impact can take; with symbols, their ``Piecewise``."""
-        contact = self.contact
-        e, mu, beta = contact.restitution, contact.friction, contact.tangential_restitution
-        if self.numeric:
-            e, mu, beta = (None if x is None else x.evalf(NUMERIC_DIGITS) for x in (e, mu, beta))
-        if contact.tangential == "coulomb":
-            found = routh.regimes(core.W, core.velocity_before, mu, e, contact.law)
-        else:
-            found = routh.walton(core.W, core.velocity_before, beta, mu, e)
+        restitution, tangential = self.contact.laws  # the tangential law owns its regimes
+        if self.numeric:  # in the 50-digit numbers the bodies are in
+            restitution, tangential = (_in_digits(law) for law in (restitution, tangential))
+        found = tangential.regimes(core.W, core.velocity_before, restitution)
         solutions = [self._solved_by(core, r.impulse, regime=r.name, path=r.path)
                      for r in found]
         if len(solutions) == 1:
@@ -481,6 +478,13 @@ def _piecewise(solutions: list[Solution], conditions: tuple[tuple, ...]) -> Solu
         energy_loss_fraction=pw(lambda s: s.energy_loss_fraction),
         regime=None, path=(),
         regimes=tuple((s.regime, c, s) for s, c in zip(solutions, conditions, strict=True)))
+
+
+def _in_digits(law: Any) -> Any:
+    """A law with its coefficients as 50-digit numbers (numeric mode)."""
+    return replace(law, **{f.name: None if getattr(law, f.name) is None else
+                           sp.sympify(getattr(law, f.name)).evalf(NUMERIC_DIGITS)
+                           for f in fields(law)})
 
 
 def _turning(spin: sp.Expr, body: Body) -> sp.ImmutableMatrix:

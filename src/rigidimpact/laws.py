@@ -19,9 +19,11 @@ Equation(label='tangential momentum of ball is unchanged', paper='', lhs=0, rhs=
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import sympy as sp
 
+from rigidimpact import routh
 from rigidimpact.bodies import Body
 from rigidimpact.geometry import cross
 from rigidimpact.notation import escape_text, to_latex
@@ -281,10 +283,16 @@ class ContactLaw:
     """
 
     name = ""
+    solved_by_regimes = False  # True: the impulse comes from `regimes`, not `conditions`
 
     def equations(self, before: tuple[Body, Body],
                   after: tuple[Body, Body]) -> tuple[Equation, ...]:
         raise NotImplementedError
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        """The courses of the impact, for a law that is not a linear condition."""
+        raise NotImplementedError(f"{type(self).__name__} is imposed as linear conditions")
 
     def conditions(self, before: tuple[Body, Body], kicked: tuple[Body, Body],
                    impulse: sp.MatrixBase) -> list[sp.Expr]:
@@ -399,31 +407,64 @@ class EnergeticRestitution(NewtonRestitution):
         return f"EnergeticRestitution({self.e})"
 
 
+@dataclass(frozen=True, repr=False)
 class Coulomb(ContactLaw):
     """Coulomb friction, |P_t| <= mu P_n, opposing slip: not a linear condition, so the
-    impulse comes from Routh's method and each course of the impact is printed as a
-    regime with its conditions (:mod:`rigidimpact.routh`).
+    impulse comes from Routh's method (:meth:`regimes`) and each course of the impact is
+    printed as a regime with its conditions (:mod:`rigidimpact.routh`).
 
     Examples
     --------
-    >>> Coulomb().equations((), ())
+    >>> Coulomb(sp.Rational(1, 4)).equations((), ())
     ()
+    >>> W = sp.Matrix([[2, 0], [0, 2]])   # a particle of mass 1/2 on a fixed floor
+    >>> [r.name for r in Coulomb(sp.Rational(1, 4)).regimes(W, sp.Matrix([-1, 1]),
+    ...                                                     NewtonRestitution(1))]
+    ['slip']
     """
 
+    mu: Any = None
     name = "coulomb"
+    solved_by_regimes = True
 
     def equations(self, before, after):
         return ()
 
     def conditions(self, before, kicked, impulse):
-        raise TypeError("Coulomb friction is solved by Routh's method, not as conditions")
+        return []  # no linear condition: see regimes
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        """Every course the impact can take under this friction and `restitution`
+        (Routh's method), each with its conditions; with numbers, the one taken."""
+        return routh.regimes(W, v_before, self.mu, restitution.e, restitution.name)
+
+    def __repr__(self) -> str:
+        return f"Coulomb({self.mu})"
 
 
+@dataclass(frozen=True, repr=False)
 class Rough(Coulomb):
     """Walton's law: the tangential velocity of the touching points reverses, scaled by
-    beta, unless that needs more than Coulomb's friction allows."""
+    beta, unless that needs more than Coulomb's friction (mu, or none) allows.
 
+    Examples
+    --------
+    >>> W = sp.Matrix([[1, 0], [0, sp.Rational(7, 2)]])  # a solid sphere of mass 1
+    >>> [r.impulse for r in Rough(None, 1).regimes(W, sp.Matrix([-1, 1]),
+    ...                                            NewtonRestitution(1))]
+    [(2, -4/7)]
+    """
+
+    beta: Any = None
     name = "rough"
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        return routh.walton(W, v_before, self.beta, self.mu, restitution.e)
+
+    def __repr__(self) -> str:
+        return f"Rough({self.mu}, {self.beta})"
 
 
 RESTITUTION_LAWS = {"newton": NewtonRestitution, "poisson": PoissonRestitution,
