@@ -778,3 +778,11 @@ def test_importing_the_plots_leaves_the_backend_alone():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "svg"
+
+
+def test_a_bob_given_both_a_velocity_and_another_spin_is_refused(tmp_path, capsys):
+    base = (ROOT / "derivations" / "swinging-pendulum.toml").read_text()
+    both = base.replace('velocity = ["w", "0"]', 'velocity = ["w", "0"]\nspin = "0"')
+    refused(capsys, ["evaluate", scene_file(tmp_path, both)], "give one of the two")
+    agreeing = base.replace('velocity = ["w", "0"]', 'velocity = ["w", "0"]\nspin = "w/l"')
+    assert main(["evaluate", scene_file(tmp_path, agreeing, "agree.toml")]) == 0

@@ -40,6 +40,7 @@ from rigidimpact.geometry import spin_cross
 from rigidimpact.impact import Impact
 from rigidimpact.notation import SYMBOLS, make_symbol
 from rigidimpact.problems import Derivation, model_warnings, read_values
+from rigidimpact.rewrite import tidy
 from rigidimpact.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.shapes import SHAPES, Fields
 
@@ -367,6 +368,11 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
             pivot = _from_contact(table, "pivot", where, symbols, origin)
             if "velocity" in table:  # given: it must be the turn about the pivot
                 body = replace(body, pivot=pivot)
+                stated = sp.sympify(spin)
+                if "spin" in table and not tidy(body.spin - stated).is_zero:
+                    raise InputError(f"{where}.spin", f"a pivoted body moves only by "
+                                     f"turning about its pivot: its velocity makes the "
+                                     f"spin {body.spin}, not {stated}; give one of the two")
             else:  # the velocity follows from the spin
                 turn = spin_cross(spin, body.position - sp.ImmutableMatrix(pivot))
                 body = replace(body, pivot=pivot, velocity=turn, spin=spin)
