@@ -67,7 +67,12 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     # ``factor`` puts the expression over one denominator and factors both sides, so
     # common factors cancel without a separate (and as costly) ``cancel`` first
     best = _positive_lead(sp.factor(expr))
-    angles = {f.args[0] for f in best.atoms(sp.sin, sp.cos)}
+    # a numeric angle under a square root (Stronge's law with the data in numbers) makes
+    # each trial factorisation cost seconds; such a formula is left as factored
+    radicals = any(not p.exp.is_Integer and p.base.has(sp.sin, sp.cos)
+                   for p in best.atoms(sp.Pow))
+    angles = {f.args[0] for f in best.atoms(sp.sin, sp.cos)
+              if not (radicals and f.args[0].is_number)}
     for angle in sorted(angles, key=sp.default_sort_key):
         s, c = sp.sin(angle), sp.cos(angle)
         expanded = sp.cancel(best)
