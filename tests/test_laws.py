@@ -44,3 +44,31 @@ def test_a_new_law_is_one_class(monkeypatch):
     assert after.velocity[1] == sp.Rational(3, 7)
     assert after.contact_velocity[1] == -ball.contact_velocity[1]
     assert after.velocity[0] == -1
+
+
+def test_a_new_restitution_law_is_one_class():
+    # a perfectly inelastic law written as one class, with nothing registered elsewhere:
+    # the impulse path ends where the normal velocity reaches zero. Routh's method takes
+    # it through the object and must give Newton's law at e = 0.
+    from rigidimpact import routh
+    from rigidimpact.laws import Coulomb, NewtonRestitution
+
+    @dataclass(frozen=True, repr=False)
+    class Inelastic(NewtonRestitution):
+        e: sp.Expr = sp.Integer(0)
+        name = "inelastic"
+
+        def end_of_bent_path(self, first, second, v_n, stop_in_restitution):
+            at_stop = v_n + first.rate[0] * second.start
+            return second.start - at_stop / second.rate[0]
+
+    W = sp.Matrix([[2, 1], [1, 2]])
+    bent = 0
+    for v in (sp.Matrix([-1, 1]), sp.Matrix([-1, sp.Rational(1, 5)])):
+        for mu in (sp.Rational(1, 10), sp.Rational(1, 2), 2):
+            ours = Coulomb(mu).regimes(W, v, Inelastic())
+            newton = routh.regimes(W, v, mu, NewtonRestitution(0))
+            assert [(r.name, r.impulse) for r in ours] == \
+                [(r.name, r.impulse) for r in newton]
+            bent += sum(len(r.path) == 3 for r in ours)  # slip stopped: the class's end
+    assert bent >= 2

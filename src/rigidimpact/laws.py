@@ -315,9 +315,16 @@ class NewtonRestitution(ContactLaw):
 
     e: sp.Expr
     name = "newton"
+    splits_on_compression = False  # on a bent impulse path: the end is set by velocity
 
     def equations(self, before, after):
         return (restitution(before[0], after[0], before[1], after[1], self.e),)
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        """The normal impulse at the end of an impact whose slip stopped at
+        ``second.start`` (Routh's method, :mod:`rigidimpact.routh`)."""
+        return routh.newton_end(first, second, v_n, self.e)
 
     def __repr__(self) -> str:
         return f"NewtonRestitution({self.e})"
@@ -375,6 +382,11 @@ class PoissonRestitution(NewtonRestitution):
     """
 
     name = "poisson"
+    splits_on_compression = True
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
 
     def equations(self, before, after):
         (equation,) = super().equations(before, after)
@@ -397,6 +409,11 @@ class EnergeticRestitution(NewtonRestitution):
     """
 
     name = "energetic"
+    splits_on_compression = True
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        return routh.energetic_end(first, second, v_n, self.e, stop_in_restitution)
 
     def equations(self, before, after):
         (equation,) = super().equations(before, after)
@@ -437,7 +454,7 @@ class Coulomb(ContactLaw):
                 restitution: NewtonRestitution) -> tuple:
         """Every course the impact can take under this friction and `restitution`
         (Routh's method), each with its conditions; with numbers, the one taken."""
-        return routh.regimes(W, v_before, self.mu, restitution.e, restitution.name)
+        return routh.regimes(W, v_before, self.mu, restitution)
 
     def __repr__(self) -> str:
         return f"Coulomb({self.mu})"

@@ -25,15 +25,17 @@ Without a change of slip the three agree. Each possible course of the impact is 
 
 Examples
 --------
+>>> from rigidimpact.laws import NewtonRestitution
 >>> W = sp.Matrix([[2, 0], [0, 2]])   # a particle of mass 1/2 on a fixed floor
->>> (regime,) = regimes(W, sp.Matrix([-1, 1]), sp.Rational(1, 4), 1, "newton")
+>>> (regime,) = regimes(W, sp.Matrix([-1, 1]), sp.Rational(1, 4), NewtonRestitution(1))
 >>> regime.name, regime.impulse
 ('slip', (1, -1/4))
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 import sympy as sp
 
@@ -101,8 +103,8 @@ class _Piece:
     rate: sp.Matrix
 
 
-def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
-            law: str) -> tuple[Regime, ...]:
+def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
+            law: Any) -> tuple[Regime, ...]:
     """Every course a frictional impact can take, each with its conditions.
 
     Parameters
@@ -112,9 +114,12 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
     v_before : 2-vector
         Relative velocity of the touching points before (second minus first); its normal
         component is negative (the bodies approach).
-    mu, e : expr
-        Coulomb's friction coefficient and the restitution coefficient.
-    law : {"newton", "poisson", "energetic"}
+    mu : expr
+        Coulomb's friction coefficient.
+    law : restitution law object (:mod:`rigidimpact.laws`)
+        Its coefficient ``e``; ``splits_on_compression``, whether the end of a bent
+        impulse path depends on slip stopping in compression or in restitution; and
+        ``end_of_bent_path(first, second, v_n, in_restitution)``, that end.
 
     Returns
     -------
@@ -123,12 +128,11 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
 
     Examples
     --------
+    >>> from rigidimpact.laws import PoissonRestitution
     >>> W = sp.Matrix([[2, 1], [1, 2]])
-    >>> [r.name for r in regimes(W, sp.Matrix([-1, 1]), 2, 1, "poisson")]
+    >>> [r.name for r in regimes(W, sp.Matrix([-1, 1]), 2, PoissonRestitution(1))]
     ['slip-stick, in compression']
     """
-    if law not in LAWS:
-        raise InputError("contact.law", f"must be one of {', '.join(LAWS)}, got {law!r}")
     W = sp.Matrix(W).applyfunc(sp.cancel)
     if sp.cancel(W.det()).is_zero:
         raise InputError("contact.friction", "friction needs the touching points free to "
@@ -136,7 +140,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr, e: sp.Expr,
                          "degree of freedom (a body that can only turn, against a fixed "
                          "one)")
     v_n, v_t = (sp.cancel(c) for c in v_before)
-    mu, e = sp.sympify(mu), sp.sympify(e)
+    mu, e = sp.sympify(mu), sp.sympify(law.e)
     if v_t.is_zero:
         return _from_rest(W, v_n, mu, e, law)
     signs = [1] if v_t.is_positive else [-1] if v_t.is_negative else [1, -1]
@@ -196,7 +200,8 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime | None]:
         second = _Piece(p_star, second_slope, _rates(W, second_slope))
         rising = () if name == STICK else (sp.Gt(second.rate[0], 0),)
         common = (*side, stops, condition, *rising, sp.Not(ended))
-        if law == "newton":  # the end does not depend on where compression ends
+        if not law.splits_on_compression:  # the end does not depend on where
+            # compression ends (Newton's law)
             found.append(_finish((first, second), v_n, e, law, name, common))
             continue
         found.append(_finish((first, second), v_n, e, law, f"{name}, in compression",
@@ -220,15 +225,7 @@ def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime
         ends = [p_f]
     else:
         first, second = pieces
-        at_stop = v_n + first.rate[0] * second.start  # the normal velocity when slip stops
-        if law == "newton":
-            p_f = second.start + (-e * v_n - at_stop) / second.rate[0]
-        elif law == "poisson":
-            p_c = (-v_n / first.rate[0] if name.endswith("restitution")
-                   else second.start - at_stop / second.rate[0])
-            p_f = (1 + e) * p_c
-        else:
-            p_f = _energetic_end(first, second, v_n, e, name.endswith("restitution"))
+        p_f = law.end_of_bent_path(first, second, v_n, name.endswith("restitution"))
         ends = [second.start, p_f]
     ends = [_tidy_number(p) for p in ends]
     path = [(sp.Integer(0), sp.Integer(0))]
@@ -248,7 +245,24 @@ def _tidy_number(expr: sp.Expr) -> sp.Expr:
     return tidy(expr)
 
 
-def _energetic_end(first: _Piece, second: _Piece, v_n, e, stop_in_restitution) -> sp.Expr:
+def newton_end(first: _Piece, second: _Piece, v_n: sp.Expr, e: sp.Expr) -> sp.Expr:
+    """Newton's law on a bent path: where the normal velocity reaches -e times its value
+    before."""
+    at_stop = v_n + first.rate[0] * second.start  # the normal velocity when slip stops
+    return second.start + (-e * v_n - at_stop) / second.rate[0]
+
+
+def poisson_end(first: _Piece, second: _Piece, v_n: sp.Expr, e: sp.Expr,
+                stop_in_restitution: bool) -> sp.Expr:
+    """Poisson's law on a bent path: 1 + e times the normal impulse at the end of
+    compression (in the first piece if slip stopped in restitution, else the second)."""
+    at_stop = v_n + first.rate[0] * second.start
+    p_c = (-v_n / first.rate[0] if stop_in_restitution
+           else second.start - at_stop / second.rate[0])
+    return (1 + e) * p_c
+
+
+def energetic_end(first: _Piece, second: _Piece, v_n, e, stop_in_restitution) -> sp.Expr:
     """Where the restitution work reaches e^2 times minus the compression work."""
     p_star = second.start
     a, b = first.rate[0], second.rate[0]
@@ -373,5 +387,6 @@ def diagram(impact, values: dict) -> Diagram:
     if leftover:
         names = ", ".join(sorted(str(s) for s in leftover))
         raise InputError("values", f"Routh's diagram needs numbers for {names}")
-    (regime,) = regimes(W, v, mu, e, contact.law)
-    return Diagram(W, v, mu, e, contact.law, regime)
+    restitution = replace(contact.laws[0], e=e)
+    (regime,) = regimes(W, v, mu, restitution)
+    return Diagram(W, v, mu, e, restitution.name, regime)
