@@ -413,3 +413,24 @@ restitution = "1"
     path.write_text(text)
     assert main(["evaluate", str(path)]) == 0
     assert "energy" in capsys.readouterr().err
+
+
+def test_a_new_rule_is_one_class():
+    # a rule written as one class in a test, registered nowhere: the contacts act one at
+    # a time from the last to the first. It must agree with the sequential rule given
+    # that order, and a Newton's cradle passes its momentum along as by hand.
+    from rigidimpact.collision import Rule, Sequential, chain
+
+    class Backwards(Rule):
+        name = "backwards"
+
+        def outcomes(self, collision):
+            names = tuple(t.name for t in collision.touches)[::-1]
+            return (collision.sequential(names),)
+
+    cradle = chain(4)
+    (ours,) = cradle.solve(Backwards())
+    (theirs,) = cradle.solve(Sequential(("c2", "c1", "c0")))
+    assert ours.results() == theirs.results()
+    # backwards, the resting balls see nothing until c0 acts; then the pulse runs on
+    assert [ours.results()[f"ball{k}.vx"] for k in range(4)] == [0, 0, 0, 1]

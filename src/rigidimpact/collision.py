@@ -45,7 +45,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import Any
+from typing import Any, ClassVar
 
 import sympy as sp
 
@@ -59,6 +59,7 @@ from rigidimpact.notation import aligned, result_lhs, to_latex
 from rigidimpact.rewrite import tidy
 
 __all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
+           "Rule", "Simultaneous", "Sequential", "Compliant", "RULE_TYPES",
            "rule_laws"]
 
 RULES = ("simultaneous", "sequential", "compliant")
@@ -866,6 +867,17 @@ class Collision:
             return tuple(self.sequential_pass(order) for order in orders)
         return tuple(self.sequential(order) for order in orders)
 
+    def solve(self, rule: Rule) -> tuple[Outcome, ...]:
+        """What `rule` makes of the collision (see :class:`Rule`): the model is built once
+        and the rule is an argument, as sympy's ``System.form_eoms`` takes its method.
+
+        Examples
+        --------
+        >>> chain(3).solve(Sequential(("c0", "c1")))[0].results()["ball2.vx"]
+        1
+        """
+        return rule.outcomes(self)
+
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
         return {t.name: impulses[k] for k, t in enumerate(self.touches)}
 
@@ -967,3 +979,80 @@ def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     touches = tuple(Touch(f"c{k}", f"ball{k}", f"ball{k + 1}", (sp.Rational(2 * k + 1, 2), 0),
                           (1, 0), restitution) for k in range(n - 1))
     return Collision(bodies, touches)
+
+
+# ---- rules: how contacts that close together act, each one small class ---------------
+
+class Rule:
+    """How several contacts that close at the same instant act together.
+
+    A rule is one small class: :meth:`outcomes` says what it makes of a collision (one
+    outcome, or one per case or order), built from the collision's own solvers, so every
+    rule returns the same :class:`Outcome`. :data:`RULE_TYPES` lists the built-in ones
+    for the scene reader; a new rule needs no entry there to be used from Python.
+    """
+
+    name: ClassVar[str] = ""
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        raise NotImplementedError
+
+    def laws(self, frictional: bool = False) -> str:
+        """What the rule imposes, in words."""
+        return rule_laws(self.name, frictional)
+
+
+@dataclass(frozen=True)
+class Simultaneous(Rule):
+    """All contacts at once, none pulling (a complementarity problem); with symbols, one
+    outcome per case, each with its conditions.
+
+    Examples
+    --------
+    >>> [o.label for o in chain(3).solve(Simultaneous())]
+    ['simultaneous']
+    """
+
+    name: ClassVar[str] = "simultaneous"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        if collision.symbols:
+            return collision.simultaneous_cases()
+        return (collision.simultaneous(),)
+
+
+@dataclass(frozen=True)
+class Sequential(Rule):
+    """One contact at a time in `order`; every order when `order` is None.
+
+    Examples
+    --------
+    >>> [o.label for o in chain(3).solve(Sequential(("c0", "c1")))]
+    ['sequential c0, c1']
+    """
+
+    order: tuple[str, ...] | None = None
+    name: ClassVar[str] = "sequential"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        if self.order is None:
+            return collision.every_order()
+        if collision.symbols:
+            return (collision.sequential_pass(self.order),)
+        return (collision.sequential(self.order),)
+
+
+@dataclass(frozen=True)
+class Compliant(Rule):
+    """Every contact a push-only spring (linear with damping from e, or Hertz's), with
+    one stiffness per contact in their order (N/m)."""
+
+    stiffness: tuple[float, ...] | float = 1e6
+    hertz: bool = False
+    name: ClassVar[str] = "compliant"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        return (collision.compliant(self.stiffness, self.hertz),)
+
+
+RULE_TYPES: tuple[type[Rule], ...] = (Simultaneous, Sequential, Compliant)

@@ -33,7 +33,15 @@ import sympy as sp
 
 from rigidimpact import expr as expressions
 from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision, Outcome, Touch
+from rigidimpact.collision import (
+    Collision,
+    Compliant,
+    Outcome,
+    Rule,
+    Sequential,
+    Simultaneous,
+    Touch,
+)
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.geometry import spin_cross
@@ -188,19 +196,17 @@ class Scene:
     def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Outcome, ...]:
         """What the scene's rule makes of its several contacts (every order when a
         sequential rule has none)."""
-        collision = self.collision(values)
-        if collision.symbols and self.rule == "simultaneous":
-            return collision.simultaneous_cases()
-        if collision.symbols and self.rule == "sequential" and self.order is not None:
-            return (collision.sequential_pass(self.order),)
+        return self.collision(values).solve(self.impact_rule)
+
+    @property
+    def impact_rule(self) -> Rule:
+        """The ``[impact]`` rule as its object (the scene reader is where names end)."""
         if self.rule == "compliant":
             stiffness, hertz = self.compliance
-            return (collision.compliant(stiffness, hertz),)
-        if self.rule == "simultaneous":
-            return (collision.simultaneous(),)
-        if self.order is not None:
-            return (collision.sequential(self.order),)
-        return collision.every_order()
+            return Compliant(stiffness, hertz)
+        if self.rule == "sequential":
+            return Sequential(self.order)
+        return Simultaneous()
 
     def derivation(self) -> Derivation:
         """Solve the scene's impact symbolically.
