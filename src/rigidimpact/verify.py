@@ -1,23 +1,14 @@
-"""Checking derived results against the paper.
+"""Checking derived results against the paper: the check lists, and running them.
 
-Two independent tests must both pass for a result to count as equal to the paper's:
-
-* symbolic: the difference is an exact zero after every sine, cosine and tangent of an
-  angle is replaced by its rational form in ``t = tan(angle/2)`` and the whole is put
-  over one denominator (a decision procedure for rational trig identities, where a
-  weak simplifier could fail to see a zero; when the expanded difference cancels term
-  by term, that is already the proof and the procedure is skipped);
-* numeric: at seeded random points within the symbols' assumptions, both sides are
-  evaluated to 50 significant digits and must agree to 40 (so a lucky rewrite cannot
-  pass alone, nor a lucky sample).
+Each check compares a derived result with the paper's by the two independent tests of
+:mod:`rigidimpact.compare` (an exact symbolic zero, and agreement to 40 digits at seeded
+points); ``rigidimpact verify`` runs the paper's checks below, the re-strike's
+(``restrike.CHECKS``) and the textbook catalogue's (``catalogue.CHECKS``).
 
 Examples
 --------
->>> t = sp.Symbol("t", real=True)
->>> agree(sp.sin(t)**2, 1 - sp.cos(t)**2).passed
-True
->>> agree(sp.sin(t), sp.cos(t)).passed
-False
+>>> [c.status for c in run_checks(lambda i: i == "discs.solution")]
+['pass']
 """
 
 from __future__ import annotations
