@@ -786,3 +786,68 @@ def test_a_bob_given_both_a_velocity_and_another_spin_is_refused(tmp_path, capsy
     refused(capsys, ["evaluate", scene_file(tmp_path, both)], "give one of the two")
     agreeing = base.replace('velocity = ["w", "0"]', 'velocity = ["w", "0"]\nspin = "w/l"')
     assert main(["evaluate", scene_file(tmp_path, agreeing, "agree.toml")]) == 0
+
+
+def test_a_pivoted_body_struck_at_two_contacts_reports_its_reaction(tmp_path, capsys):
+    # two balls strike a rod hinged at its top (mass 8, length 1.2, inertia 0.96), one at
+    # the lower end, one 0.3 above it, one after the other (sequential rule). The hinge's
+    # reaction must be the sum of the two one-contact impacts' reactions, each computed
+    # by the two-body impact (Impact) from the state the other left.
+    import sympy as sp
+
+    from rigidimpact.bodies import Body
+    from rigidimpact.contact import Contact
+    from rigidimpact.impact import Impact
+
+    text = """
+[[bodies]]
+name = "low"
+shape = "particle"
+mass = "2"
+position = ["0", "0"]
+velocity = ["5", "0"]
+[[bodies]]
+name = "high"
+shape = "particle"
+mass = "1"
+position = ["0", "3/10"]
+velocity = ["3", "0"]
+[[bodies]]
+name = "rod"
+shape = "rigid"
+mass = "8"
+inertia = "24/25"
+position = ["0", "3/5"]
+pivot = ["0", "6/5"]
+[[contacts]]
+name = "a"
+bodies = ["low", "rod"]
+point = ["0", "0"]
+restitution = "4/5"
+[[contacts]]
+name = "b"
+bodies = ["high", "rod"]
+point = ["0", "3/10"]
+restitution = "1/2"
+[impact]
+rule = "sequential"
+order = ["a", "b"]
+"""
+    out = evaluated(capsys, ["evaluate", scene_file(tmp_path, text)])
+    R = sp.Rational
+    total = sp.zeros(2, 1)
+    rod = Body.rigid(8, R(24, 25), (0, R(3, 5)), (0, 0), 0, "rod", pivot=(0, R(6, 5)))
+    for ball, height, e in ((Body.particle(2, (5, 0), "low"), 0, R(4, 5)),
+                            (Body.particle(1, (3, 0), "high"), R(3, 10), R(1, 2))):
+        shift = sp.Matrix([0, height])
+        local = Body.rigid(8, R(24, 25), rod.position - shift, rod.velocity, rod.spin, "rod",
+                           pivot=rod.pivot - shift)
+        solved = Impact(ball, local, Contact(restitution=e)).solve()
+        total += solved.pivot_impulse(solved.before[1])
+        after = solved.second_after
+        rod = Body.rigid(8, R(24, 25), rod.position, after.velocity, after.spin, "rod",
+                         pivot=rod.pivot)
+    assert out["acted"] == ["a", "b"]
+    assert out["rod.pivot_impulse_x"] == pytest.approx(float(total[0]), rel=1e-12)
+    assert out["rod.pivot_impulse_y"] == pytest.approx(float(total[1]), abs=1e-12)
+    assert abs(out["rod.pivot_impulse_x"]) > 0.1  # the hinge does push here

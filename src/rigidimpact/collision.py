@@ -186,6 +186,9 @@ class Outcome:
     notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
     # the relative energy error the rule's numbers carry (an integration's), else None
     energy_tolerance: float | None = field(default=None, repr=False)
+    # each pivoted body's reaction impulse (scene frame), filled by Collision.solve
+    pivot_reactions: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+                                                                  repr=False)
 
     @property
     def kinetic_energy_before(self) -> sp.Expr:
@@ -235,6 +238,8 @@ class Outcome:
         for name, impulse in self.impulses.items():
             results[f"{name}.normal_impulse"] = impulse
             results[f"{name}.tangential_impulse"] = self.tangential.get(name, sp.Integer(0))
+        for name, (x, y) in self.pivot_reactions.items():
+            results[f"{name}.pivot_impulse_x"], results[f"{name}.pivot_impulse_y"] = x, y
         return results
 
 
@@ -876,7 +881,29 @@ class Collision:
         >>> chain(3).solve(Sequential(("c0", "c1")))[0].results()["ball2.vx"]
         1
         """
-        return rule.outcomes(self)
+        return tuple(replace(o, pivot_reactions=self._pivot_reactions(o))
+                     for o in rule.outcomes(self))
+
+    def _pivot_reactions(self, outcome: Outcome) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """What each pivot gives its body: the body's change of linear momentum less the
+        contact impulses it received (each along its contact's unit normal and tangent;
+        the second body of a contact receives +P, the first -P)."""
+        found = {}
+        for before, after in zip(outcome.before, outcome.after, strict=True):
+            if before.support != "pivot":
+                continue
+            received = sp.zeros(2, 1)
+            for t in self.touches:
+                if before.name not in (t.first, t.second):
+                    continue
+                unit = t.normal / sp.sqrt(t.normal.dot(t.normal))
+                tangent = sp.Matrix([-unit[1], unit[0]])
+                push = outcome.impulses[t.name] * unit + \
+                    outcome.tangential.get(t.name, sp.Integer(0)) * tangent
+                received += push if before.name == t.second else -push
+            reaction = before.mass * (after.velocity - before.velocity) - received
+            found[before.name] = (tidy(reaction[0]), tidy(reaction[1]))
+        return found
 
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
         return {t.name: impulses[k] for k, t in enumerate(self.touches)}
