@@ -851,3 +851,12 @@ order = ["a", "b"]
     assert out["rod.pivot_impulse_x"] == pytest.approx(float(total[0]), rel=1e-12)
     assert out["rod.pivot_impulse_y"] == pytest.approx(float(total[1]), abs=1e-12)
     assert abs(out["rod.pivot_impulse_x"]) > 0.1  # the hinge does push here
+
+
+def test_the_setup_line_states_every_contacts_friction():
+    from rigidimpact.scene import parse_scene
+
+    scene = parse_scene(ROD_AND_ROOF.format(rule="simultaneous"))
+    setup = scene.derivation_at(scene.values).setup
+    lines = [line for line in setup if line.startswith("contact ")]
+    assert len(lines) == 2 and all(line.endswith("Coulomb friction 2/5") for line in lines)

@@ -255,7 +255,9 @@ class Scene:
         setup = tuple(_described(b) for b in self.bodies)
         setup += tuple(f"contact {t.name}: {t.first} -> {t.second} at ({t.point[0]}, "
                        f"{t.point[1]}), normal ({t.normal[0]}, {t.normal[1]}), {t.law} "
-                       f"restitution {t.restitution}" for t in self.touches)
+                       f"restitution {t.restitution}, "
+                       + ("smooth" if t.friction is None else f"Coulomb friction {t.friction}")
+                       for t in self.touches)
         setup += (f"rule: {self.rule}" + ("" if self.order is None
                                           else f", order {', '.join(self.order)}"),)
         results = outcomes[0].results()
