@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from helpers import refused, scene_file
 from rigidimpact.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -60,24 +61,9 @@ friction = "0.3"
 """
 
 
-def scene_file(tmp_path, text: str, name: str = "scene.toml") -> str:
-    path = tmp_path / name
-    path.write_text(text, encoding="utf-8")
-    return str(path)
-
-
 def evaluated(capsys, argv) -> dict:
     assert main([*argv, "--json"]) == 0
     return json.loads(capsys.readouterr().out)
-
-
-def refused(capsys, argv, needle=""):
-    """main(argv) ends in exit 2 with exactly one line naming `needle`."""
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("rigidimpact: error: "), err
-    assert needle in err, err
-    return err
 
 
 @pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])

@@ -19,6 +19,7 @@ import mpmath
 import pytest
 import sympy as sp
 
+from helpers import refused, scene_file
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.expr import parse_expression
@@ -30,26 +31,11 @@ ROOT = Path(__file__).resolve().parents[1]
 RIGIDIMPACT = [sys.executable, "-m", "rigidimpact"]
 
 
-def refused(capsys, argv, needle=""):
-    """main(argv) ends in exit 2 with exactly one line naming `needle`."""
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("rigidimpact: error: "), err
-    assert needle in err, err
-    return err
-
-
 def strict_json(text: str):
     """JSON that must not hold NaN or Infinity."""
     def no_constants(name):
         raise AssertionError(f"{name} in JSON output")
     return json.loads(text, parse_constant=no_constants)
-
-
-def scene_file(tmp_path, text: str, name: str = "scene.toml") -> str:
-    path = tmp_path / name
-    path.write_text(text, encoding="utf-8")
-    return str(path)
 
 
 PAIR = """

@@ -1,0 +1,21 @@
+"""Helpers the command-line tests share: a scene written to a file, a refusal checked."""
+
+from __future__ import annotations
+
+from rigidimpact.cli import main
+
+
+def refused(capsys, argv, needle=""):
+    """main(argv) ends in exit 2 with exactly one line naming `needle`."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("rigidimpact: error: "), err
+    assert needle in err, err
+    return err
+
+
+def scene_file(tmp_path, text: str, name: str = "scene.toml") -> str:
+    """The scene text written to `name` in `tmp_path`; its path."""
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return str(path)
