@@ -519,9 +519,7 @@ class Collision:
         """Only contact k acts: its frictional impact alone by Routh's method (the answer
         for one contact under every rule), if that leaves every other contact opening
         at least as fast as its law asks; otherwise one line saying so."""
-        normal, along, course = self._routh_step(k, self.u_before)
-        u = (self.u_before + self.M_inverse * (self.J[k, :].T * normal
-                                               + self.J_t[k, :].T * along)).applyfunc(tidy)
+        normal, along, course, u = self._routh_step(k, self.u_before)
         after = (self.J * u).applyfunc(tidy)
         blocked = [t.name for i, t in enumerate(self.touches)
                    if i != k and after[i] < target[i]]
@@ -641,9 +639,7 @@ class Collision:
                     continue
                 touch = self.touches[k]
                 if touch.friction:  # one contact's frictional impact: Routh's method
-                    impulse, along, course = self._routh_step(k, u)
-                    u = (u + self.M_inverse * (self.J[k, :].T * impulse
-                                               + self.J_t[k, :].T * along)).applyfunc(tidy)
+                    impulse, along, course, u = self._routh_step(k, u)
                     tangential[k] += along
                     courses.append(f"{name}: {course}")
                 else:
@@ -656,8 +652,10 @@ class Collision:
                        passes - 1, tangential=self._named(tangential.applyfunc(tidy))
                        if self.frictional else {}, courses=tuple(courses))
 
-    def _routh_step(self, k: int, u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str]:
-        """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course)."""
+    def _routh_step(self, k: int,
+                    u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
+        """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course,
+        the generalized velocities after)."""
         touch = self.touches[k]
         rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
@@ -666,7 +664,10 @@ class Collision:
                                                             restitution)
                  if r.holds() is not False]
         regime = taken[0]
-        return tidy(regime.impulse[0]), tidy(regime.impulse[1]), regime.name
+        normal, along = tidy(regime.impulse[0]), tidy(regime.impulse[1])
+        u_after = (u + self.M_inverse * (self.J[k, :].T * normal
+                                         + self.J_t[k, :].T * along)).applyfunc(tidy)
+        return normal, along, regime.name, u_after
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
                   tolerance: float = 1e-10, record: bool = False) -> Outcome:

@@ -34,9 +34,7 @@ from rigidimpact.laws import (
     RESTITUTION_LAWS,
     TANGENTIAL_LAWS,
     ContactLaw,
-    Coulomb,
     NewtonRestitution,
-    Rough,
 )
 from rigidimpact.rewrite import tidy
 from rigidimpact.roles import Role
@@ -137,7 +135,7 @@ class Contact:
     def frictional(self) -> bool:
         """Whether the tangential law is solved by Routh's method or Walton's law rather
         than as linear conditions."""
-        return getattr(TANGENTIAL_LAWS[self.tangential], "solved_by_regimes", False)
+        return TANGENTIAL_LAWS[self.tangential].solved_by_regimes
 
     def __repr__(self) -> str:
         n = self.normal
@@ -174,13 +172,8 @@ class Contact:
         >>> Contact(restitution=1).laws
         (NewtonRestitution(1), Smooth())
         """
-        tangential = TANGENTIAL_LAWS[self.tangential]
-        if tangential is Rough:
-            return (RESTITUTION_LAWS[self.law](self.restitution),
-                    Rough(self.friction, self.tangential_restitution))
-        if tangential is Coulomb:
-            return RESTITUTION_LAWS[self.law](self.restitution), Coulomb(self.friction)
-        return RESTITUTION_LAWS[self.law](self.restitution), tangential()
+        return (RESTITUTION_LAWS[self.law](self.restitution),
+                TANGENTIAL_LAWS[self.tangential].from_contact(self))
 
     @cached_property
     def frame(self) -> sp.ImmutableMatrix:

@@ -285,6 +285,11 @@ class ContactLaw:
     name = ""
     solved_by_regimes = False  # True: the impulse comes from `regimes`, not `conditions`
 
+    @classmethod
+    def from_contact(cls, contact: Any) -> ContactLaw:
+        """The law with the coefficients it takes from a contact (none by default)."""
+        return cls()
+
     def equations(self, before: tuple[Body, Body],
                   after: tuple[Body, Body]) -> tuple[Equation, ...]:
         raise NotImplementedError
@@ -444,6 +449,10 @@ class Coulomb(ContactLaw):
     name = "coulomb"
     solved_by_regimes = True
 
+    @classmethod
+    def from_contact(cls, contact: Any) -> Coulomb:
+        return cls(contact.friction)
+
     def equations(self, before, after):
         return ()
 
@@ -476,6 +485,10 @@ class Rough(Coulomb):
     beta: Any = None
     name = "rough"
 
+    @classmethod
+    def from_contact(cls, contact: Any) -> Rough:
+        return cls(contact.friction, contact.tangential_restitution)
+
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:
         return routh.walton(W, v_before, self.beta, self.mu, restitution.e)
@@ -484,6 +497,8 @@ class Rough(Coulomb):
         return f"Rough({self.mu}, {self.beta})"
 
 
-RESTITUTION_LAWS = {"newton": NewtonRestitution, "poisson": PoissonRestitution,
-                    "energetic": EnergeticRestitution}
-TANGENTIAL_LAWS = {"smooth": Smooth, "stick": Stick, "coulomb": Coulomb, "rough": Rough}
+RESTITUTION_LAWS: dict[str, type[NewtonRestitution]] = {
+    "newton": NewtonRestitution, "poisson": PoissonRestitution,
+    "energetic": EnergeticRestitution}
+TANGENTIAL_LAWS: dict[str, type[ContactLaw]] = {
+    "smooth": Smooth, "stick": Stick, "coulomb": Coulomb, "rough": Rough}

@@ -29,7 +29,7 @@ from rigidimpact.bodies import Body, join
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.expr import parse_expression
-from rigidimpact.impact import Impact
+from rigidimpact.impact import NUMERIC_DIGITS, Impact
 from rigidimpact.laws import Equation
 from rigidimpact.notation import aligned, result_lhs, symbol, to_latex
 from rigidimpact.numeric import evaluate
@@ -70,7 +70,7 @@ PAPER_NUMBERS = (
 
 # a frictional impact is solved at its numbers; with transcendental data that is done
 # with 50-digit floats (see Impact.numeric), enough for --dps up to this many digits
-_FRICTION_DIGITS = 45
+_FRICTION_DIGITS = NUMERIC_DIGITS - 5
 
 
 @dataclass(frozen=True)

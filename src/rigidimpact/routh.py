@@ -48,7 +48,6 @@ __all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", 
 
 LAWS = ("newton", "poisson", "energetic")
 SLIP, STICK, REVERSAL = "slip", "slip-stick", "slip-reversal"
-_FLOAT_DIGITS = 50  # the numeric mode's digits (transcendental data as 50-digit numbers)
 
 
 @dataclass(frozen=True)
@@ -237,11 +236,11 @@ def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime
 
 
 def _tidy_number(expr: sp.Expr) -> sp.Expr:
-    """`tidy` for formulas; a floating-point number is only evaluated (factoring one is
-    slow and shows nothing)."""
+    """`tidy` for formulas; a floating-point number is left as SymPy evaluated it
+    (factoring one is slow and shows nothing)."""
     expr = sp.sympify(expr)
     if expr.is_number and expr.has(sp.Float):
-        return expr.evalf(_FLOAT_DIGITS)
+        return expr
     return tidy(expr)
 
 

@@ -448,15 +448,8 @@ def _read_contact(table: Mapping[str, Any], place: str,
         raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
     coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
                     for key in ("friction", "tangential_restitution") if key in table}
-    words = {key: table.get(key, default) for key, default in
-             (("tangential", "smooth"), ("law", "newton"))}
-    for key, word in words.items():
-        if not isinstance(word, str):
-            raise InputError(f"{place}.{key}", f"must be one word in quotes, such as "
-                             f"\"{'smooth' if key == 'tangential' else 'newton'}\", got "
-                             f"{word!r}")
-    contact = Contact(normal, restitution, words["tangential"], words["law"], contact_name,
-                      **coefficients)
+    contact = Contact(normal, restitution, table.get("tangential", "smooth"),
+                      table.get("law", "newton"), contact_name, **coefficients)
     origin = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
         else (sp.Integer(0), sp.Integer(0))
     return contact, origin
