@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from rigidimpact.cli import main
+from rigidimpact.contact import Contact
 
 
 def refused(capsys, argv, needle=""):
@@ -19,3 +20,12 @@ def scene_file(tmp_path, text: str, name: str = "scene.toml") -> str:
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
     return str(path)
+
+
+def touching(name: str, first: str, second: str, point, normal, restitution,
+             law: str = "newton", friction=None) -> Contact:
+    """One contact of several, stated in the order a test reads best: its name, the two
+    bodies, where and along which normal, e, the restitution law and Coulomb's mu (None:
+    smooth)."""
+    return Contact(normal, restitution, "smooth" if friction is None else "coulomb", law,
+                   name, friction, bodies=(first, second), point=point)

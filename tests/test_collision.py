@@ -9,8 +9,9 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
+from helpers import touching
 from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision, Touch, chain
+from rigidimpact.collision import Collision, chain
 from rigidimpact.errors import InputError
 from rigidimpact.scene import load_scene, parse_scene
 
@@ -41,9 +42,9 @@ def test_striker_on_two_touching_balls_at_30_degrees():
     bodies = (Body.rigid(1, 1, (0, 0), (1, 0), name="striker"),
               Body.rigid(1, 1, (2 * c, 2 * s), name="upper"),
               Body.rigid(1, 1, (2 * c, -2 * s), name="lower"))
-    touches = (Touch("up", "striker", "upper", (c, s), (c, s), 1),
-               Touch("down", "striker", "lower", (c, -s), (c, -s), 1),
-               Touch("pair", "lower", "upper", (2 * c, 0), (0, 1), 1))
+    touches = (touching("up", "striker", "upper", (c, s), (c, s), 1),
+               touching("down", "striker", "lower", (c, -s), (c, -s), 1),
+               touching("pair", "lower", "upper", (2 * c, 0), (0, 1), 1))
     outcome = Collision(bodies, touches).simultaneous()
     assert outcome.results()["striker.vx"] == -sp.Rational(1, 5)
     assert outcome.impulses["up"] == outcome.impulses["down"] == sp.Rational(4, 5) * c
@@ -53,8 +54,8 @@ def test_striker_on_two_touching_balls_at_30_degrees():
 def rod_on_floor() -> Collision:
     rod = Body.rigid(1, sp.Rational(1, 3), (0, 0), (0, -1), HALF, name="rod")
     floor = Body.fixed("floor")
-    return Collision((rod, floor), (Touch("left", "rod", "floor", (-1, 0), (0, -1), 1),
-                                    Touch("right", "rod", "floor", (1, 0), (0, -1), 1)))
+    return Collision((rod, floor), (touching("left", "rod", "floor", (-1, 0), (0, -1), 1),
+                                    touching("right", "rod", "floor", (1, 0), (0, -1), 1)))
 
 
 def test_rod_landing_flat():
@@ -75,8 +76,8 @@ def test_two_balls_dropped_on_a_floor():
     lower = Body.rigid(10, 1, (0, 1), (0, -1), name="lower")
     upper = Body.rigid(1, 1, (0, 3), (0, -1), name="upper")
     problem = Collision((lower, upper, Body.fixed("floor")),
-                        (Touch("ground", "lower", "floor", (0, 0), (0, -1), 1),
-                         Touch("between", "upper", "lower", (0, 2), (0, -1), 1)))
+                        (touching("ground", "lower", "floor", (0, 0), (0, -1), 1),
+                         touching("between", "upper", "lower", (0, 2), (0, -1), 1)))
     for outcome in problem.every_order():
         assert outcome.results()["upper.vy"] == sp.Rational(29, 11), outcome.label
 
@@ -110,7 +111,7 @@ def random_cluster(generator: random.Random) -> Collision:
     for k, unit in enumerate(picked):
         direction = sp.Matrix(unit)
         bodies.append(Body.rigid(q(5, 30), q(1, 10), tuple(2 * direction), name=f"d{k}"))
-        touches.append(Touch(f"t{k}", "striker", f"d{k}", tuple(direction), tuple(direction),
+        touches.append(touching(f"t{k}", "striker", f"d{k}", tuple(direction), tuple(direction),
                              q(0, 10)))
     return Collision(tuple(bodies), tuple(touches))
 
@@ -130,14 +131,14 @@ def test_energy_by_rule(case):
 def test_refusals():
     x = sp.Symbol("x")
     symbolic = Collision((Body.rigid(1, 1, (0, 0), (x, 0), name="a"), Body.fixed("w")),
-                         (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+                         (touching("t", "a", "w", (1, 0), (1, 0), 1),))
     for rule in (symbolic.simultaneous, lambda: symbolic.sequential(("t",)),
                  symbolic.compliant):
         with pytest.raises(InputError, match="needs numbers: give \\[values\\] for x"):
             rule()
     with pytest.raises(InputError, match="no contact is approaching"):
         Collision((Body.rigid(1, 1, (0, 0), (-1, 0), name="a"), Body.fixed("w")),
-                  (Touch("t", "a", "w", (1, 0), (1, 0), 1),))
+                  (touching("t", "a", "w", (1, 0), (1, 0), 1),))
     with pytest.raises(InputError, match="must list every contact"):
         chain(3).sequential(("c0",))
 
@@ -283,9 +284,9 @@ def test_symbolic_simultaneous_cases_agree_with_the_numbers():
     bodies = (Body.rigid(m, 1, (0, 0), (v, 0), name="s"),
               Body.rigid(M, 1, (r3, 1), (0, 0), name="up"),
               Body.rigid(M, 1, (r3, -1), (0, 0), name="lo"))
-    touches = (Touch("a", "s", "up", (r3 / 2, HALF), (r3, 1), e),
-               Touch("b", "s", "lo", (r3 / 2, -HALF), (r3, -1), e),
-               Touch("c", "lo", "up", (r3, 0), (0, 1), e))
+    touches = (touching("a", "s", "up", (r3 / 2, HALF), (r3, 1), e),
+               touching("b", "s", "lo", (r3 / 2, -HALF), (r3, -1), e),
+               touching("c", "lo", "up", (r3, 0), (0, 1), e))
     symbolic = Collision(bodies, touches)
     cases = symbolic.simultaneous_cases()
     assert [c.acted for c in cases] == [("a", "b")]  # the balls' own contact never pushes
@@ -315,7 +316,7 @@ def test_symbolic_landing_cases_cover_every_spin(inertia, shapes):
     scene = load_scene(ROOT / "derivations" / "rod-lands-flat.toml")
     bodies = tuple(replace(b, spin=w, inertia=inertia) if b.name == "rod" else b
                    for b in scene.bodies)
-    touches = tuple(replace(t, restitution=e) for t in scene.touches)
+    touches = tuple(replace(t, restitution=e) for t in scene.contacts)
     cases = Collision(bodies, touches).simultaneous_cases()
     acted = set()
     for spin in (-3, -1, sp.Rational(-1, 2), 0, sp.Rational(1, 3), 1, sp.Rational(5, 2), 4):
@@ -363,8 +364,8 @@ def test_symbolic_several_contact_scene_derives_and_the_compliant_rule_needs_num
 def _tilted_landing(law, e=1):
     """A body (mass 1, I = 4/3) spinning at -2 lands on two inclined smooth supports."""
     body = Body.rigid(1, sp.Rational(4, 3), (0, 0), (-sp.Rational(3, 4), -1), -2, name="b")
-    touches = (Touch("left", "b", "ground", (-2, -sp.Rational(1, 4)), (1, -2), e, law),
-               Touch("right", "b", "ground", (2, sp.Rational(1, 4)), (1, -4), e, law))
+    touches = (touching("left", "b", "ground", (-2, -sp.Rational(1, 4)), (1, -2), e, law),
+               touching("right", "b", "ground", (2, sp.Rational(1, 4)), (1, -4), e, law))
     return Collision((body, Body.fixed("ground")), touches)
 
 
@@ -425,7 +426,7 @@ def test_a_new_rule_is_one_class():
         name = "backwards"
 
         def outcomes(self, collision):
-            names = tuple(t.name for t in collision.touches)[::-1]
+            names = tuple(t.name for t in collision.contacts)[::-1]
             return (collision.sequential(names),)
 
     cradle = chain(4)

@@ -734,8 +734,9 @@ def test_one_frictional_contact_gives_one_answer_by_every_path(law, tilt):
     # rule's velocity-level friction was 0.28, 0.19 and 0.10 apart in v_x + omega)
     import sympy as sp
 
+    from helpers import touching
     from rigidimpact.bodies import Body
-    from rigidimpact.collision import Collision, Touch
+    from rigidimpact.collision import Collision
     from rigidimpact.contact import Contact
     from rigidimpact.impact import Impact
 
@@ -747,7 +748,7 @@ def test_one_frictional_contact_gives_one_answer_by_every_path(law, tilt):
     alone = Impact(rod, wall, Contact(restitution=half, tangential="coulomb",
                                       friction=tenth, law=law)).solve()
     assert alone.regime.startswith("slip-reversal")
-    collision = Collision((rod, wall), (Touch("contact", "rod", "wall", (0, 0), (1, 0), half,
+    collision = Collision((rod, wall), (touching("contact", "rod", "wall", (0, 0), (1, 0), half,
                                               law, tenth),))
     for outcome in (collision.simultaneous(), collision.sequential(["contact"])):
         for key in ("rod.vx", "rod.vy", "rod.omega"):

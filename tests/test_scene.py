@@ -116,7 +116,7 @@ def _several_obey_the_laws(scene, outcome):
         if before.support != "free":
             continue
         push, turn = sp.zeros(2, 1), sp.Integer(0)
-        for touch in scene.touches:
+        for touch in scene.contacts:
             sign = 1 if touch.second == before.name else -1 if touch.first == before.name else 0
             impulse = sign * (outcome.impulses[touch.name] * touch.normal
                               + outcome.tangential.get(touch.name, 0) * touch.tangent)
@@ -126,7 +126,7 @@ def _several_obey_the_laws(scene, outcome):
         assert after.momentum - before.momentum == push
         assert sp.simplify(before.inertia * (after.spin - before.spin) - turn) == 0
     assert all(p >= 0 for p in outcome.impulses.values())
-    for touch in scene.touches:  # friction within Coulomb's cone
+    for touch in scene.contacts:  # friction within Coulomb's cone
         along = outcome.tangential.get(touch.name, 0)
         mu = sp.sympify(touch.friction or 0).subs(scene.values)
         assert abs(along) <= mu * outcome.impulses[touch.name]

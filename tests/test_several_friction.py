@@ -9,8 +9,9 @@ from dataclasses import replace
 import pytest
 import sympy as sp
 
+from helpers import touching
 from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision, Touch
+from rigidimpact.collision import Collision
 from rigidimpact.errors import InputError
 
 HALF = sp.Rational(1, 2)
@@ -20,7 +21,7 @@ def landing_rod(mu, e=HALF, spin=0):
     """A uniform rod (mass 1, half-length 1, I = 1/3) lands flat on a rough floor, moving
     at (1, -1): both ends touch at once."""
     rod = Body.rigid(1, sp.Rational(1, 3), (0, 0), (1, -1), spin, name="rod")
-    ends = tuple(Touch(name, "rod", "floor", (x, 0), (0, -1), e, "newton", mu)
+    ends = tuple(touching(name, "rod", "floor", (x, 0), (0, -1), e, "newton", mu)
                  for name, x in (("left", -1), ("right", 1)))
     return Collision((rod, Body.fixed("floor")), ends)
 
@@ -62,8 +63,8 @@ def _rod_on_floor_with_a_bystander(law):
     c = sp.sqrt(2) / 2
     rod = Body.rigid(1, sp.Rational(1, 3), (c, c), (sp.Rational(3, 5), -1), name="rod")
     ball = Body.rigid(1, 0, (10, 0), (1, 0), name="ball")
-    touches = (Touch("end", "rod", "floor", (0, 0), (0, -1), 1, law, sp.Rational(2, 5)),
-               Touch("side", "wall", "ball", (10, 0), (1, 0), 1))
+    touches = (touching("end", "rod", "floor", (0, 0), (0, -1), 1, law, sp.Rational(2, 5)),
+               touching("side", "wall", "ball", (10, 0), (1, 0), 1))
     return Collision((rod, ball, Body.fixed("floor"), Body.fixed("wall")), touches)
 
 
@@ -90,8 +91,8 @@ def test_velocity_level_friction_matches_routh_when_sliding_cannot_change_direct
         mu, e = sp.Rational(rng.randint(0, 8), 8), sp.Rational(rng.randint(0, 4), 4)
         disc = Body.rigid(m, m / 2, (0, 1), (vx, vy), name="disc")
         far = Body.rigid(1, 0, (9, 1), (1, 0), name="far")
-        touches = (Touch("floor", "disc", "ground", (0, 0), (0, -1), e, "newton", mu),
-                   Touch("away", "wall", "far", (9, 1), (1, 0), 1))
+        touches = (touching("floor", "disc", "ground", (0, 0), (0, -1), e, "newton", mu),
+                   touching("away", "wall", "far", (9, 1), (1, 0), 1))
         got = Collision((disc, far, Body.fixed("ground"), Body.fixed("wall")),
                         touches).simultaneous().results()
         p_n = (1 + e) * -vy * m
@@ -104,7 +105,7 @@ def test_velocity_level_friction_matches_routh_when_sliding_cannot_change_direct
 def test_friction_refusals():
     with pytest.raises(InputError, match="Newton's law at every contact"):
         rod = landing_rod(1)
-        replace(rod, touches=tuple(replace(t, law="poisson") for t in rod.touches)
+        replace(rod, contacts=tuple(replace(t, law="poisson") for t in rod.contacts)
                 ).simultaneous()
     with pytest.raises(InputError, match="not under the compliant rule"):
         landing_rod(1).compliant()
@@ -130,7 +131,7 @@ def test_friction_rules_that_cannot_create_energy_do_not():
         tilt = [sp.Rational(rng.randint(-2, 2), 4) for _ in range(2)]
 
         def problem(law, e, body=body, mu=mu, tilt=tilt):
-            ends = tuple(Touch(n, "rod", "floor", (x, 0), (t, -1), e, law, mu)
+            ends = tuple(touching(n, "rod", "floor", (x, 0), (t, -1), e, law, mu)
                          for n, x, t in (("left", -1, tilt[0]), ("right", 1, tilt[1])))
             return Collision((body, Body.fixed("floor")), ends)
 

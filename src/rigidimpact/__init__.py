@@ -18,6 +18,12 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on first use
     from rigidimpact.bodies import Body as Body
     from rigidimpact.bodies import join as join
+    from rigidimpact.collision import Collision as Collision
+    from rigidimpact.collision import Compliant as Compliant
+    from rigidimpact.collision import Outcome as Outcome
+    from rigidimpact.collision import Sequential as Sequential
+    from rigidimpact.collision import Simultaneous as Simultaneous
+    from rigidimpact.collision import chain as chain
     from rigidimpact.contact import Contact as Contact
     from rigidimpact.errors import InputError as InputError
     from rigidimpact.impact import Impact as Impact
@@ -43,6 +49,9 @@ _PUBLIC = {
     # solving
     "Impact": "impact", "Equation": "laws", "Solution": "solution", "symbol": "notation",
     "PROBLEMS": "problems", "Derivation": "problems", "derive": "problems",
+    # several contacts: the collision, its rules and what they give
+    "Collision": "collision", "Simultaneous": "collision", "Sequential": "collision",
+    "Compliant": "collision", "Outcome": "collision", "chain": "collision",
     # scenes and checks
     "Scene": "scene", "load_scene": "scene", "parse_scene": "scene",
     "run_checks": "verify",

@@ -143,6 +143,11 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         from rigidimpact.collision import rule_laws
 
         print(f"\nLaws: {rule_laws(d.outcomes[0].rule, d.outcomes[0].frictional)}")
+        print("\nEquations solved" + (" (every case and order):" if len(d.outcomes) > 1
+                                       else ":"))
+        for eq in d.equations:
+            print(f"  {eq.label}:\n      {eq.lhs} = {eq.rhs}")
+        print(f"for {', '.join(map(str, d.unknowns))}")
         for outcome in d.outcomes:
             print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
             if outcome.courses:

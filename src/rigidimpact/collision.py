@@ -28,8 +28,8 @@ Examples
 >>> from rigidimpact.bodies import Body
 >>> balls = [Body.rigid(1, 1, (2 * k, 0), (1 if k == 0 else 0, 0), name=f"b{k}")
 ...          for k in range(3)]
->>> touching = [Touch("left", "b0", "b1", (1, 0), (1, 0), 1),
-...             Touch("right", "b1", "b2", (3, 0), (1, 0), 1)]
+>>> touching = [Contact(restitution=1, name="left", bodies=("b0", "b1"), point=(1, 0)),
+...             Contact(restitution=1, name="right", bodies=("b1", "b2"), point=(3, 0))]
 >>> problem = Collision(tuple(balls), tuple(touching))
 >>> [problem.simultaneous().results()[f"b{k}.vx"] for k in range(3)]
 [-1/3, 2/3, 2/3]
@@ -49,16 +49,17 @@ from typing import Any, ClassVar
 
 import sympy as sp
 
-from rigidimpact.bodies import Body, as_vector
+from rigidimpact.bodies import Body
 from rigidimpact.compliance import damping_ratio_for
+from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.geometry import cross, perp
+from rigidimpact.geometry import cross
 from rigidimpact.impulse import Coordinate, coordinates_of, moving
-from rigidimpact.laws import RESTITUTION_LAWS, Coulomb
+from rigidimpact.laws import Equation
 from rigidimpact.notation import aligned, result_lhs, to_latex
 from rigidimpact.rewrite import tidy
 
-__all__ = ["Touch", "Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
+__all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
            "Rule", "Simultaneous", "Sequential", "Compliant", "RULE_TYPES",
            "rule_laws"]
 
@@ -91,9 +92,9 @@ FRICTION_LAWS = {
                     "each contact is released, sticks (Newton's e across, no slip after, "
                     "|P_t| <= mu P_n) or slides (|P_t| = mu P_n against its slip after); "
                     "every combination solved exactly",
-    "sequential": "one contact at a time in the order given, each a two-body impact: a "
-                  "Coulomb contact by Routh's method with its own restitution law, a "
-                  "smooth one with Newton's e; repeated until no contact approaches",
+    "sequential": "one contact at a time in the order given, each that contact's own "
+                  "impact under its own laws (Routh's method for Coulomb friction, "
+                  "Walton's for a rough contact); repeated until no contact approaches",
 }
 
 
@@ -104,64 +105,6 @@ _STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides"
 def rule_laws(rule: str, frictional: bool = False) -> str:
     """The laws a rule imposes, in words (with friction when any contact has it)."""
     return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
-
-
-@dataclass(frozen=True)
-class Touch:
-    """One contact of several: where, along which normal, with which laws.
-
-    Parameters
-    ----------
-    name : str
-    first, second : str
-        Body names; the normal points from the first into the second.
-    point, normal : 2-vectors
-        World frame; the normal need not be of unit length. The tangent is the normal
-        turned by +90 degrees.
-    restitution : expr
-    law : {"newton", "poisson", "energetic"}
-        The energetic law only with friction under the sequential rule (where each
-        step is one contact's Routh impact).
-    friction : expr, optional
-        Coulomb's mu; None for a smooth contact.
-    """
-
-    name: str
-    first: str
-    second: str
-    point: Any
-    normal: Any
-    restitution: Any
-    law: str = "newton"
-    friction: Any = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
-        normal = as_vector(self.normal, f"{self.name}.normal")
-        length = sp.sqrt(tidy(normal[0] ** 2 + normal[1] ** 2))
-        if length.is_zero:
-            raise InputError(f"{self.name}.normal", "must not be the zero vector")
-        object.__setattr__(self, "normal", normal.applyfunc(lambda c: tidy(c / length)))
-        e = sp.sympify(self.restitution)
-        if e.is_number and not 0 <= e <= 1:
-            raise InputError(f"{self.name}.restitution", f"must lie in [0, 1], got {e}")
-        object.__setattr__(self, "restitution", e)
-        allowed = ("newton", "poisson", "energetic") if self.friction is not None \
-            else ("newton", "poisson")
-        if self.law not in allowed:
-            raise InputError(f"{self.name}.law", f"a {'' if self.friction else 'smooth '}"
-                             f"contact of several takes {', '.join(allowed)}, got "
-                             f"{self.law!r}")
-        if self.friction is not None:
-            mu = sp.sympify(self.friction)
-            if mu.is_number and not mu >= 0:
-                raise InputError(f"{self.name}.friction", f"must be >= 0, got {mu}")
-            object.__setattr__(self, "friction", mu)
-
-    @property
-    def tangent(self) -> sp.ImmutableMatrix:
-        """The unit tangent: the normal turned by +90 degrees."""
-        return perp(self.normal)
 
 
 @dataclass(frozen=True)
@@ -251,24 +194,25 @@ class Collision:
     ----------
     bodies : tuple of Body
         Positions (and pivots) from the world origin.
-    touches : tuple of Touch
+    contacts : tuple of Contact
+        Each with its two `bodies` named and its `point` (world frame).
     """
 
     bodies: tuple[Body, ...]
-    touches: tuple[Touch, ...]
+    contacts: tuple[Contact, ...]
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
         if len(set(names)) != len(names):
             raise InputError("bodies", "two bodies share a name")
-        if len({t.name for t in self.touches}) != len(self.touches):
+        if len({t.name for t in self.contacts}) != len(self.contacts):
             raise InputError("contacts", "two contacts share a name")
-        for touch in self.touches:
+        for touch in self.contacts:
+            if touch.bodies is None:
+                raise InputError(f"{touch.name}.bodies", "required: name the two bodies")
             for side in (touch.first, touch.second):
                 if side not in names:
                     raise InputError(f"{touch.name}.bodies", f"no body named {side!r}")
-            if touch.first == touch.second:
-                raise InputError(f"{touch.name}.bodies", "a contact needs two bodies")
             if all(self._body(side).support == "fixed" for side in (touch.first,
                                                                      touch.second)):
                 raise InputError(f"{touch.name}.bodies", "two fixed bodies cannot collide: "
@@ -287,12 +231,12 @@ class Collision:
         """The symbols left in the collision (none: every rule runs; some: the
         simultaneous and one-pass sequential formulas, each with its conditions)."""
         return frozenset(self.W.free_symbols | self.velocity_before.free_symbols
-                         | set().union(*(sp.sympify(t.restitution).free_symbols
-                                         | sp.sympify(t.friction or 0).free_symbols
-                                         for t in self.touches)))
+                         | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
+                                                  t.tangential_restitution or 0).free_symbols
+                                         for t in self.contacts)))
 
     def _smooth_only(self, where: str) -> None:
-        rough = [t.name for t in self.touches if t.friction is not None]
+        rough = [t.name for t in self.contacts if t.laws[1].grips]
         if rough:
             raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
                              f"solved with numbers, by the simultaneous or sequential rule; "
@@ -304,7 +248,7 @@ class Collision:
                              f"{', '.join(sorted(map(str, self.symbols)))}")
 
     @classmethod
-    def from_values(cls, bodies: Sequence[Body], touches: Sequence[Touch],
+    def from_values(cls, bodies: Sequence[Body], contacts: Sequence[Contact],
                     values: dict) -> Collision:
         """The collision with numbers put in for its symbols.
 
@@ -313,7 +257,7 @@ class Collision:
         >>> x = sp.Symbol("x")
         >>> c = Collision.from_values([Body.rigid(1, 0, (0, 0), (x, 0), name="a"),
         ...                            Body.fixed("wall")],
-        ...                           [Touch("hit", "a", "wall", (0, 0), (1, 0), 1)], {x: 2})
+        ...                           [Contact(restitution=1, bodies=("a", "wall"))], {x: 2})
         >>> c.simultaneous().results()["a.vx"]
         -2
         """
@@ -327,11 +271,7 @@ class Collision:
             b, mass=number(b.mass), inertia=number(b.inertia), position=vector(b.position),
             velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
             for b in bodies)
-        touches = tuple(replace(t, point=vector(t.point), normal=vector(t.normal),
-                                restitution=number(t.restitution),
-                                friction=None if t.friction is None else number(t.friction))
-                        for t in touches)
-        return cls(bodies, touches)
+        return cls(bodies, tuple(c.at(values) for c in contacts))
 
     def _body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)
@@ -344,15 +284,15 @@ class Collision:
     @cached_property
     def J(self) -> sp.Matrix:
         """One row per contact: its normal closing velocity as a function of u."""
-        return sp.Matrix([self._row(t, t.normal) for t in self.touches])
+        return sp.Matrix([self._row(t, t.unit_normal) for t in self.contacts])
 
     @cached_property
     def J_t(self) -> sp.Matrix:
         """One row per contact: the tangential velocity (second minus first) along its
         tangent, as a function of u."""
-        return sp.Matrix([self._row(t, t.tangent) for t in self.touches])
+        return sp.Matrix([self._row(t, t.tangent) for t in self.contacts])
 
-    def _row(self, touch: Touch, direction: sp.MatrixBase) -> list[sp.Expr]:
+    def _row(self, touch: Contact, direction: sp.MatrixBase) -> list[sp.Expr]:
         row = []
         for coordinate in self.coordinates:
             name, kind = coordinate.body, coordinate.kind
@@ -371,7 +311,8 @@ class Collision:
 
     @property
     def frictional(self) -> bool:
-        return any(t.friction is not None for t in self.touches)
+        """Whether any contact's tangential law gives a tangential impulse."""
+        return any(t.laws[1].grips for t in self.contacts)
 
     @cached_property
     def M_inverse(self) -> sp.Matrix:
@@ -410,7 +351,7 @@ class Collision:
         if self.frictional:
             return self._frictional_simultaneous()
         v = self.velocity_before
-        e = sp.Matrix([t.restitution for t in self.touches])
+        e = sp.Matrix([t.restitution for t in self.contacts])
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
@@ -419,7 +360,7 @@ class Collision:
             impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
         u = self._kick(self.u_before, impulses)
         return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
-                       tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
+                       tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), notes=self._still_closing(u))
 
     def _still_closing(self, u: sp.Matrix) -> tuple[str, ...]:
@@ -428,7 +369,7 @@ class Collision:
         its own 1 + e, which need not leave every contact opening."""
         after = (self.J * u).applyfunc(tidy)
         scale = max(abs(x) for x in self.velocity_before)
-        closing = [(t.name, after[i]) for i, t in enumerate(self.touches)
+        closing = [(t.name, after[i]) for i, t in enumerate(self.contacts)
                    if after[i] < -sp.Rational(1, 10**12) * scale]
         return tuple(f"{name} still approaches after the impact (normal velocity "
                      f"{float(speed):.6g}): the bodies would pass into each other; the "
@@ -448,21 +389,30 @@ class Collision:
         states is solved exactly; with friction the problem can have several solutions,
         or none (Painleve's paradox), and the outcome says so.
         """
-        if len(self.touches) == 1:  # one contact: its own exact answer, under any law
+        if len(self.contacts) == 1:  # one contact: its own exact answer, under any law
             return self._one_acting(0, [sp.Integer(0)])
-        if any(t.law != "newton" for t in self.touches):
-            raise InputError("contacts", "with friction the simultaneous rule takes "
+        restitution, tangential = zip(*(t.laws for t in self.contacts), strict=True)
+        late = [t.name for t, r in zip(self.contacts, restitution, strict=True)
+                if r.together != "velocity"]
+        if late:
+            raise InputError(f"{late[0]}.law", "with friction the simultaneous rule takes "
                              "Newton's law at every contact (the sequential rule takes "
                              "each law)")
-        n = len(self.touches)
+        formless = [(t.name, law.name) for t, law in zip(self.contacts, tangential,
+                                                          strict=True)
+                    if not law.velocity_states]
+        if formless:
+            raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
+                             "has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        n = len(self.contacts)
         v_n, v_t = self.velocity_before, (self.J_t * self.u_before).applyfunc(tidy)
-        e = [t.restitution for t in self.touches]
-        mu = [t.friction if t.friction is not None else sp.Integer(0) for t in self.touches]
+        e = [t.restitution for t in self.contacts]
+        mu = [law.cone() for law in tangential]
         target = [-e[i] * min(v_n[i], 0) for i in range(n)]
         rows = sp.Matrix.vstack(self.J, self.J_t)
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
-        states = [("off", "stick", "slide+", "slide-") if mu[i] else ("off", "on")
-                  for i in range(n)]
+        states = [("off",) + law.velocity_states for law in tangential]
         found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
         count = math.prod(len(s) for s in states)
         if count > MAX_SYMBOLIC_CASES:
@@ -483,7 +433,7 @@ class Collision:
         acting = {tuple(i for i in range(n) if f[i] > 0) for f, _ in found}
         if len(acting) == 1 and len(next(iter(acting))) == 1:
             (k,), = acting
-            if mu[k]:  # one contact acts: its own exact answer, not the velocity level's
+            if tangential[k].solved_by_regimes:  # one contact acts: its own exact answer
                 return self._one_acting(k, target)
         impulses, pattern = found[0]
         motions = [(self.u_before + self.M_inverse * rows.T * f).applyfunc(tidy)
@@ -508,11 +458,11 @@ class Collision:
         normal = impulses[:n, 0]
         return Outcome("simultaneous", (), self.bodies, self._after(u),
                        self._named(normal), tuple(t.name for t, p in
-                                                  zip(self.touches, normal, strict=True)
+                                                  zip(self.contacts, normal, strict=True)
                                                   if p > 0),
                        tangential=self._named(impulses[n:, 0]),
                        courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
-                                     zip(self.touches, pattern, strict=True)),
+                                     zip(self.contacts, pattern, strict=True)),
                        notes=notes)
 
     def _one_acting(self, k: int, target: list[sp.Expr]) -> Outcome:
@@ -521,22 +471,23 @@ class Collision:
         at least as fast as its law asks; otherwise one line saying so."""
         normal, along, course, u = self._routh_step(k, self.u_before)
         after = (self.J * u).applyfunc(tidy)
-        blocked = [t.name for i, t in enumerate(self.touches)
+        blocked = [t.name for i, t in enumerate(self.contacts)
                    if i != k and after[i] < target[i]]
-        name = self.touches[k].name
+        name = self.contacts[k].name
         if blocked:
             raise InputError("impact.rule", f"only {name} acts at the velocity level, but "
                              f"its exact (Routh) impulse leaves {', '.join(blocked)} "
                              "closing: the simultaneous rule has no consistent answer here; "
                              "try the sequential rule")
-        zeros = sp.zeros(len(self.touches), 1)
+        zeros = sp.zeros(len(self.contacts), 1)
         normals, tangentials = zeros.copy(), zeros.copy()
         normals[k], tangentials[k] = normal, along
         return Outcome("simultaneous", (), self.bodies, self._after(u),
-                       self._named(normals), (name,), tangential=self._named(tangentials),
+                       self._named(normals), (name,),
+                       tangential=self._named(tangentials) if self.frictional else {},
                        courses=tuple(f"{t.name}: {course}" if i == k else
                                      f"{t.name}: {_STATE['off']}"
-                                     for i, t in enumerate(self.touches)))
+                                     for i, t in enumerate(self.contacts)))
 
     def _friction_pattern(self, pattern, W, v_n, v_t, target, mu) -> sp.Matrix | None:
         """The impulses (normal then tangential) for one choice of contact states, if
@@ -569,7 +520,7 @@ class Collision:
                 continue
             if p_n < 0:
                 return None
-            if state == "stick" and abs(p_t) > mu[i] * p_n:
+            if state == "stick" and mu[i] is not None and abs(p_t) > mu[i] * p_n:
                 return None
             if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
                 return None
@@ -577,10 +528,17 @@ class Collision:
 
     def _poisson(self) -> bool:
         """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
-        poisson = all(t.law == "poisson" for t in self.touches)
-        if not poisson and any(t.law == "poisson" for t in self.touches):
+        if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
+            return False
+        forms = [t.laws[0].together for t in self.contacts]
+        if None in forms:
+            name = self.contacts[forms.index(None)].name
+            raise InputError(f"{name}.law", f"the {self.contacts[forms.index(None)].law} "
+                             "law has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        if len(set(forms)) > 1:
             raise InputError("contacts", "give every contact the same law to act together")
-        return poisson
+        return forms[0] == "impulse"
 
     def _active_sets(self, v: sp.Matrix, target: sp.Matrix):
         """Each set of acting contacts whose block of W is invertible, largest first:
@@ -609,8 +567,8 @@ class Collision:
     def _smooth_step(self, k: int, u: sp.Matrix, closing: sp.Expr) -> tuple[sp.Expr,
                                                                               sp.Matrix]:
         """Contact k alone, smooth, with Newton's e: its impulse and the motion after."""
-        impulse = tidy(-(1 + self.touches[k].restitution) * closing / self.W[k, k])
-        kick = sp.zeros(len(self.touches), 1)
+        impulse = tidy(-(1 + self.contacts[k].restitution) * closing / self.W[k, k])
+        kick = sp.zeros(len(self.contacts), 1)
         kick[k] = impulse
         return impulse, self._kick(u, kick)
 
@@ -637,8 +595,8 @@ class Collision:
                 closing = tidy((self.J[k, :] * u)[0])
                 if closing >= 0 or -closing <= SETTLED * scale:
                     continue
-                touch = self.touches[k]
-                if touch.friction:  # one contact's frictional impact: Routh's method
+                touch = self.contacts[k]
+                if touch.laws[1].grips:  # one contact's own impact (Routh's for Coulomb)
                     impulse, along, course, u = self._routh_step(k, u)
                     tangential[k] += along
                     courses.append(f"{name}: {course}")
@@ -648,26 +606,27 @@ class Collision:
                 acted_now = True
         return Outcome("sequential", tuple(order), self.bodies, self._after(u),
                        self._named(total.applyfunc(tidy)),
-                       tuple(t.name for t, p in zip(self.touches, total, strict=True) if p > 0),
+                       tuple(t.name for t, p in zip(self.contacts, total, strict=True) if p > 0),
                        passes - 1, tangential=self._named(tangential.applyfunc(tidy))
                        if self.frictional else {}, courses=tuple(courses))
 
     def _routh_step(self, k: int,
                     u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
-        """Contact k's frictional impact alone, by Routh's method: (P_n, P_t, course,
-        the generalized velocities after)."""
-        touch = self.touches[k]
+        """Contact k's impact alone under its own laws (Routh's method for Coulomb,
+        Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
+        restitution, tangential = self.contacts[k].laws
         rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
-        restitution = RESTITUTION_LAWS[touch.law](touch.restitution)
-        taken = [r for r in Coulomb(touch.friction).regimes(W, (rows * u).applyfunc(tidy),
-                                                            restitution)
-                 if r.holds() is not False]
-        regime = taken[0]
-        normal, along = tidy(regime.impulse[0]), tidy(regime.impulse[1])
+        if W.det() == 0 and tangential.grips:
+            raise InputError(f"{self.contacts[k].name}.tangential",
+                             "the touching point cannot move both along and across the "
+                             "contact (its 2x2 W is singular): a grip along it is not "
+                             "determined; make the contact smooth")
+        normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
+        normal, along = tidy(normal), tidy(along)
         u_after = (u + self.M_inverse * (self.J[k, :].T * normal
                                          + self.J_t[k, :].T * along)).applyfunc(tidy)
-        return normal, along, regime.name, u_after
+        return normal, along, course, u_after
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
                   tolerance: float = 1e-10, record: bool = False) -> Outcome:
@@ -698,14 +657,14 @@ class Collision:
 
         self._numbers_only("compliant")
         self._smooth_only("under the compliant rule")
-        k = len(self.touches)
+        k = len(self.contacts)
         stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
         if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
             raise InputError("stiffness", "every contact stiffness must be a positive number")
         J = np.array(self.J.evalf(), dtype=float)
         M_inv = np.array(self.M_inverse.evalf(), dtype=float)
         W = J @ M_inv @ J.T
-        e = np.array([float(t.restitution) for t in self.touches])
+        e = np.array([float(t.restitution) for t in self.contacts])
         if hertz and np.any(e < 1):
             raise InputError("restitution", "Hertzian contacts here are elastic (e = 1)")
         ratio = np.array([damping_ratio_for(float(x)) for x in e])
@@ -753,12 +712,12 @@ class Collision:
         history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
         return Outcome("compliant", (), self.bodies, self._after(u_after),
                        self._named(impulses),
-                       tuple(t.name for t, p in zip(self.touches, impulses, strict=True)
+                       tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), history=history,
                        energy_tolerance=COMPLIANT_ENERGY_TOLERANCE)
 
     def _order_index(self, order: Sequence[str]) -> dict[str, int]:
-        index = {t.name: k for k, t in enumerate(self.touches)}
+        index = {t.name: k for k, t in enumerate(self.contacts)}
         unknown = [name for name in order if name not in index]
         if unknown or sorted(order) != sorted(index):
             raise InputError("impact.order", f"must list every contact once: "
@@ -779,15 +738,15 @@ class Collision:
         >>> balls = [Body.rigid(1, 1, (0, 0), (1, 0), name="a"),
         ...          Body.rigid(m, 1, (2, 0), (0, 0), name="b"),
         ...          Body.rigid(1, 1, (4, 0), (0, 0), name="c")]
-        >>> touches = [Touch("ab", "a", "b", (1, 0), (1, 0), 1),
-        ...            Touch("bc", "b", "c", (3, 0), (1, 0), 1)]
+        >>> touches = [Contact(restitution=1, name="ab", bodies=("a", "b"), point=(1, 0)),
+        ...            Contact(restitution=1, name="bc", bodies=("b", "c"), point=(3, 0))]
         >>> both = Collision(tuple(balls), tuple(touches)).simultaneous_cases()[0]
         >>> both.results()["c.vx"], both.conditions
         (2/(m + 2), (True,))
         """
         self._smooth_only("with symbols")
         v = self.velocity_before
-        e = sp.Matrix([t.restitution for t in self.touches])
+        e = sp.Matrix([t.restitution for t in self.contacts])
         poisson = self._poisson()
         n = len(v)
         # Newton's target -e min(v, 0) depends on each contact's sign before: one
@@ -824,7 +783,7 @@ class Collision:
                 u = self._kick(self.u_before, impulses)
                 cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
                                      self._named(impulses),
-                                     tuple(self.touches[i].name for i in active),
+                                     tuple(self.contacts[i].name for i in active),
                                      conditions=held))
         return tuple(cases)
 
@@ -863,7 +822,7 @@ class Collision:
 
     def every_order(self) -> tuple[Outcome, ...]:
         """The sequential rule in every order of the contacts."""
-        names = [t.name for t in self.touches]
+        names = [t.name for t in self.contacts]
         count = math.factorial(len(names))  # counted before any order is made
         if count > MAX_ORDERS:
             raise InputError("impact.order", f"{len(names)} contacts have {count} orders "
@@ -894,20 +853,134 @@ class Collision:
             if before.support != "pivot":
                 continue
             received = sp.zeros(2, 1)
-            for t in self.touches:
+            for t in self.contacts:
                 if before.name not in (t.first, t.second):
                     continue
-                unit = t.normal / sp.sqrt(t.normal.dot(t.normal))
-                tangent = sp.Matrix([-unit[1], unit[0]])
-                push = outcome.impulses[t.name] * unit + \
-                    outcome.tangential.get(t.name, sp.Integer(0)) * tangent
+                push = outcome.impulses[t.name] * t.unit_normal + \
+                    outcome.tangential.get(t.name, sp.Integer(0)) * t.tangent
                 received += push if before.name == t.second else -push
             reaction = before.mass * (after.velocity - before.velocity) - received
             found[before.name] = (tidy(reaction[0]), tidy(reaction[1]))
         return found
 
+    def unknowns(self) -> tuple[sp.Symbol, ...]:
+        """What the printed equations are solved for: each generalized velocity after
+        (``V_BODYfx``, ``V_BODYfy``, ``omega_BODYfz``), then each contact's normal and
+        (with friction) tangential impulse (``Pn_CONTACT``, ``Pt_CONTACT``)."""
+        speeds = [sp.Symbol(f"omega_{c.body}fz" if c.kind == "omega"
+                            else f"V_{c.body}f{c.kind[1]}", real=True)
+                  for c in self.coordinates]
+        pushes = [sp.Symbol(f"Pn_{t.name}", real=True) for t in self.contacts]
+        if self.frictional:
+            pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
+        return tuple(speeds + pushes)
+
+    def equations(self, outcome: Outcome) -> tuple[Equation, ...]:
+        """The labelled equations `outcome` solves, over :meth:`unknowns`: the momentum
+        balance of every generalized velocity (``M (u+ - u-) = J^T P``, the same for
+        every rule), then what the rule imposed at each contact. Substituting the
+        outcome's results makes every residual zero (tested), so what is printed is
+        what was solved.
+
+        Examples
+        --------
+        >>> c = chain(2)
+        >>> [str(eq.as_sympy()) for eq in c.equations(c.simultaneous())][-1]
+        'Eq(-V_ball0fx + V_ball1fx, 1)'
+        """
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        u_after, P_n = sp.Matrix(symbols[:size]), sp.Matrix(symbols[size:size + n])
+        P_t = sp.Matrix(symbols[size + n:]) if self.frictional else sp.zeros(n, 1)
+        push = self.J.T * P_n + self.J_t.T * P_t
+        found = []
+        for i, c in enumerate(self.coordinates):
+            body = self._body(c.body)
+            what = {"vx": f"x momentum of {c.body}", "vy": f"y momentum of {c.body}"}.get(
+                c.kind) or f"angular momentum of {c.body} about its " + (
+                "pivot" if body.support == "pivot" else "centre")
+            found.append(Equation(f"{what}: its change is the contacts' impulse", "",
+                                  c.inertia * (u_after[i] - c.before), tidy(push[i]),
+                                  law="momentum"))
+        u = self._u_of(outcome)
+        routh = outcome.rule == "simultaneous" and len(outcome.acted) == 1 and \
+            self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
+        for k, t in enumerate(self.contacts):
+            restitution, tangential = t.laws
+            closing = (self.J[k, :] * u_after)[0]
+            slip = (self.J_t[k, :] * u_after)[0]
+            normal, along = outcome.impulses[t.name], outcome.tangential.get(t.name, 0)
+            if outcome.rule != "simultaneous" or routh:
+                how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
+                                     "impact)",
+                       "compliant": f"{t.name}'s spring impulse, integrated",
+                       "simultaneous": f"{t.name} alone by its own law (Routh's method)"}
+                found.append(Equation(how[outcome.rule], "", P_n[k], normal,
+                                      law="rule"))
+                if self.frictional:
+                    found.append(Equation(how[outcome.rule] + ", tangential", "", P_t[k],
+                                          along, law="rule"))
+                continue
+            if t.name not in outcome.acted:
+                found.append(Equation(f"{t.name} released: no impulse", "", P_n[k], 0,
+                                      law="released"))
+            elif restitution.together == "impulse" and n > 1:
+                compression = (self.velocity_before[k] + sum(
+                    (self.W[k, j] * P_n[j] / (1 + self.contacts[j].restitution)
+                     for j in range(n)), sp.Integer(0)))
+                found.append(Equation(f"{t.name} at rest at the end of compression "
+                                      "(Poisson's law: each impulse is 1 + e times its "
+                                      "compression impulse)", "", tidy(compression), 0,
+                                      law="restitution"))
+            else:
+                before = self.velocity_before[k]
+                closed = before.is_negative
+                found.append(Equation(f"restitution at {t.name} (Newton's law" + (
+                    ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
+                    -t.restitution * before if closed else 0, law="restitution"))
+            if not self.frictional:
+                continue
+            after_slip = tidy((self.J_t[k, :] * u)[0])
+            if not tangential.grips or t.name not in outcome.acted:
+                found.append(Equation(f"{t.name}: no tangential impulse", "", P_t[k], 0,
+                                      law="tangential"))
+            elif after_slip == 0:
+                found.append(Equation(f"{t.name} sticks: no slip after", "", slip, 0,
+                                      law="tangential"))
+            else:
+                sign = -1 if after_slip > 0 else 1
+                found.append(Equation(f"{t.name} slides: Coulomb's friction against the "
+                                      "slip after", "", P_t[k], sign * tangential.cone()
+                                      * P_n[k], law="tangential"))
+        return tuple(found)
+
+    def _u_of(self, outcome: Outcome) -> sp.Matrix:
+        """The generalized velocities of `outcome`'s bodies after."""
+        after = {b.name: b for b in outcome.after}
+        values = []
+        for c in self.coordinates:
+            body = after[c.body]
+            values.append(body.spin if c.kind == "omega" else
+                          body.velocity[0 if c.kind == "vx" else 1])
+        return sp.Matrix(values)
+
+    def solved_values(self, outcome: Outcome) -> dict[sp.Symbol, sp.Expr]:
+        """:meth:`unknowns` -> their values in `outcome` (to check the equations)."""
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        values = dict(zip(symbols[:size], self._u_of(outcome), strict=True))
+        values.update({symbols[size + k]: outcome.impulses[t.name]
+                       for k, t in enumerate(self.contacts)})
+        if self.frictional:
+            values.update({symbols[size + n + k]: outcome.tangential.get(t.name, 0)
+                           for k, t in enumerate(self.contacts)})
+        return values
+
+    def _by_name(self, name: str) -> Contact:
+        return next(t for t in self.contacts if t.name == name)
+
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
-        return {t.name: impulses[k] for k, t in enumerate(self.touches)}
+        return {t.name: impulses[k] for k, t in enumerate(self.contacts)}
 
 
 def _too_many_cases(n: int, count: int) -> str:
@@ -1004,8 +1077,9 @@ def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
         raise InputError("n", "a chain needs two balls or more")
     bodies = tuple(Body.rigid(1, sp.Rational(1, 10), (k, 0), (speed if k == 0 else 0, 0),
                               name=f"ball{k}") for k in range(n))
-    touches = tuple(Touch(f"c{k}", f"ball{k}", f"ball{k + 1}", (sp.Rational(2 * k + 1, 2), 0),
-                          (1, 0), restitution) for k in range(n - 1))
+    touches = tuple(Contact(restitution=restitution, name=f"c{k}",
+                            bodies=(f"ball{k}", f"ball{k + 1}"),
+                            point=(sp.Rational(2 * k + 1, 2), 0)) for k in range(n - 1))
     return Collision(bodies, touches)
 
 

@@ -70,6 +70,11 @@ class Contact:
         beta in [-1, 1], with "rough" (required).
     name : str
         Names the contact in result keys (``contact.normal_impulse``).
+    bodies : (str, str), optional
+        The names of the two bodies, the normal pointing from the first into the second;
+        needed where several contacts share one set of bodies (:mod:`rigidimpact.collision`).
+    point : 2-vector
+        Where the bodies touch, from the world origin (default the origin O).
 
     Examples
     --------
@@ -84,10 +89,20 @@ class Contact:
     name: str = "contact"
     friction: Any = None
     tangential_restitution: Any = None
+    bodies: tuple[str, str] | None = None
+    point: Any = (0, 0)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
             raise InputError("contact.name", f"must be an identifier, got {self.name!r}")
+        if self.bodies is not None:
+            if (not isinstance(self.bodies, (tuple, list)) or len(self.bodies) != 2
+                    or not all(isinstance(b, str) for b in self.bodies)):
+                raise InputError(f"{self.name}.bodies", "two body names")
+            if self.bodies[0] == self.bodies[1]:
+                raise InputError(f"{self.name}.bodies", "a contact needs two bodies")
+            object.__setattr__(self, "bodies", tuple(self.bodies))
+        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
         normal = as_vector(self.normal, "contact.normal")
         if all(c.is_zero for c in normal):
             raise InputError("contact.normal", "must not be the zero vector")
@@ -144,6 +159,9 @@ class Contact:
             extra += f", friction={self.friction}"
         if self.tangential_restitution is not None:
             extra += f", tangential_restitution={self.tangential_restitution}"
+        if self.bodies is not None:
+            p = self.point
+            extra += f", bodies={self.bodies!r}, point=({p[0]}, {p[1]})"
         return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
                 f"tangential={self.tangential!r}, law={self.law!r}{extra})")
 
@@ -160,7 +178,7 @@ class Contact:
             return x if x is None else sp.sympify(x).xreplace(dict(values))
 
         return replace(self, normal=put(self.normal), restitution=put(self.restitution),
-                       friction=put(self.friction),
+                       friction=put(self.friction), point=put(self.point),
                        tangential_restitution=put(self.tangential_restitution))
 
     @property
@@ -192,3 +210,29 @@ class Contact:
         n = self.normal
         length = sp.sqrt(tidy(n[0] ** 2 + n[1] ** 2))  # tidy sees cos^2 + sin^2 = 1
         return frame_of(sp.ImmutableMatrix([tidy(n[0] / length), tidy(n[1] / length)]))
+
+    @property
+    def first(self) -> str:
+        """The body on the -normal side (the first of `bodies`)."""
+        return self._pair[0]
+
+    @property
+    def second(self) -> str:
+        """The body the normal points into (the second of `bodies`)."""
+        return self._pair[1]
+
+    @property
+    def _pair(self) -> tuple[str, str]:
+        if self.bodies is None:
+            raise InputError(f"{self.name}.bodies", "required: name the two bodies")
+        return self.bodies
+
+    @property
+    def unit_normal(self) -> sp.ImmutableMatrix:
+        """The normal scaled to unit length (scene frame)."""
+        return self.frame.row(0).T
+
+    @property
+    def tangent(self) -> sp.ImmutableMatrix:
+        """The unit tangent: the normal turned by +90 degrees (scene frame)."""
+        return self.frame.row(1).T

@@ -19,7 +19,7 @@ Equation(label='tangential momentum of ball is unchanged', paper='', lhs=0, rhs=
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, ClassVar
 
 import sympy as sp
 
@@ -284,6 +284,16 @@ class ContactLaw:
 
     name = ""
     solved_by_regimes = False  # True: the impulse comes from `regimes`, not `conditions`
+    # the states the law allows a contact at the velocity level, where several contacts
+    # act together (the simultaneous rule): "on" (pushing, no tangential impulse),
+    # "stick" (no slip after), "slide+"/"slide-" (on the friction cone's edge); empty:
+    # the law has no velocity-level form and acts only as one contact's own impact
+    velocity_states: ClassVar[tuple[str, ...]] = ("stick",)
+    grips: ClassVar[bool] = True  # False: the law never gives a tangential impulse
+
+    def cone(self) -> Any:
+        """The friction coefficient bounding a sticking contact (None: no bound)."""
+        return None
 
     @classmethod
     def from_contact(cls, contact: Any) -> ContactLaw:
@@ -303,6 +313,21 @@ class ContactLaw:
                    impulse: sp.MatrixBase) -> list[sp.Expr]:
         return [eq.residual for eq in self.equations(before, kicked)]
 
+    def alone(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+              restitution: NewtonRestitution) -> tuple[sp.Expr, sp.Expr, str]:
+        """This contact's impact on its own in contact space: ``(P_n, P_t, course)``
+        from its 2x2 W (normal, tangent) and its velocities before (second minus
+        first). With regimes, the course that holds (numbers needed to pick one)."""
+        if self.solved_by_regimes:
+            regime = next(r for r in self.regimes(W, v_before, restitution)
+                          if r.holds() is not False)
+            return sp.sympify(regime.impulse[0]), sp.sympify(regime.impulse[1]), regime.name
+        return self._linear_alone(W, v_before, restitution)
+
+    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
+        # a straight impulse path: every restitution law reads as Newton's
+        return -(1 + restitution.e) * v_before[0] / W[0, 0], sp.Integer(0), self.name
+
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
 
@@ -321,6 +346,10 @@ class NewtonRestitution(ContactLaw):
     e: sp.Expr
     name = "newton"
     splits_on_compression = False  # on a bent impulse path: the end is set by velocity
+    # contacts acting together (the simultaneous rule): "velocity" (each acting contact
+    # leaves at -e times its closing velocity), "impulse" (the compression impulses
+    # solved with target zero, each scaled by 1 + e), None (no such form)
+    together: ClassVar[str | None] = "velocity"
 
     def equations(self, before, after):
         return (restitution(before[0], after[0], before[1], after[1], self.e),)
@@ -347,6 +376,8 @@ class Smooth(ContactLaw):
     """
 
     name = "smooth"
+    velocity_states = ("on",)
+    grips = False
 
     def equations(self, before, after):
         return tuple(tangential_momentum(b, a) for b, a in zip(before, after, strict=True)
@@ -367,9 +398,16 @@ class Stick(ContactLaw):
     """
 
     name = "stick"
+    velocity_states = ("stick",)
 
     def equations(self, before, after):
         return (no_slip(after[0], after[1]),)
+
+    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
+        # Newton's e across, no slip after: W P = (-(1 + e) v_n, -v_t)
+        P = sp.Matrix(W).LUsolve(sp.Matrix([-(1 + restitution.e) * v_before[0],
+                                            -v_before[1]]))
+        return P[0], P[1], self.name
 
 
 @dataclass(frozen=True, repr=False)
@@ -388,6 +426,7 @@ class PoissonRestitution(NewtonRestitution):
 
     name = "poisson"
     splits_on_compression = True
+    together = "impulse"
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
@@ -415,6 +454,7 @@ class EnergeticRestitution(NewtonRestitution):
 
     name = "energetic"
     splits_on_compression = True
+    together = None  # the work split of one contact: no form for contacts acting together
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
@@ -448,6 +488,10 @@ class Coulomb(ContactLaw):
     mu: Any = None
     name = "coulomb"
     solved_by_regimes = True
+    velocity_states: ClassVar[tuple[str, ...]] = ("stick", "slide+", "slide-")
+
+    def cone(self) -> Any:
+        return self.mu
 
     @classmethod
     def from_contact(cls, contact: Any) -> Coulomb:
@@ -484,6 +528,8 @@ class Rough(Coulomb):
 
     beta: Any = None
     name = "rough"
+    # Walton's tangential restitution has no velocity-level form
+    velocity_states: ClassVar[tuple[str, ...]] = ()
 
     @classmethod
     def from_contact(cls, contact: Any) -> Rough:

@@ -40,7 +40,6 @@ from rigidimpact.collision import (
     Rule,
     Sequential,
     Simultaneous,
-    Touch,
 )
 from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
@@ -107,7 +106,6 @@ class Scene:
     simulate: Mapping[str, Any] = field(default_factory=dict)
     name: str = "scene"
     contacts: tuple[Contact, ...] = ()
-    touches: tuple[Touch, ...] = ()
     rule: str = "simultaneous"
     order: tuple[str, ...] | None = None
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
@@ -115,12 +113,13 @@ class Scene:
     @property
     def several(self) -> bool:
         """Whether the scene has several contacts (solved by :mod:`rigidimpact.collision`)."""
-        return len(self.touches) > 1
+        return len(self.contacts) > 1
 
     @property
     def roles(self) -> tuple[Role, ...]:
         """What bounds the scene's data by role (see :mod:`rigidimpact.roles`)."""
-        return roles_of(self.bodies, self.contacts or (self.contact,), self.touches or None)
+        return roles_of(self.bodies, self.contacts or (self.contact,),
+                        self.contacts if self.several else None)
 
     def impact(self) -> Impact:
         """The scene's impact (one contact)."""
@@ -145,11 +144,8 @@ class Scene:
             pivot = () if b.pivot is None else tuple(b.pivot)
             found |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
                               *pivot).free_symbols
-        for t in self.touches:
-            found |= sp.Tuple(t.restitution, *t.point, *t.normal,
-                              t.friction or 0).free_symbols
         for c in self.contacts or (self.contact,):
-            found |= sp.Tuple(c.restitution, *c.normal, c.friction or 0,
+            found |= sp.Tuple(c.restitution, *c.normal, *c.point, c.friction or 0,
                               c.tangential_restitution or 0).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
 
@@ -190,7 +186,7 @@ class Scene:
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
         """The scene's several contacts with numbers for its symbols."""
-        return Collision.from_values(self.bodies, self.touches,
+        return Collision.from_values(self.bodies, self.contacts,
                                      dict(self.values if values is None else values))
 
     def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Outcome, ...]:
@@ -251,13 +247,18 @@ class Scene:
 
     def _several_derivation(self, start: float,
                             values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
-        outcomes = self.outcomes(values)
+        collision = self.collision(values)
+        outcomes = collision.solve(self.impact_rule)
+        # the momentum balance holds under every rule; a contact's own law only where
+        # one outcome is reported (each case or order imposes its own)
+        equations = collision.equations(outcomes[0])
+        if len(outcomes) > 1:
+            equations = tuple(eq for eq in equations if eq.law == "momentum")
         setup = tuple(_described(b) for b in self.bodies)
         setup += tuple(f"contact {t.name}: {t.first} -> {t.second} at ({t.point[0]}, "
                        f"{t.point[1]}), normal ({t.normal[0]}, {t.normal[1]}), {t.law} "
-                       f"restitution {t.restitution}, "
-                       + ("smooth" if t.friction is None else f"Coulomb friction {t.friction}")
-                       for t in self.touches)
+                       f"restitution {t.restitution}, " + _tangential_words(t)
+                       for t in self.contacts)
         setup += (f"rule: {self.rule}" + ("" if self.order is None
                                           else f", order {', '.join(self.order)}"),)
         results = outcomes[0].results()
@@ -265,8 +266,8 @@ class Scene:
             cases = [sp.And(*o.conditions) for o in outcomes]
             results = {key: _cases([o.results()[key] for o in outcomes], cases)
                        for key in results}
-        return Derivation(self.name, self.title, setup, (), (), results,
-                          seconds=time.perf_counter() - start, outcomes=outcomes)
+        return Derivation(self.name, self.title, setup, equations, collision.unknowns(),
+                          results, seconds=time.perf_counter() - start, outcomes=outcomes)
 
     def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
         """With several contacts, the derivation at these numbers (they are solved with
@@ -281,6 +282,14 @@ def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
     if all(p == parts[0] for p in parts):
         return parts[0]
     return sp.Piecewise(*zip(parts, conditions, strict=True))
+
+
+def _tangential_words(c: Contact) -> str:
+    """The contact's tangential law in words, with its coefficients."""
+    words = {"smooth": "smooth", "stick": "sticking", "coulomb": f"Coulomb friction {c.friction}",
+             "rough": f"rough (Walton), friction {c.friction}, tangential restitution "
+                      f"{c.tangential_restitution}"}
+    return words[c.tangential]
 
 
 def _described(b: Body) -> str:
@@ -459,7 +468,6 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
     """A scene with several contacts: bodies from the world origin, one rule for all."""
     entries = data["contacts"]
     contacts: list[Contact] = []
-    touches: list[Touch] = []
     for k, table in enumerate(entries):
         place = f"contacts[{k}]"
         if not isinstance(table, dict):
@@ -467,19 +475,13 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
         if "name" not in table:
             raise InputError(f"{place}.name", "required with several contacts")
         contact, point = _read_contact(table, place, symbols)
-        if contact.tangential not in ("smooth", "coulomb"):
-            raise InputError(f"{place}.tangential", "several contacts are smooth or "
-                             f"coulomb, got {contact.tangential!r}")
         if contact.name in (c.name for c in contacts):
             raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
         first, second = _pair(table, place, [])
         for body_name in (first, second):
             if body_name not in by_name:
                 raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
-        contacts.append(contact)
-        touches.append(Touch(contact.name, first, second, point, contact.normal,
-                             contact.restitution, contact.law,
-                             contact.friction if contact.tangential == "coulomb" else None))
+        contacts.append(replace(contact, bodies=(first, second), point=point))
     impact_table = _table(data, "impact", "settings")
     rule, order = _impact_table(impact_table, [c.name for c in contacts])
     compliance = _compliance(impact_table, len(contacts))
@@ -487,7 +489,7 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
     for index, table in by_name.values():
         bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
     scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
-                  contacts=tuple(contacts), touches=tuple(touches), rule=rule, order=order,
+                  contacts=tuple(contacts), rule=rule, order=order,
                   compliance=compliance)
     # the roles hold the geometry too (a contact on each body's outline): checked now
     # with what the file says, again whenever values arrive

@@ -45,7 +45,7 @@ def explain(scene: Scene) -> str:
     lines = [plan.explain()]
     if scene.several:
 
-        frictional = any(t.friction is not None for t in scene.touches)
+        frictional = any(t.laws[1].grips for t in scene.contacts)
         lines.append(f"impact rule: {scene.rule}: {rule_laws(scene.rule, frictional)}")
         if "gravity" not in plan.effects and any(b.support == "fixed" for b in scene.bodies):
             lines.append("note: without gravity nothing brings the bodies back to the "
@@ -153,8 +153,8 @@ def impact_view(scene: Scene, outcome: Outcome) -> tuple[list, list, dict]:
     values = dict(scene.values)
     bodies = [b if b.support == "fixed" else b.at(values) for b in scene.bodies]
     if scene.several:
-        contacts = [(t.point.xreplace(values), t.normal.xreplace(values), t.first, t.second)
-                    for t in scene.touches]
+        contacts = [(t.point.xreplace(values), t.unit_normal.xreplace(values), t.first, t.second)
+                    for t in scene.contacts]
     else:
         contacts = [((0, 0), scene.contact.normal.xreplace(values), scene.bodies[0].name,
                      scene.bodies[1].name)]

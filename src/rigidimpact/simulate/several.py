@@ -46,7 +46,7 @@ import sympy as sp
 
 from rigidimpact.bodies import Body
 from rigidimpact.collision import Outcome as RuleOutcome
-from rigidimpact.collision import Touch
+from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
 from rigidimpact.problems import physics_warnings, read_values
 from rigidimpact.scene import Scene
@@ -100,9 +100,9 @@ def _flyer(body: Body, gravity: float) -> Flyer:
     return replace(flyer(body, {}), gravity=gravity)
 
 
-def _against_fixed(touch: Touch, f: Flyer, sign: float, round_body: bool) -> Watch:
+def _against_fixed(touch: Contact, f: Flyer, sign: float, round_body: bool) -> Watch:
     """The gap between a moving body's contact point and a fixed body's plane."""
-    n = sign * np.array([float(c) for c in touch.normal])  # opening direction
+    n = sign * np.array([float(c) for c in touch.unit_normal])  # opening direction
     point = np.array([float(c) for c in touch.point])
     offset = (0.0, 0.0) if round_body else tuple(point - np.asarray(f.position, float))
     x0 = np.asarray(f.position, float) + offset  # the watched point at the impact
@@ -162,7 +162,7 @@ def _against_fixed(touch: Touch, f: Flyer, sign: float, round_body: bool) -> Wat
     return Watch(touch.name, first_touch, f"the {what} of {f.name} against the fixed plane")
 
 
-def watches(touches: Sequence[Touch], flyers: Mapping[str, Flyer],
+def watches(touches: Sequence[Contact], flyers: Mapping[str, Flyer],
             shapes: Mapping[str, str]) -> tuple[Watch, ...]:
     """One watch per contact (see the module's notes), or an InputError for a pair that
     cannot be watched."""
@@ -207,7 +207,7 @@ def _fly(scene: Scene, outcome: RuleOutcome, until: str | float, gravity: float)
         return flyers, events, 0.0, "the bodies separate at the impact (until = separation)"
     horizon = math.inf if until == "restrike" else float(until)
     found = []
-    for watch in watches(scene.touches, flyers, shapes):
+    for watch in watches(scene.contacts, flyers, shapes):
         t = watch.first_touch(horizon)
         if t is not None and t <= horizon:
             found.append((t, watch))
@@ -263,7 +263,7 @@ def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
         details["warnings"] = list(warnings)
     order = list(flyers)
     marks = []
-    for touch in scene.touches:
+    for touch in scene.contacts:
         for name in (touch.first, touch.second):
             body = next(b for b in scene.bodies if b.name == name)
             if name in flyers and body.shape == "rigid":

@@ -1,0 +1,204 @@
+"""One contact, every law, every path: the two-body impact and every rule of the
+several-contact collision give the same exact answer, because each law gives its own
+one-contact impulse in contact space (``ContactLaw.alone``) and every rule defers to it
+when only one contact acts."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from rigidimpact.bodies import Body
+from rigidimpact.collision import Collision, Sequential, Simultaneous
+from rigidimpact.contact import Contact
+from rigidimpact.errors import InputError
+from rigidimpact.impact import Impact
+
+HALF, TENTH = sp.Rational(1, 2), sp.Rational(1, 10)
+LAWS = [("smooth", law, {}) for law in ("newton", "poisson", "energetic")] + [
+    ("stick", "newton", {})] + [
+    ("coulomb", law, {"friction": TENTH}) for law in ("newton", "poisson", "energetic")] + [
+    ("rough", law, {"friction": HALF, "tangential_restitution": HALF})
+    for law in ("newton", "poisson", "energetic")]
+
+
+def _rod(tilt):
+    # a rod (mass 1, inertia 1/3: half-length 1) whose end strikes a wall at O, its
+    # centre at -(cos, sin) of a rational direction, moving in and down
+    a, b = tilt
+    length = sp.sqrt(a**2 + b**2)
+    return Body.rigid(1, sp.Rational(1, 3), (-a / length, -b / length), (1, -HALF), 0, "rod")
+
+
+@pytest.mark.parametrize(("tangential", "law", "coefficients"), LAWS)
+@pytest.mark.parametrize("tilt", [(4, 3), (3, 4)])
+def test_one_contact_gives_the_same_exact_answer_by_every_rule_and_law(tangential, law,
+                                                                       coefficients, tilt):
+    rod, wall = _rod(tilt), Body.fixed("wall")
+    contact = Contact(restitution=HALF, tangential=tangential, law=law, **coefficients)
+    alone = Impact(rod, wall, contact).solve().results()
+    collision = Collision((rod, wall), (Contact(restitution=HALF, tangential=tangential,
+                                                law=law, bodies=("rod", "wall"),
+                                                **coefficients),))
+    for rule in (Simultaneous(), Sequential(("contact",)), Sequential()):
+        (outcome,) = collision.solve(rule)
+        got = outcome.results()
+        for key in ("rod.vx", "rod.vy", "rod.omega", "contact.normal_impulse",
+                    "contact.tangential_impulse", "energy_loss_fraction"):
+            assert sp.simplify(got[key] - alone[key]) == 0, (rule, key, got[key], alone[key])
+
+
+def test_one_law_owns_its_one_contact_impulse():
+    # a particle of mass 1/2 on a fixed floor (W = 2 I) at 45 degrees, e = 1: each law's
+    # own impulse in contact space, worked by hand
+    from rigidimpact.laws import Coulomb, NewtonRestitution, Rough, Smooth, Stick
+
+    W, v = sp.Matrix([[2, 0], [0, 2]]), sp.Matrix([-1, 1])
+    newton = NewtonRestitution(1)
+    assert Smooth().alone(W, v, newton) == (1, 0, "smooth")
+    assert Stick().alone(W, v, newton) == (1, -HALF, "stick")  # P_t = -v_t / 2
+    assert Coulomb(sp.Rational(1, 4)).alone(W, v, newton) == (1, -sp.Rational(1, 4), "slip")
+    # Walton with beta = 1: the tangential velocity reverses, needing P_t = -1 (|P_t| <=
+    # mu P_n holds with mu = 1)
+    P_n, P_t, _ = Rough(1, 1).alone(W, v, newton)
+    assert (P_n, P_t) == (1, -1)
+
+
+def test_stick_and_rough_act_at_several_contacts_in_sequence():
+    # two particles side by side drop onto a floor, one contact sticking and one rough:
+    # in sequence each is its own one-contact impact (no coupling: W is diagonal)
+    a = Body.rigid(1, 0, (0, 0), (1, -1), name="a")
+    b = Body.rigid(1, 0, (5, 0), (2, -1), name="b")
+    floor = Body.fixed("floor")
+    contacts = (Contact((0, -1), HALF, "stick", name="left", bodies=("a", "floor")),
+                Contact((0, -1), HALF, "rough", name="right", bodies=("b", "floor"),
+                        point=(5, 0), friction=1, tangential_restitution=HALF))
+    (outcome,) = Collision((a, b, floor), contacts).solve(Sequential(("left", "right")))
+    r = outcome.results()
+    # P_n = (1 + e) 1 = 3/2 at both. Stick: vx -> 0. Rough (beta = 1/2): reversing the
+    # slip to -beta vx = -1 needs a tangential impulse of 3 > mu P_n = 3/2, so it is
+    # capped there: vx = 2 - 3/2 = 1/2
+    assert (r["a.vx"], r["a.vy"]) == (0, HALF)
+    assert (r["b.vx"], r["b.vy"]) == (HALF, HALF)
+    # the simultaneous rule: stick has a velocity-level form, Walton's law has none
+    with pytest.raises(InputError, match="right.tangential: the rough law has no form"):
+        Collision((a, b, floor), contacts).solve(Simultaneous())
+    (both,) = Collision((a, b, floor), contacts[:1] + (Contact(
+        (0, -1), HALF, "coulomb", name="right", bodies=("b", "floor"), point=(5, 0),
+        friction=HALF),)).solve(Simultaneous())
+    # Coulomb mu = 1/2 slides throughout: vx = 2 - mu P_n = 5/4
+    assert (both.results()["a.vx"], both.results()["b.vx"]) == (0, sp.Rational(5, 4))
+
+
+# ---- what is printed is what is solved, at several contacts --------------------------
+
+def _residuals(collision, outcome):
+    values = collision.solved_values(outcome)
+    return [sp.nsimplify(eq.residual.xreplace(values)) if outcome.rule != "compliant"
+            else float(eq.residual.xreplace(values)) for eq in collision.equations(outcome)]
+
+
+@pytest.mark.parametrize(("name", "rule"), [
+    (name, rule) for name in ("newtons-cradle", "rod-lands-flat", "rod-slides-flat",
+                              "two-ball-drop")
+    for rule in ("simultaneous", "sequential", "compliant")
+    if (name, rule) != ("rod-slides-flat", "compliant")])  # compliant springs are smooth
+def test_every_printed_equation_holds_at_the_outcome(name, rule):
+    from dataclasses import replace
+    from pathlib import Path
+
+    from rigidimpact.scene import load_scene
+
+    root = Path(__file__).parents[1]
+    scene = load_scene(root / "derivations" / f"{name}.toml")
+    values = {s: v for s, v in scene.values.items()}
+    for symbol in scene.data_symbols.values():
+        values.setdefault(symbol, sp.Rational(1, 2))  # e, mu left symbolic: a number
+    order = tuple(c.name for c in scene.contacts)
+    scene = replace(scene, rule=rule, order=order if rule == "sequential" else None)
+    collision = scene.collision(values)
+    for outcome in collision.solve(scene.impact_rule):
+        equations = collision.equations(outcome)
+        # one momentum balance per generalized velocity, and one law per contact (two
+        # with friction) from the rule
+        per_contact = 2 if collision.frictional else 1
+        assert len(equations) == len(collision.coordinates) + per_contact * len(order)
+        for residual in _residuals(collision, outcome):
+            if rule == "compliant":
+                assert residual == pytest.approx(0, abs=1e-9)
+            else:
+                assert residual == 0
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson"])
+def test_the_simultaneous_rule_prints_each_contacts_own_law(law):
+    # a striker between two touching balls (the cluster of the 30-degree test): under
+    # Newton's law each acting contact's restitution, under Poisson's its compression
+    # condition; substituting the outcome zeroes both
+    r3, half = sp.sqrt(3), HALF
+    bodies = (Body.rigid(1, 1, (0, 0), (1, 0), name="s"),
+              Body.rigid(2, 1, (r3, 1), (0, 0), name="up"),
+              Body.rigid(3, 1, (r3, -1), (0, 0), name="lo"))
+    contacts = (Contact((r3, 1), half, law=law, name="a", bodies=("s", "up"),
+                        point=(r3 / 2, half)),
+                Contact((r3, -1), half, law=law, name="b", bodies=("s", "lo"),
+                        point=(r3 / 2, -half)))
+    collision = Collision(bodies, contacts)
+    outcome = collision.simultaneous()
+    labels = [eq.label for eq in collision.equations(outcome) if eq.law == "restitution"]
+    assert len(labels) == 2
+    assert all(("Newton" in label) == (law == "newton") for label in labels)
+    assert all(residual == 0 for residual in _residuals(collision, outcome))
+
+
+def test_a_pivoted_rod_struck_at_two_contacts_prints_its_equations(tmp_path, capsys):
+    import json
+
+    from helpers import scene_file
+    from rigidimpact.cli import main
+
+    text = """
+[[bodies]]
+name = "low"
+shape = "particle"
+mass = "2"
+position = ["0", "0"]
+velocity = ["5", "0"]
+[[bodies]]
+name = "high"
+shape = "particle"
+mass = "1"
+position = ["0", "3/10"]
+velocity = ["3", "0"]
+[[bodies]]
+name = "rod"
+shape = "rigid"
+mass = "8"
+inertia = "24/25"
+position = ["0", "3/5"]
+pivot = ["0", "6/5"]
+[[contacts]]
+name = "a"
+bodies = ["low", "rod"]
+point = ["0", "0"]
+restitution = "4/5"
+law = "poisson"
+[[contacts]]
+name = "b"
+bodies = ["high", "rod"]
+point = ["0", "3/10"]
+restitution = "1/2"
+law = "poisson"
+"""
+    assert main(["derive", scene_file(tmp_path, text), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    labels = [eq["label"] for eq in out["equations"]]
+    assert "angular momentum of rod about its pivot: its change is the contacts' impulse" \
+        in labels
+    assert sum("Poisson's law" in label for label in labels) == 2
+    assert {"rod.pivot_impulse_x", "rod.pivot_impulse_y"} <= set(out["results"])
+    assert "omega_rodfz" in out["unknowns"] and "Pn_b" in out["unknowns"]
+    assert main(["derive", scene_file(tmp_path, text)]) == 0
+    printed = capsys.readouterr().out
+    assert "poisson restitution 4/5, smooth" in printed
+    assert "Equations solved:" in printed
