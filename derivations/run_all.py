@@ -28,9 +28,10 @@ import sympy as sp  # noqa: E402
 from matplotlib.animation import PillowWriter  # noqa: E402
 
 import rigidimpact as ri  # noqa: E402
-from rigidimpact import latex, plots, restrike  # noqa: E402
-from rigidimpact.bench import FLOOR, pareto  # noqa: E402
-from rigidimpact.numeric import Kernel  # noqa: E402
+from rigidimpact.analyses import restrike  # noqa: E402
+from rigidimpact.analyses.bench import FLOOR, pareto  # noqa: E402
+from rigidimpact.outputs import latex, plots  # noqa: E402
+from rigidimpact.outputs.numeric import Kernel  # noqa: E402
 from rigidimpact.simulate.runner import rigid_limit  # noqa: E402
 
 
@@ -61,7 +62,7 @@ def _figures():
 def kharaz_figure():
     """The rigid Coulomb model, fitted in the gross-slip range, against both digitisations
     of Kharaz, Gorham and Salman (2001) and the spring-dashpot simulation (notebook 11)."""
-    from rigidimpact import experiment
+    from rigidimpact.analyses import experiment
 
     data = experiment.load_kharaz()
     found = experiment.fit()

@@ -10,8 +10,8 @@ import mpmath
 import sympy as sp
 
 import rigidimpact as ri
-from rigidimpact import restrike
-from rigidimpact.problems import sphere_a_velocity, sticking_routes
+from rigidimpact.analyses import restrike
+from rigidimpact.paper.problems import sphere_a_velocity, sticking_routes
 
 
 def main() -> None:

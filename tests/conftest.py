@@ -7,7 +7,7 @@ import random
 import pytest
 import sympy as sp
 
-from rigidimpact.bodies import Body
+from rigidimpact.model.bodies import Body
 
 SEED = 1729
 

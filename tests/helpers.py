@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from rigidimpact.cli import main
-from rigidimpact.contact import Contact
+from rigidimpact.laws.contact import Contact
 
 
 def refused(capsys, argv, needle=""):

@@ -8,7 +8,7 @@ import math
 import mpmath
 import pytest
 
-from rigidimpact import bench, restrike
+from rigidimpact.analyses import bench, restrike
 from rigidimpact.cli import main
 
 

@@ -3,9 +3,9 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from rigidimpact.bodies import Body, join
 from rigidimpact.errors import InputError
-from rigidimpact.notation import symbol
+from rigidimpact.model.bodies import Body, join
+from rigidimpact.symbolic.notation import symbol
 
 m, M, L, theta, v = (symbol(n) for n in ("m", "M", "L", "theta", "v_ix"))
 
@@ -76,8 +76,8 @@ def test_strings_are_never_taken_as_expressions():
 def test_point_mass_must_sit_at_the_contact_point():
     # a body is placed freely (several contacts use a world frame); an impact at O
     # refuses a point mass elsewhere, since nothing could touch it there
-    from rigidimpact.contact import Contact
-    from rigidimpact.impact import Impact
+    from rigidimpact.laws.contact import Contact
+    from rigidimpact.solve.impact import Impact
 
     lump = Body.rigid(1, 0, (1, 0), velocity=(1, 0), name="lump")
     with pytest.raises(InputError, match="contact point"):

@@ -10,10 +10,10 @@ import pytest
 import sympy as sp
 
 from helpers import touching
-from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision, chain
 from rigidimpact.errors import InputError
-from rigidimpact.scene import load_scene, parse_scene
+from rigidimpact.model.bodies import Body
+from rigidimpact.scenes.scene import load_scene, parse_scene
+from rigidimpact.solve.collision import Collision, chain
 
 HALF = sp.Rational(1, 2)
 ROOT = Path(__file__).resolve().parents[1]
@@ -420,7 +420,7 @@ def test_a_new_rule_is_one_class():
     # a rule written as one class in a test, registered nowhere: the contacts act one at
     # a time from the last to the first. It must agree with the sequential rule given
     # that order, and a Newton's cradle passes its momentum along as by hand.
-    from rigidimpact.collision import Rule, Sequential, chain
+    from rigidimpact.solve.collision import Rule, Sequential, chain
 
     class Backwards(Rule):
         name = "backwards"

@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.scene import load_scene, parse_scene
+from rigidimpact.scenes.scene import load_scene, parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.compliant import (
     MAX_DAMPING_RATIO,

@@ -3,9 +3,9 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.notation import symbol
+from rigidimpact.laws.contact import Contact
+from rigidimpact.symbolic.notation import symbol
 
 
 def test_frame_rows_are_the_unit_normal_and_tangent():

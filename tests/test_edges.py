@@ -258,7 +258,7 @@ def test_every_order_of_many_contacts_is_refused_before_any_is_made(tmp_path, ca
 
 
 def test_symbolic_simultaneous_rule_is_bounded(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("rigidimpact.collision.MAX_SYMBOLIC_SECONDS", 2.0)
+    monkeypatch.setattr("rigidimpact.solve.collision.MAX_SYMBOLIC_SECONDS", 2.0)
     # three contacts between four discs, every speed a symbol: 64 cases under Newton's law
     speeds = ["v", "u", "w", "d"]
     lines = []
@@ -415,7 +415,7 @@ def test_a_swinging_pendulum_bob_can_be_struck(capsys):
     # momentum about the pivot gives (m + M) u = m v + M w
     import sympy as sp
 
-    from rigidimpact.scene import load_scene
+    from rigidimpact.scenes.scene import load_scene
 
     scene = load_scene(ROOT / "derivations" / "swinging-pendulum.toml")
     results = scene.derivation().results
@@ -604,7 +604,7 @@ def test_an_elastic_compliant_chain_does_not_warn(tmp_path, capsys):
 
 
 def test_energy_warnings_allow_for_a_stated_tolerance():
-    from rigidimpact.problems import physics_warnings
+    from rigidimpact.solve.derivation import physics_warnings
 
     assert physics_warnings({"energy_loss_fraction": -9e-10}, None, "m", 1e-7) == ()
     (said,) = physics_warnings({"energy_loss_fraction": -1e-6}, None, "m", 1e-7)
@@ -616,7 +616,7 @@ def test_energy_warnings_allow_for_a_stated_tolerance():
 def test_sweep_counts_the_warnings_evaluate_gives(tmp_path, capsys):
     # the rod on a rough floor under Newton's law creates energy where slip stops or
     # reverses: the sweep's count must match evaluate's verdict point by point
-    from rigidimpact.scene import load_scene
+    from rigidimpact.scenes.scene import load_scene
 
     path = str(ROOT / "derivations" / "rod-rough-floor.toml")
     assert main(["sweep", path, "--grid", "mu=0:1:11", "--grid", "e=0:1:6", "--out",
@@ -669,8 +669,8 @@ def test_a_run_that_ends_at_the_impact_is_drawn_as_the_impact(tmp_path, capsys):
     # velocities (not an empty frame), --animate says there is nothing to animate
     import matplotlib.image
 
-    from rigidimpact.plots import impact_picture
-    from rigidimpact.scene import load_scene
+    from rigidimpact.outputs.plots import impact_picture
+    from rigidimpact.scenes.scene import load_scene
     from rigidimpact.simulate import impact_view, run
 
     path = ROOT / "derivations" / "hinged-rod.toml"
@@ -689,8 +689,8 @@ def test_a_run_that_ends_at_the_impact_is_drawn_as_the_impact(tmp_path, capsys):
 
 
 def test_several_bodies_are_drawn_with_their_shapes_and_the_floor(tmp_path):
-    from rigidimpact.plots import impact_picture
-    from rigidimpact.scene import load_scene
+    from rigidimpact.outputs.plots import impact_picture
+    from rigidimpact.scenes.scene import load_scene
     from rigidimpact.simulate import impact_view, run
 
     scene = load_scene(ROOT / "derivations" / "two-ball-drop.toml")
@@ -711,7 +711,7 @@ def test_energetic_rough_floor_at_50_degrees_derives_in_bounded_time(tmp_path):
     text = (ROOT / "derivations" / "rod-rough-floor.toml").read_text().replace(
         "45 deg", "50 deg").replace('law = "newton"', 'law = "energetic"').replace(
         "[values]\ne = 1\nmu = 0.4\n", "")
-    from rigidimpact.scene import load_scene
+    from rigidimpact.scenes.scene import load_scene
 
     path = scene_file(tmp_path, text)
     start = time.perf_counter()
@@ -735,10 +735,10 @@ def test_one_frictional_contact_gives_one_answer_by_every_path(law, tilt):
     import sympy as sp
 
     from helpers import touching
-    from rigidimpact.bodies import Body
-    from rigidimpact.collision import Collision
-    from rigidimpact.contact import Contact
-    from rigidimpact.impact import Impact
+    from rigidimpact.laws.contact import Contact
+    from rigidimpact.model.bodies import Body
+    from rigidimpact.solve.collision import Collision
+    from rigidimpact.solve.impact import Impact
 
     half, tenth = sp.Rational(1, 2), sp.Rational(1, 10)
     a, b = tilt
@@ -760,7 +760,7 @@ def test_importing_the_plots_leaves_the_backend_alone():
     import subprocess
     import sys
 
-    code = ("import matplotlib; matplotlib.use('svg'); import rigidimpact.plots; "
+    code = ("import matplotlib; matplotlib.use('svg'); import rigidimpact.outputs.plots; "
             "print(matplotlib.get_backend())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
@@ -782,9 +782,9 @@ def test_a_pivoted_body_struck_at_two_contacts_reports_its_reaction(tmp_path, ca
     # by the two-body impact (Impact) from the state the other left.
     import sympy as sp
 
-    from rigidimpact.bodies import Body
-    from rigidimpact.contact import Contact
-    from rigidimpact.impact import Impact
+    from rigidimpact.laws.contact import Contact
+    from rigidimpact.model.bodies import Body
+    from rigidimpact.solve.impact import Impact
 
     text = """
 [[bodies]]
@@ -841,7 +841,7 @@ order = ["a", "b"]
 
 
 def test_the_setup_line_states_every_contacts_friction():
-    from rigidimpact.scene import parse_scene
+    from rigidimpact.scenes.scene import parse_scene
 
     scene = parse_scene(ROD_AND_ROOF.format(rule="simultaneous"))
     setup = scene.derivation_at(scene.values).setup

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from rigidimpact import experiment
+from rigidimpact.analyses import experiment
 
 MU, E = 0.092, 1.0  # the simulation's own coefficients
 

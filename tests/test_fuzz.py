@@ -21,9 +21,9 @@ from hypothesis import strategies as st
 
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.expr import MAX_DIGITS, MAX_POWER, parse_expression
-from rigidimpact.notation import SYMBOLS
-from rigidimpact.scene import parse_scene
+from rigidimpact.scenes.scene import parse_scene
+from rigidimpact.symbolic.expr import MAX_DIGITS, MAX_POWER, parse_expression
+from rigidimpact.symbolic.notation import SYMBOLS
 
 FUZZ = settings(max_examples=60, deadline=timedelta(seconds=10), derandomize=True,
                 suppress_health_check=[HealthCheck.too_slow])

@@ -22,10 +22,10 @@ import sympy as sp
 from helpers import refused, scene_file
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.expr import parse_expression
-from rigidimpact.notation import SYMBOLS
-from rigidimpact.problems import derive
-from rigidimpact.scene import parse_scene
+from rigidimpact.paper.problems import derive
+from rigidimpact.scenes.scene import parse_scene
+from rigidimpact.symbolic.expr import parse_expression
+from rigidimpact.symbolic.notation import SYMBOLS
 
 ROOT = Path(__file__).resolve().parents[1]
 RIGIDIMPACT = [sys.executable, "-m", "rigidimpact"]
@@ -178,7 +178,7 @@ def test_results_beyond_float64_steps_are_right(capsys):
 
 def test_results_outside_float64_are_printed_as_valid_json():
     big = {"V_1ix": sp.Integer(10) ** 100, "V_2ix": 0, "V_1iy": 0, "V_2iy": 0, "e": 1}
-    from rigidimpact.numeric import evaluate
+    from rigidimpact.outputs.numeric import evaluate
     value = evaluate({"x": derive("discs").results["V_2fx"] ** 4}, big)["x"]
     assert abs(value / mpmath.mpf(10) ** 400 - 1) < 1e-30
     literal = mpmath.nstr(value, 17)
@@ -196,7 +196,7 @@ def test_sticking_with_exact_irrational_huge_masses(tmp_path, capsys):
 
 
 def test_a_result_undefined_at_the_values_is_refused():
-    from rigidimpact.numeric import evaluate
+    from rigidimpact.outputs.numeric import evaluate
     with pytest.raises(InputError, match="undefined"):
         evaluate({"q": 1 / (SYMBOLS["m"] - 1)}, {"m": sp.Integer(1)})
 
@@ -219,7 +219,7 @@ def test_critical_angle_is_right_to_every_printed_digit(capsys, ratio):
 
 @pytest.mark.parametrize("ratio", ["1e80", "1e5", "4"])
 def test_generalised_critical_angle_at_extreme_ratios(ratio):
-    from rigidimpact.restrike import critical_angle
+    from rigidimpact.analyses.restrike import critical_angle
     result = critical_angle("0.3", ratio)
     edges = [x for pair in result.windows for x in pair if x.kind == "outrace"]
     assert edges

@@ -8,10 +8,10 @@ import pytest
 import sympy as sp
 
 from conftest import SEED, random_body
-from rigidimpact.bodies import Body
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.impact import Impact
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.impact import Impact
 
 CASES = 40
 

@@ -7,13 +7,13 @@ import random
 import pytest
 import sympy as sp
 
-from rigidimpact.bodies import Body
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.impact import Impact
-from rigidimpact.impulse import ImpulseProblem
-from rigidimpact.laws import NewtonRestitution, Stick
-from rigidimpact.notation import symbol
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import NewtonRestitution, Stick
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.impact import Impact
+from rigidimpact.solve.impulse import ImpulseProblem
+from rigidimpact.symbolic.notation import symbol
 
 SEED = 20261122
 

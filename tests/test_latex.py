@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from rigidimpact import latex
-from rigidimpact.problems import PROBLEMS, derive
+from rigidimpact.outputs import latex
+from rigidimpact.paper.problems import PROBLEMS, derive
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
 PINNED = ["barbell--v_fx.tex", "barbell--energy_loss_fraction.tex", "sticking--omega_z.tex",

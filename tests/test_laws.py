@@ -6,10 +6,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from rigidimpact import laws
-from rigidimpact.bodies import Body
-from rigidimpact.contact import Contact
-from rigidimpact.impact import Impact
+from rigidimpact.laws import law as laws
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.impact import Impact
 
 
 def test_contact_names_its_law_objects():
@@ -50,8 +50,8 @@ def test_a_new_restitution_law_is_one_class():
     # a perfectly inelastic law written as one class, with nothing registered elsewhere:
     # the impulse path ends where the normal velocity reaches zero. Routh's method takes
     # it through the object and must give Newton's law at e = 0.
-    from rigidimpact import routh
-    from rigidimpact.laws import Coulomb, NewtonRestitution
+    from rigidimpact.laws import routh
+    from rigidimpact.laws.law import Coulomb, NewtonRestitution
 
     @dataclass(frozen=True, repr=False)
     class Inelastic(NewtonRestitution):

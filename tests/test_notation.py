@@ -3,7 +3,7 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from rigidimpact.notation import SYMBOLS, latex_name, make_symbol, symbol
+from rigidimpact.symbolic.notation import SYMBOLS, latex_name, make_symbol, symbol
 
 
 def test_symbols_carry_their_assumptions():

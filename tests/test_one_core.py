@@ -8,11 +8,11 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision, Sequential, Simultaneous
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.impact import Impact
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.collision import Collision, Sequential, Simultaneous
+from rigidimpact.solve.impact import Impact
 
 HALF, TENTH = sp.Rational(1, 2), sp.Rational(1, 10)
 LAWS = [("smooth", law, {}) for law in ("newton", "poisson", "energetic")] + [
@@ -51,7 +51,7 @@ def test_one_contact_gives_the_same_exact_answer_by_every_rule_and_law(tangentia
 def test_one_law_owns_its_one_contact_impulse():
     # a particle of mass 1/2 on a fixed floor (W = 2 I) at 45 degrees, e = 1: each law's
     # own impulse in contact space, worked by hand
-    from rigidimpact.laws import Coulomb, NewtonRestitution, Rough, Smooth, Stick
+    from rigidimpact.laws.law import Coulomb, NewtonRestitution, Rough, Smooth, Stick
 
     W, v = sp.Matrix([[2, 0], [0, 2]]), sp.Matrix([-1, 1])
     newton = NewtonRestitution(1)
@@ -107,7 +107,7 @@ def test_every_printed_equation_holds_at_the_outcome(name, rule):
     from dataclasses import replace
     from pathlib import Path
 
-    from rigidimpact.scene import load_scene
+    from rigidimpact.scenes.scene import load_scene
 
     root = Path(__file__).parents[1]
     scene = load_scene(root / "derivations" / f"{name}.toml")

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import sympy as sp
 
-from rigidimpact.bodies import Body
-from rigidimpact.contact import Contact
-from rigidimpact.impact import Impact
-from rigidimpact.notation import symbol
-from rigidimpact.problems import derive, sphere_a_velocity, sticking_routes
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.paper.problems import derive, sphere_a_velocity, sticking_routes
+from rigidimpact.solve.impact import Impact
+from rigidimpact.symbolic.notation import symbol
 
 m, M, L, theta, e, v = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
 f_paper = (e + 1) * m / (2 * M + m * (1 + sp.sin(theta) ** 2))  # Mungan eq. (5)

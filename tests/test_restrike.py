@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from rigidimpact import restrike
+from rigidimpact.analyses import restrike
 from rigidimpact.cli import main
-from rigidimpact.notation import symbol
-from rigidimpact.paper import REFERENCES
+from rigidimpact.paper.published import REFERENCES
 from rigidimpact.simulate.flight import Flyer, first_contact
+from rigidimpact.symbolic.notation import symbol
 from rigidimpact.verify import run_checks
 
 m, M, L, theta, e, v_ix = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))

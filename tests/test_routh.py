@@ -14,14 +14,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from rigidimpact import routh
-from rigidimpact.bodies import Body
-from rigidimpact.contact import Contact
-from rigidimpact.impact import Impact
-from rigidimpact.impulse import ImpulseProblem
-from rigidimpact.laws import RESTITUTION_LAWS
-from rigidimpact.notation import symbol
-from rigidimpact.problems import derive
+from rigidimpact.laws import routh
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import RESTITUTION_LAWS
+from rigidimpact.model.bodies import Body
+from rigidimpact.paper.problems import derive
+from rigidimpact.solve.impact import Impact
+from rigidimpact.solve.impulse import ImpulseProblem
+from rigidimpact.symbolic.notation import symbol
 
 SEED = 1305
 ROOT = Path(__file__).resolve().parents[1]

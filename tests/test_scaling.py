@@ -13,8 +13,8 @@ import random
 import pytest
 import sympy as sp
 
-from rigidimpact.bench import LADDER_ORDER, LADDER_SCENE
-from rigidimpact.scene import parse_scene
+from rigidimpact.analyses.bench import LADDER_ORDER, LADDER_SCENE
+from rigidimpact.scenes.scene import parse_scene
 
 TILTED = LADDER_SCENE  # the bench's ladder scene: 16 symbols with a tilted normal
 NAMES = LADDER_ORDER

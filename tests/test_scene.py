@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.scene import load_scene, parse_expression, parse_scene
+from rigidimpact.scenes.scene import load_scene, parse_expression, parse_scene
 
 DERIVATIONS = Path(__file__).resolve().parent.parent / "derivations"
 
@@ -89,7 +89,7 @@ def test_bad_scenes_name_the_field(text, field):
 
 
 def test_scene_barbell_matches_the_built_in_problem():
-    from rigidimpact.problems import derive
+    from rigidimpact.paper.problems import derive
 
     scene = parse_scene(BASE).derivation().results
     built_in = derive("barbell").results

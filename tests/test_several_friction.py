@@ -10,9 +10,9 @@ import pytest
 import sympy as sp
 
 from helpers import touching
-from rigidimpact.bodies import Body
-from rigidimpact.collision import Collision
 from rigidimpact.errors import InputError
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.collision import Collision
 
 HALF = sp.Rational(1, 2)
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from rigidimpact import shapes
-from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
-from rigidimpact.scene import parse_scene
+from rigidimpact.model import shapes
+from rigidimpact.model.bodies import Body
+from rigidimpact.scenes.scene import parse_scene
 
 STRIKER = '''
 [[bodies]]

@@ -9,11 +9,11 @@ import pytest
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.notation import symbol
-from rigidimpact.paper import F
-from rigidimpact.scene import load_scene, parse_scene
+from rigidimpact.paper.published import F
+from rigidimpact.scenes.scene import load_scene, parse_scene
 from rigidimpact.simulate import EFFECTS, make_plan, run
 from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
+from rigidimpact.symbolic.notation import symbol
 
 DERIVATIONS = Path(__file__).resolve().parent.parent / "derivations"
 

@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.scene import load_scene, parse_scene
+from rigidimpact.scenes.scene import load_scene, parse_scene
 from rigidimpact.simulate import run
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from rigidimpact.stability import BOUND, run_suite
+from rigidimpact.analyses.stability import BOUND, run_suite
 
 # quantities whose exact value has no cancellation: bounded relative to their own value
 WELL_CONDITIONED = {("barbell", "V_x"), ("barbell", "omega_z"), ("barbell", "f"),
@@ -39,9 +39,9 @@ def test_v_fx_at_e_zero_is_relatively_accurate():
 
     import mpmath
 
-    from rigidimpact.numeric import Kernel
-    from rigidimpact.problems import derive
-    from rigidimpact.stability import ANGLES, LENGTHS, RATIOS
+    from rigidimpact.analyses.stability import ANGLES, LENGTHS, RATIOS
+    from rigidimpact.outputs.numeric import Kernel
+    from rigidimpact.paper.problems import derive
 
     kernel = Kernel.from_expr(derive("barbell").results["v_fx"])
     for M, L, theta in itertools.product(RATIOS, LENGTHS, ANGLES):
@@ -58,7 +58,7 @@ def test_the_suite_covers_the_extremes(report):
 
 
 def test_every_backend_is_checked_and_passes(report):
-    from rigidimpact.stability import available_backends
+    from rigidimpact.analyses.stability import available_backends
 
     assert report["backends"] == list(available_backends())
     for row in report["rows"]:

@@ -9,13 +9,13 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from rigidimpact import catalogue
-from rigidimpact.bodies import Body, cross
 from rigidimpact.cli import main
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.impact import Impact
-from rigidimpact.scene import load_scene, parse_scene
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body, cross
+from rigidimpact.paper import catalogue
+from rigidimpact.scenes.scene import load_scene, parse_scene
+from rigidimpact.solve.impact import Impact
 from rigidimpact.verify import agree
 
 ROOT = Path(__file__).resolve().parents[1]

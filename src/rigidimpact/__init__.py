@@ -16,47 +16,50 @@ from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on first use
-    from rigidimpact.bodies import Body as Body
-    from rigidimpact.bodies import join as join
-    from rigidimpact.collision import Collision as Collision
-    from rigidimpact.collision import Compliant as Compliant
-    from rigidimpact.collision import Outcome as Outcome
-    from rigidimpact.collision import Sequential as Sequential
-    from rigidimpact.collision import Simultaneous as Simultaneous
-    from rigidimpact.collision import chain as chain
-    from rigidimpact.contact import Contact as Contact
+    from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
-    from rigidimpact.impact import Impact as Impact
-    from rigidimpact.laws import Equation as Equation
-    from rigidimpact.notation import symbol as symbol
-    from rigidimpact.problems import PROBLEMS as PROBLEMS
-    from rigidimpact.problems import Derivation as Derivation
-    from rigidimpact.problems import derive as derive
-    from rigidimpact.restrike import critical_angle as critical_angle
-    from rigidimpact.scene import Scene as Scene
-    from rigidimpact.scene import load_scene as load_scene
-    from rigidimpact.scene import parse_scene as parse_scene
+    from rigidimpact.laws.contact import Contact as Contact
+    from rigidimpact.laws.law import Equation as Equation
+    from rigidimpact.model.bodies import Body as Body
+    from rigidimpact.model.bodies import join as join
+    from rigidimpact.paper.problems import PROBLEMS as PROBLEMS
+    from rigidimpact.paper.problems import derive as derive
+    from rigidimpact.scenes.scene import Scene as Scene
+    from rigidimpact.scenes.scene import load_scene as load_scene
+    from rigidimpact.scenes.scene import parse_scene as parse_scene
     from rigidimpact.simulate import make_plan as make_plan
     from rigidimpact.simulate import run as run
-    from rigidimpact.solution import Solution as Solution
+    from rigidimpact.solve.collision import Collision as Collision
+    from rigidimpact.solve.collision import Compliant as Compliant
+    from rigidimpact.solve.collision import Outcome as Outcome
+    from rigidimpact.solve.collision import Sequential as Sequential
+    from rigidimpact.solve.collision import Simultaneous as Simultaneous
+    from rigidimpact.solve.collision import chain as chain
+    from rigidimpact.solve.derivation import Derivation as Derivation
+    from rigidimpact.solve.impact import Impact as Impact
+    from rigidimpact.solve.solution import Solution as Solution
+    from rigidimpact.symbolic.notation import symbol as symbol
     from rigidimpact.verify import run_checks as run_checks
 
 # name -> module; imported on first use, so `import rigidimpact` (and the command line's
 # start) costs only what is used
 _PUBLIC = {
     # primitives and contact
-    "Body": "bodies", "join": "bodies", "Contact": "contact", "InputError": "errors",
+    "Body": "model.bodies", "join": "model.bodies", "Contact": "laws.contact",
+    "InputError": "errors",
     # solving
-    "Impact": "impact", "Equation": "laws", "Solution": "solution", "symbol": "notation",
-    "PROBLEMS": "problems", "Derivation": "problems", "derive": "problems",
+    "Impact": "solve.impact", "Equation": "laws.law", "Solution": "solve.solution",
+    "symbol": "symbolic.notation", "PROBLEMS": "paper.problems",
+    "Derivation": "solve.derivation", "derive": "paper.problems",
     # several contacts: the collision, its rules and what they give
-    "Collision": "collision", "Simultaneous": "collision", "Sequential": "collision",
-    "Compliant": "collision", "Outcome": "collision", "chain": "collision",
+    "Collision": "solve.collision", "Simultaneous": "solve.collision",
+    "Sequential": "solve.collision", "Compliant": "solve.collision",
+    "Outcome": "solve.collision", "chain": "solve.collision",
     # scenes and checks
-    "Scene": "scene", "load_scene": "scene", "parse_scene": "scene",
+    "Scene": "scenes.scene", "load_scene": "scenes.scene", "parse_scene": "scenes.scene",
     "run_checks": "verify",
     # after the impact
-    "critical_angle": "restrike", "make_plan": "simulate", "run": "simulate",
+    "critical_angle": "analyses.restrike", "make_plan": "simulate", "run": "simulate",
 }
 
 __all__ = list(_PUBLIC)

@@ -41,8 +41,8 @@ class _Parser(argparse.ArgumentParser):
 
 def _derivation(target: str):
     """A built-in problem by name, or a scene file by path."""
-    from rigidimpact.problems import PROBLEMS, derive
-    from rigidimpact.scene import load_scene
+    from rigidimpact.paper.problems import PROBLEMS, derive
+    from rigidimpact.scenes.scene import load_scene
 
     if target in PROBLEMS:
         return derive(target)
@@ -53,7 +53,7 @@ def _derivation(target: str):
 
 
 def _expr_json(expr: sp.Expr) -> dict[str, str]:
-    from rigidimpact.latex import to_latex
+    from rigidimpact.outputs.latex import to_latex
 
     return {"sympy": str(expr), "latex": to_latex(expr)}
 
@@ -100,7 +100,7 @@ def _print_regimes(d: Any) -> None:
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from rigidimpact.latex import equation_latex, fragment, to_latex
+    from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
 
     d = _derivation(args.target)
     for warning in d.warnings:
@@ -140,7 +140,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     for line in d.setup:
         print(f"  {line}")
     if d.outcomes:
-        from rigidimpact.collision import rule_laws
+        from rigidimpact.solve.collision import rule_laws
 
         print(f"\nLaws: {rule_laws(d.outcomes[0].rule, d.outcomes[0].frictional)}")
         print("\nEquations solved" + (" (every case and order):" if len(d.outcomes) > 1
@@ -204,8 +204,8 @@ def _cmd_verify(args: argparse.Namespace) -> int:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from rigidimpact.latex import write_export
-    from rigidimpact.problems import PROBLEMS
+    from rigidimpact.outputs.latex import write_export
+    from rigidimpact.paper.problems import PROBLEMS
     from rigidimpact.verify import run_checks
 
     targets = args.targets or list(PROBLEMS)
@@ -238,8 +238,8 @@ def _settings(defaults: Any, settings: Sequence[str]) -> tuple[dict, dict]:
 
 def _evaluation(target: str, settings: Sequence[str], dps: int | None):
     """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
-    from rigidimpact.problems import PROBLEMS
-    from rigidimpact.scene import load_scene
+    from rigidimpact.paper.problems import PROBLEMS
+    from rigidimpact.scenes.scene import load_scene
 
     if target in PROBLEMS:
         derivation = _derivation(target)
@@ -256,7 +256,7 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None):
 
 def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None):
     """Several contacts are solved with numbers: check them, solve, report each rule."""
-    from rigidimpact.problems import Evaluation, physics_warnings, read_values
+    from rigidimpact.solve.derivation import Evaluation, physics_warnings, read_values
 
     exact = read_values(values, sources, scene.data_symbols, scene.roles, scene.name)
     derivation = scene.derivation_at(exact)
@@ -317,8 +317,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
 
 def _cmd_routh(args: argparse.Namespace) -> int:
     """The impulse path of a Coulomb contact at the scene's values, as numbers or a PNG."""
-    from rigidimpact.routh import diagram
-    from rigidimpact.scene import load_scene
+    from rigidimpact.laws.routh import diagram
+    from rigidimpact.scenes.scene import load_scene
 
     scene = load_scene(args.scene)
     if args.plot:
@@ -328,9 +328,9 @@ def _cmd_routh(args: argparse.Namespace) -> int:
     exact = derivation.checked(values, sources)
     found = diagram(scene.impact(), {derivation.symbols[k]: v for k, v in exact.items()})
     if args.plot:
-        from rigidimpact.atomic import write_file
+        from rigidimpact.outputs.atomic import write_file
         _files_only()
-        from rigidimpact.plots import routh_diagram
+        from rigidimpact.outputs.plots import routh_diagram
 
         figure = routh_diagram(found, scene.title)
         write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
@@ -351,7 +351,7 @@ def _cmd_routh(args: argparse.Namespace) -> int:
 
 
 def _cmd_stability(args: argparse.Namespace) -> int:
-    from rigidimpact.stability import run_suite
+    from rigidimpact.analyses.stability import run_suite
 
     report = run_suite()
     if args.json:
@@ -380,8 +380,8 @@ def _raw_json(data: Any, numbers: dict[str, str]) -> str:
 def _cmd_critical_angle(args: argparse.Namespace) -> int:
     import mpmath
 
-    from rigidimpact.latex import to_latex
-    from rigidimpact.restrike import critical_angle
+    from rigidimpact.analyses.restrike import critical_angle
+    from rigidimpact.outputs.latex import to_latex
 
     result = critical_angle(args.e, args.mass_ratio)
     digits = args.digits
@@ -423,7 +423,7 @@ def _cmd_critical_angle(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    from rigidimpact.scene import load_scene
+    from rigidimpact.scenes.scene import load_scene
     from rigidimpact.simulate import explain, run
 
     scene = load_scene(args.scene)
@@ -488,9 +488,9 @@ def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
     import numpy as np
     from matplotlib.animation import FFMpegWriter, PillowWriter
 
-    from rigidimpact.atomic import write_file
+    from rigidimpact.outputs.atomic import write_file
     _files_only()
-    from rigidimpact.plots import animation
+    from rigidimpact.outputs.plots import animation
 
     if _ends_at_impact(outcome):
         raise InputError("--animate", "this run ends at the impact (until = "
@@ -518,9 +518,9 @@ def _ends_at_impact(outcome: Any) -> bool:
 def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
     """Draw a run's trajectories to a PNG (or, for a run that ends at the impact, the
     bodies at the impact with their velocities), written whole or not at all."""
-    from rigidimpact.atomic import write_file
+    from rigidimpact.outputs.atomic import write_file
     _files_only()
-    from rigidimpact.plots import impact_picture, trajectories
+    from rigidimpact.outputs.plots import impact_picture, trajectories
     from rigidimpact.simulate import impact_view
 
     if _ends_at_impact(outcome):
@@ -557,9 +557,9 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     import itertools
     import time
 
-    from rigidimpact.problems import PROBLEMS
-    from rigidimpact.scene import load_scene
-    from rigidimpact.sweep import parse_grid, run_sweep
+    from rigidimpact.outputs.sweep import parse_grid, run_sweep
+    from rigidimpact.paper.problems import PROBLEMS
+    from rigidimpact.scenes.scene import load_scene
 
     defaults: Mapping[Any, Any] = {}
     if args.target in PROBLEMS:
@@ -640,7 +640,7 @@ def _files_only() -> None:
 
 def _cmd_bench(args: argparse.Namespace) -> int:
     _files_only()
-    from rigidimpact.bench import run_bench, write_outputs
+    from rigidimpact.analyses.bench import run_bench, write_outputs
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():
@@ -651,7 +651,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         raise InputError("--out", f"cannot make {str(out)!r}: {exc.strerror or exc}") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise InputError("--out", f"cannot write in {str(out)!r} (permission denied)")
-    from rigidimpact.bench import FAMILIES
+    from rigidimpact.analyses.bench import FAMILIES
 
     unknown = [f for f in args.family if f not in FAMILIES]
     if unknown:

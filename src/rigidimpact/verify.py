@@ -1,7 +1,7 @@
 """Checking derived results against the paper: the check lists, and running them.
 
 Each check compares a derived result with the paper's by the two independent tests of
-:mod:`rigidimpact.compare` (an exact symbolic zero, and agreement to 40 digits at seeded
+:mod:`rigidimpact.symbolic.compare` (an exact symbolic zero, and agreement to 40 digits at seeded
 points); ``rigidimpact verify`` runs the paper's checks below, the re-strike's
 (``restrike.CHECKS``) and the textbook catalogue's (``catalogue.CHECKS``).
 
@@ -20,21 +20,22 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from rigidimpact import catalogue, problems, restrike
-from rigidimpact.bodies import Body
-from rigidimpact.compare import (
+from rigidimpact.analyses import restrike
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.paper import catalogue, problems
+from rigidimpact.paper.published import REFERENCES
+from rigidimpact.solve.impact import Impact
+from rigidimpact.symbolic.compare import (
     SEED,
     Verdict,
     agree,
     same_equation,
     symbolic_zero,
 )
-from rigidimpact.compare import all_of as _all
-from rigidimpact.contact import Contact
-from rigidimpact.impact import Impact
-from rigidimpact.notation import symbol
-from rigidimpact.paper import REFERENCES
-from rigidimpact.rewrite import tidy
+from rigidimpact.symbolic.compare import all_of as _all
+from rigidimpact.symbolic.notation import symbol
+from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Verdict", "Check", "agree", "same_equation", "symbolic_zero", "run_checks",
            "CHECKS", "register"]

@@ -39,11 +39,11 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rigidimpact.bodies import Body
-from rigidimpact.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitution_of
 from rigidimpact.errors import InputError
-from rigidimpact.scene import Scene
-from rigidimpact.shapes import is_round
+from rigidimpact.laws.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitution_of
+from rigidimpact.model.bodies import Body
+from rigidimpact.model.shapes import is_round
+from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.numbers import as_array, as_float
 from rigidimpact.simulate.outcome import Outcome
 from rigidimpact.simulate.planner import Plan

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from rigidimpact.shapes import is_round, is_segment
+from rigidimpact.model.shapes import is_round, is_segment
 
 __all__ = ["Flyer", "Meeting", "first_contact", "reach_interval", "segment_gap"]
 

@@ -16,7 +16,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.scene import Scene
+from rigidimpact.scenes.scene import Scene
 
 __all__ = ["scene_values", "as_float", "as_array"]
 

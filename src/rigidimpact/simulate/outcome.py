@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from rigidimpact.bodies import Body
 from rigidimpact.errors import InputError
+from rigidimpact.model.bodies import Body
 from rigidimpact.simulate.flight import Flyer
 from rigidimpact.simulate.numbers import as_float
 from rigidimpact.simulate.planner import Plan

@@ -2,7 +2,7 @@
 
 Examples
 --------
->>> from rigidimpact.scene import load_scene
+>>> from rigidimpact.scenes.scene import load_scene
 >>> outcome = run(load_scene("derivations/barbell.toml"))
 >>> [event["kind"] for event in outcome.events]
 ['impact', 'end']
@@ -17,17 +17,17 @@ import time
 from dataclasses import replace
 from typing import Any
 
-from rigidimpact.collision import rule_laws
 from rigidimpact.errors import InputError
-from rigidimpact.problems import model_name, physics_warnings
-from rigidimpact.scene import Scene
-from rigidimpact.shapes import is_segment
+from rigidimpact.model.shapes import is_segment
+from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.compliant import prepare, run_compliant
 from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
 from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.several import run_several
+from rigidimpact.solve.collision import rule_laws
+from rigidimpact.solve.derivation import model_name, physics_warnings
 
 __all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack", "impact_view", "rigid_limit"]
 
@@ -37,7 +37,7 @@ def explain(scene: Scene) -> str:
 
     Examples
     --------
-    >>> from rigidimpact.scene import load_scene
+    >>> from rigidimpact.scenes.scene import load_scene
     >>> print(explain(load_scene("derivations/restrike.toml")).splitlines()[2])
     2. free-flight: no force between impacts: straight lines and steady spin in closed form, with an exact search for the next contact
     """  # noqa: E501

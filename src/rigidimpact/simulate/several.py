@@ -1,6 +1,6 @@
 """Free flight after an impact at several contacts, until one of them closes again.
 
-The impact itself is the scene's rule (:mod:`rigidimpact.collision`), solved exactly.
+The impact itself is the scene's rule (:mod:`rigidimpact.solve.collision`), solved exactly.
 After it no force acts but gravity (when asked for), so each body's centre follows a
 parabola and its orientation turns steadily: positions are written down, not integrated.
 The run ends at the time asked for, or earlier at the first time one of the scene's own
@@ -24,7 +24,7 @@ documentation says so for the second.
 
 Examples
 --------
->>> from rigidimpact.scene import load_scene
+>>> from rigidimpact.scenes.scene import load_scene
 >>> import rigidimpact
 >>> from pathlib import Path
 >>> root = Path(rigidimpact.__file__).parents[2]
@@ -44,16 +44,16 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from rigidimpact.bodies import Body
-from rigidimpact.collision import Outcome as RuleOutcome
-from rigidimpact.contact import Contact
 from rigidimpact.errors import InputError
-from rigidimpact.problems import physics_warnings, read_values
-from rigidimpact.scene import Scene
-from rigidimpact.shapes import is_round, is_segment
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.model.shapes import is_round, is_segment
+from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.flight import Flyer, _certified_first_root, first_contact
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
+from rigidimpact.solve.collision import Outcome as RuleOutcome
+from rigidimpact.solve.derivation import physics_warnings, read_values
 
 __all__ = ["run_several", "Watch", "watches", "SeveralTrack"]
 

@@ -1,0 +1,550 @@
+"""The laws of an impulsive contact, as labelled equations with the paper's numbers.
+
+Each function takes bodies in the contact frame (x along the normal) before and after
+the impact and returns an :class:`Equation` ``lhs = rhs`` that keeps what it says and
+which law it is, so a derivation can be shown step by step. The laws are generic: the
+equation numbers of Mungan (Eur. J. Phys. 28, 2007) are attached by the paper's own
+problems (:data:`rigidimpact.paper.problems.PAPER_NUMBERS`), not here.
+
+Examples
+--------
+>>> from rigidimpact.model.bodies import Body
+>>> ball = Body.particle(2, velocity=(3, 0))
+>>> after = ball.with_motion((1, 0), 0)
+>>> tangential_momentum(ball, after)  # doctest: +NORMALIZE_WHITESPACE
+Equation(label='tangential momentum of ball is unchanged', paper='', lhs=0, rhs=0,
+         law='tangential momentum')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, ClassVar
+
+import sympy as sp
+
+from rigidimpact.laws import routh
+from rigidimpact.model.bodies import Body
+from rigidimpact.symbolic.geometry import cross
+from rigidimpact.symbolic.notation import escape_text, to_latex
+
+__all__ = [
+    "Equation",
+    "normal_momentum",
+    "tangential_momentum",
+    "pair_tangential_momentum",
+    "angular_momentum",
+    "angular_momentum_about_pivot",
+    "restitution",
+    "no_slip",
+    "impulse_momentum",
+    "ContactLaw",
+    "NewtonRestitution",
+    "Smooth",
+    "Stick",
+    "PoissonRestitution",
+    "EnergeticRestitution",
+    "Coulomb",
+    "Rough",
+    "RESTITUTION_LAWS",
+    "TANGENTIAL_LAWS",
+]
+
+
+@dataclass(frozen=True)
+class Equation:
+    """``lhs = rhs``, with what it states, the paper's equation number(s) where a
+    paper's problem gives them, and which law it is.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> eq = Equation("demo", "(1)", 2 * x, 4)
+    >>> eq.residual, eq.as_sympy()
+    (2*x - 4, Eq(2*x, 4))
+    """
+
+    label: str
+    paper: str
+    lhs: sp.Expr
+    rhs: sp.Expr
+    law: str = ""  # which law this is, so a problem from a paper can number it
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "lhs", sp.sympify(self.lhs, strict=True))
+        object.__setattr__(self, "rhs", sp.sympify(self.rhs, strict=True))
+
+    @property
+    def residual(self) -> sp.Expr:
+        """``lhs - rhs``, zero when the equation holds."""
+        return self.lhs - self.rhs
+
+    def _repr_latex_(self) -> str:
+        r"""Typeset in Jupyter, in the paper's notation, with what the law says.
+
+        Examples
+        --------
+        >>> from rigidimpact.symbolic.notation import symbol
+        >>> print(Equation("restitution", "(4)", symbol("V_x"), 0)._repr_latex_())
+        $\displaystyle V_{x} = 0 \qquad \text{restitution (4)}$
+        """
+
+        note = escape_text(self.label + (f" {self.paper}" if self.paper else ""))
+        return (rf"$\displaystyle {to_latex(self.lhs)} = {to_latex(self.rhs)} \qquad "
+                rf"\text{{{note}}}$")
+
+    def as_sympy(self) -> sp.Equality:
+        """The equation as an unevaluated SymPy ``Eq``."""
+        return sp.Eq(self.lhs, self.rhs, evaluate=False)
+
+    def subs(self, *args, **kwargs) -> Equation:
+        """The same law with a substitution made on both sides.
+
+        Examples
+        --------
+        >>> x = sp.Symbol("x")
+        >>> Equation("demo", "", x, 1).subs(x, 2).lhs
+        2
+        """
+        return replace(self, lhs=self.lhs.subs(*args, **kwargs),
+                       rhs=self.rhs.subs(*args, **kwargs))
+
+    def xreplace(self, rule: dict) -> Equation:
+        """The same law with `rule` replacing subexpressions exactly on both sides.
+
+        Examples
+        --------
+        >>> x = sp.Symbol("x")
+        >>> Equation("demo", "", x, 1).xreplace({x: 2}).lhs
+        2
+        """
+        return replace(self, lhs=self.lhs.xreplace(rule), rhs=self.rhs.xreplace(rule))
+
+
+def normal_momentum(first: Body, first_after: Body, second: Body,
+                    second_after: Body) -> Equation:
+    """Linear momentum of the pair along the normal is conserved: eqs. (1) and (12).
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(3, (0, 0), "b")
+    >>> normal_momentum(a, a.with_motion((0, 0), 0), b, b.with_motion((1, 0), 0)).residual
+    -1
+    """
+    return Equation(
+        "linear momentum along the normal",
+        "",
+        first.momentum[0] + second.momentum[0],
+        first_after.momentum[0] + second_after.momentum[0],
+        "normal momentum",
+    )
+
+
+def tangential_momentum(before: Body, after: Body) -> Equation:
+    """A smooth contact gives no tangential impulse: each body keeps V_y, eq. (13)."""
+    return Equation(f"tangential momentum of {before.name} is unchanged", "",
+                    before.velocity[1], after.velocity[1], "tangential momentum")
+
+
+def pair_tangential_momentum(first: Body, first_after: Body, second: Body,
+                             second_after: Body) -> Equation:
+    """With sticking the tangential impulses cancel in pairs: the pair keeps its P_y.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 1), "a"), Body.particle(1, (0, 0), "b")
+    >>> pair_tangential_momentum(a, a, b, b).residual
+    0
+    """
+    return Equation(
+        "tangential momentum of the pair",
+        "",
+        first.momentum[1] + second.momentum[1],
+        first_after.momentum[1] + second_after.momentum[1],
+        "pair tangential momentum",
+    )
+
+
+def angular_momentum(before: Body, after: Body) -> Equation:
+    """The impulse acts at O, so each body's angular momentum about O is kept: (2), (14).
+
+    Spin part ``I omega`` plus orbital part ``m R x V``, before and after.
+
+    Examples
+    --------
+    >>> b = Body.rigid(1, 1, (0, 1), velocity=(1, 0))
+    >>> angular_momentum(b, b.with_motion((0, 0), sp.Symbol("w"))).as_sympy()
+    Eq(-1, w)
+    """
+    return Equation(f"angular momentum of {before.name} about O", "",
+                    before.angular_momentum, after.angular_momentum, "angular momentum")
+
+
+def angular_momentum_about_pivot(before: tuple[Body, Body], after: tuple[Body, Body],
+                                 hinged: Body) -> Equation:
+    """With one body on a fixed hinge, the pair's angular momentum about the hinge is kept.
+
+    The hinge's reaction impulse acts at the hinge, so it has no moment about it; the
+    contact impulses are internal to the pair. Each body counts ``I omega`` plus
+    ``m (R - q) x V`` about the hinge q. (The pair's linear momentum is *not* kept: the
+    reaction changes it.)
+
+    Examples
+    --------
+    >>> ball = Body.particle(1, (1, 0), "ball")
+    >>> rod = Body.rod(3, 2, sp.pi / 2, 0, pivot=(0, -1), name="rod")
+    >>> w, u = sp.symbols("w u")
+    >>> angular_momentum_about_pivot((ball, rod), (ball.with_motion((u, 0), 0),
+    ...                              rod.with_motion((-w, 0), w)), rod).as_sympy()
+    Eq(-1, -u + 4*w)
+    """
+    q = hinged.pivot
+
+    def about_pivot(body: Body) -> sp.Expr:
+        if body.support == "fixed":
+            return sp.Integer(0)
+        return body.inertia * body.spin + body.mass * cross(body.position - q, body.velocity)
+
+    return Equation(f"angular momentum of the pair about {hinged.name}'s pivot", "",
+                    sum((about_pivot(b) for b in before), sp.Integer(0)),
+                    sum((about_pivot(b) for b in after), sp.Integer(0)),
+                    "angular momentum about the pivot")
+
+
+def restitution(first: Body, first_after: Body, second: Body, second_after: Body,
+                e: sp.Expr) -> Equation:
+    """Newton's kinematic restitution at O along the normal: eqs. (3) and (4).
+
+    ``v_2fx - v_1fx = -e (v_2ix - v_1ix)`` with the contact velocities of eq. (11).
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(1, (0, 0), "b")
+    >>> restitution(a, a, b, b, 1).as_sympy()
+    Eq(-2, 2)
+    """
+    return Equation(
+        "restitution along the normal",
+        "",
+        second_after.contact_velocity[0] - first_after.contact_velocity[0],
+        -e * (second.contact_velocity[0] - first.contact_velocity[0]),
+        "restitution",
+    )
+
+
+def no_slip(first_after: Body, second_after: Body) -> Equation:
+    """Sticking: the contact points leave O with the same tangential velocity.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 1), "a"), Body.particle(1, (0, 3), "b")
+    >>> no_slip(a, b).residual
+    2
+    """
+    return Equation(
+        "sticking: no tangential slip at O afterwards",
+        "",
+        second_after.contact_velocity[1] - first_after.contact_velocity[1],
+        sp.Integer(0),
+        "no slip",
+    )
+
+
+def impulse_momentum(before: Body, after: Body, impulse: sp.MatrixBase) -> Equation:
+    """A supported body's turn changes by the moment of the impulse it receives at O.
+
+    About a pivot q the reaction has no moment, so ``I_q (omega_f - omega_i) = (O - q) x
+    P``; this is the law printed when no conservation law holds (both bodies supported),
+    with the contact impulse P among the unknowns.
+
+    Examples
+    --------
+    >>> rod = Body.rod(3, 2, sp.pi / 2, -1, pivot=(0, -2), name="rod")
+    >>> w, P = sp.symbols("w P")
+    >>> impulse_momentum(rod, rod.with_motion((-w, 0), w), sp.Matrix([P, 0])).as_sympy()
+    Eq(4*w, -2*P)
+    """
+    return Equation(f"angular impulse on {before.name} about its pivot", "",
+                    before.inertia_about_pivot * (after.spin - before.spin),
+                    cross(-before.pivot, impulse), "angular impulse about the pivot")
+
+
+# ---- contact laws: each gives the equations a derivation prints and the conditions the
+# solver imposes on the impulse P = (P_n, P_t), built from those same equations
+
+class ContactLaw:
+    """A law acting at the contact, as printed and as solved.
+
+    ``equations(before, after)`` are the labelled laws over the unknown motion after;
+    ``conditions(before, kicked, impulse)`` are the residuals the impulse must zero,
+    where `kicked` are the bodies after receiving the impulse, so the solver imposes the
+    printed law itself. A new law is one subclass here and its entry in
+    :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`.
+    """
+
+    name = ""
+    solved_by_regimes = False  # True: the impulse comes from `regimes`, not `conditions`
+    # the states the law allows a contact at the velocity level, where several contacts
+    # act together (the simultaneous rule): "on" (pushing, no tangential impulse),
+    # "stick" (no slip after), "slide+"/"slide-" (on the friction cone's edge); empty:
+    # the law has no velocity-level form and acts only as one contact's own impact
+    velocity_states: ClassVar[tuple[str, ...]] = ("stick",)
+    grips: ClassVar[bool] = True  # False: the law never gives a tangential impulse
+
+    def cone(self) -> Any:
+        """The friction coefficient bounding a sticking contact (None: no bound)."""
+        return None
+
+    @classmethod
+    def from_contact(cls, contact: Any) -> ContactLaw:
+        """The law with the coefficients it takes from a contact (none by default)."""
+        return cls()
+
+    def equations(self, before: tuple[Body, Body],
+                  after: tuple[Body, Body]) -> tuple[Equation, ...]:
+        raise NotImplementedError
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        """The courses of the impact, for a law that is not a linear condition."""
+        raise NotImplementedError(f"{type(self).__name__} is imposed as linear conditions")
+
+    def conditions(self, before: tuple[Body, Body], kicked: tuple[Body, Body],
+                   impulse: sp.MatrixBase) -> list[sp.Expr]:
+        return [eq.residual for eq in self.equations(before, kicked)]
+
+    def alone(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+              restitution: NewtonRestitution) -> tuple[sp.Expr, sp.Expr, str]:
+        """This contact's impact on its own in contact space: ``(P_n, P_t, course)``
+        from its 2x2 W (normal, tangent) and its velocities before (second minus
+        first). With regimes, the course that holds (numbers needed to pick one)."""
+        if self.solved_by_regimes:
+            regime = next(r for r in self.regimes(W, v_before, restitution)
+                          if r.holds() is not False)
+            return sp.sympify(regime.impulse[0]), sp.sympify(regime.impulse[1]), regime.name
+        return self._linear_alone(W, v_before, restitution)
+
+    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
+        # a straight impulse path: every restitution law reads as Newton's
+        return -(1 + restitution.e) * v_before[0] / W[0, 0], sp.Integer(0), self.name
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
+
+
+@dataclass(frozen=True, repr=False)
+class NewtonRestitution(ContactLaw):
+    """Newton's kinematic law: the normal closing speed reverses, scaled by e.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(1, (0, 0), "b")
+    >>> NewtonRestitution(1).equations((a, b), (a, b))[0].as_sympy()
+    Eq(-2, 2)
+    """
+
+    e: sp.Expr
+    name = "newton"
+    splits_on_compression = False  # on a bent impulse path: the end is set by velocity
+    # contacts acting together (the simultaneous rule): "velocity" (each acting contact
+    # leaves at -e times its closing velocity), "impulse" (the compression impulses
+    # solved with target zero, each scaled by 1 + e), None (no such form)
+    together: ClassVar[str | None] = "velocity"
+
+    def equations(self, before, after):
+        return (restitution(before[0], after[0], before[1], after[1], self.e),)
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        """The normal impulse at the end of an impact whose slip stopped at
+        ``second.start`` (Routh's method, :mod:`rigidimpact.laws.routh`)."""
+        return routh.newton_end(first, second, v_n, self.e)
+
+    def __repr__(self) -> str:
+        return f"NewtonRestitution({self.e})"
+
+
+class Smooth(ContactLaw):
+    """No tangential impulse; printed as each free body keeping its tangential momentum
+    (the paper's eq. 13), imposed as ``P_t = 0``.
+
+    Examples
+    --------
+    >>> a = Body.particle(1, (2, 1), "a")
+    >>> Smooth().equations((a, Body.fixed()), (a, Body.fixed()))[0].residual
+    0
+    """
+
+    name = "smooth"
+    velocity_states = ("on",)
+    grips = False
+
+    def equations(self, before, after):
+        return tuple(tangential_momentum(b, a) for b, a in zip(before, after, strict=True)
+                     if b.support == "free")
+
+    def conditions(self, before, kicked, impulse):
+        return [impulse[1]]
+
+
+class Stick(ContactLaw):
+    """The touching points leave with the same tangential velocity.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 1), "a"), Body.particle(1, (0, 3), "b")
+    >>> Stick().equations((a, b), (a, b))[0].residual
+    2
+    """
+
+    name = "stick"
+    velocity_states = ("stick",)
+
+    def equations(self, before, after):
+        return (no_slip(after[0], after[1]),)
+
+    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
+        # Newton's e across, no slip after: W P = (-(1 + e) v_n, -v_t)
+        P = sp.Matrix(W).LUsolve(sp.Matrix([-(1 + restitution.e) * v_before[0],
+                                            -v_before[1]]))
+        return P[0], P[1], self.name
+
+
+@dataclass(frozen=True, repr=False)
+class PoissonRestitution(NewtonRestitution):
+    """Poisson's kinetic law: the normal impulse of restitution is e times that of
+    compression. On a straight impulse path (a smooth contact) it reads as Newton's law,
+    and that is what is printed and imposed there; with friction the path bends and the
+    law is applied by Routh's method (:mod:`rigidimpact.laws.routh`).
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (2, 0), "a"), Body.particle(1, (0, 0), "b")
+    >>> PoissonRestitution(1).equations((a, b), (a, b))[0].label
+    "restitution along the normal (Poisson's law on a straight impulse path)"
+    """
+
+    name = "poisson"
+    splits_on_compression = True
+    together = "impulse"
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
+
+    def equations(self, before, after):
+        (equation,) = super().equations(before, after)
+        return (replace(equation, label=f"{equation.label} (Poisson's law on a straight "
+                                        "impulse path)"),)
+
+    def __repr__(self) -> str:
+        return f"PoissonRestitution({self.e})"
+
+
+@dataclass(frozen=True, repr=False)
+class EnergeticRestitution(NewtonRestitution):
+    """Stronge's energetic law: the work of the normal impulse in restitution is e^2
+    times minus its work in compression; on a straight impulse path it reads as Newton's.
+
+    Examples
+    --------
+    >>> EnergeticRestitution(1)
+    EnergeticRestitution(1)
+    """
+
+    name = "energetic"
+    splits_on_compression = True
+    together = None  # the work split of one contact: no form for contacts acting together
+
+    def end_of_bent_path(self, first, second, v_n: sp.Expr,
+                         stop_in_restitution: bool) -> sp.Expr:
+        return routh.energetic_end(first, second, v_n, self.e, stop_in_restitution)
+
+    def equations(self, before, after):
+        (equation,) = super().equations(before, after)
+        return (replace(equation, label=f"{equation.label} (the energetic law on a straight "
+                                        "impulse path)"),)
+
+    def __repr__(self) -> str:
+        return f"EnergeticRestitution({self.e})"
+
+
+@dataclass(frozen=True, repr=False)
+class Coulomb(ContactLaw):
+    """Coulomb friction, |P_t| <= mu P_n, opposing slip: not a linear condition, so the
+    impulse comes from Routh's method (:meth:`regimes`) and each course of the impact is
+    printed as a regime with its conditions (:mod:`rigidimpact.laws.routh`).
+
+    Examples
+    --------
+    >>> Coulomb(sp.Rational(1, 4)).equations((), ())
+    ()
+    >>> W = sp.Matrix([[2, 0], [0, 2]])   # a particle of mass 1/2 on a fixed floor
+    >>> [r.name for r in Coulomb(sp.Rational(1, 4)).regimes(W, sp.Matrix([-1, 1]),
+    ...                                                     NewtonRestitution(1))]
+    ['slip']
+    """
+
+    mu: Any = None
+    name = "coulomb"
+    solved_by_regimes = True
+    velocity_states: ClassVar[tuple[str, ...]] = ("stick", "slide+", "slide-")
+
+    def cone(self) -> Any:
+        return self.mu
+
+    @classmethod
+    def from_contact(cls, contact: Any) -> Coulomb:
+        return cls(contact.friction)
+
+    def equations(self, before, after):
+        return ()
+
+    def conditions(self, before, kicked, impulse):
+        return []  # no linear condition: see regimes
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        """Every course the impact can take under this friction and `restitution`
+        (Routh's method), each with its conditions; with numbers, the one taken."""
+        return routh.regimes(W, v_before, self.mu, restitution)
+
+    def __repr__(self) -> str:
+        return f"Coulomb({self.mu})"
+
+
+@dataclass(frozen=True, repr=False)
+class Rough(Coulomb):
+    """Walton's law: the tangential velocity of the touching points reverses, scaled by
+    beta, unless that needs more than Coulomb's friction (mu, or none) allows.
+
+    Examples
+    --------
+    >>> W = sp.Matrix([[1, 0], [0, sp.Rational(7, 2)]])  # a solid sphere of mass 1
+    >>> [r.impulse for r in Rough(None, 1).regimes(W, sp.Matrix([-1, 1]),
+    ...                                            NewtonRestitution(1))]
+    [(2, -4/7)]
+    """
+
+    beta: Any = None
+    name = "rough"
+    # Walton's tangential restitution has no velocity-level form
+    velocity_states: ClassVar[tuple[str, ...]] = ()
+
+    @classmethod
+    def from_contact(cls, contact: Any) -> Rough:
+        return cls(contact.friction, contact.tangential_restitution)
+
+    def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution) -> tuple:
+        return routh.walton(W, v_before, self.beta, self.mu, restitution.e)
+
+    def __repr__(self) -> str:
+        return f"Rough({self.mu}, {self.beta})"
+
+
+RESTITUTION_LAWS: dict[str, type[NewtonRestitution]] = {
+    "newton": NewtonRestitution, "poisson": PoissonRestitution,
+    "energetic": EnergeticRestitution}
+TANGENTIAL_LAWS: dict[str, type[ContactLaw]] = {
+    "smooth": Smooth, "stick": Stick, "coulomb": Coulomb, "rough": Rough}

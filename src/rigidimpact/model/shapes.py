@@ -1,0 +1,199 @@
+"""The shapes a scene may name, each a small class in this one place.
+
+A shape says which scene fields it takes (and which it needs), whether it can spin, how
+its fields make a :class:`~rigidimpact.model.bodies.Body`, and what the event search and the
+compliant models need to know of its outline (``round``: it touches along the normal at
+its radius; ``segment``: a straight bar with two ends). A new shape is one subclass here,
+listed in :data:`SHAPES`, and its test.
+
+Examples
+--------
+>>> sorted(SHAPES)
+['barbell', 'disc', 'fixed', 'particle', 'rigid', 'ring', 'rod', 'sphere']
+>>> SHAPES["disc"].required, SHAPES["disc"].round
+(('mass', 'radius'), True)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any, ClassVar
+
+import sympy as sp
+
+from rigidimpact.model.bodies import Body
+
+__all__ = ["Shape", "Fields", "SHAPES", "is_round", "is_segment"]
+
+
+@dataclass(frozen=True)
+class Fields:
+    """What a shape reads its body from: the scene table and how to read its values.
+
+    Parameters
+    ----------
+    table : mapping
+        The ``[[bodies]]`` entry as read from TOML.
+    expr, vector : callables
+        Read one field as an expression, or as a 2-vector, naming the field on error.
+    name, velocity, spin :
+        The body's name and motion (already read).
+    outward : 2-vector
+        The unit vector from O toward where a round body's centre goes when the table
+        gives no position (along the normal, to the body's own side).
+    world : bool
+        With several contacts, positions are from the world origin and are not tied to
+        one contact point: a round body must then give its `position`.
+    """
+
+    table: Mapping[str, Any]
+    expr: Callable[[str], sp.Expr]
+    vector: Callable[[str], tuple]
+    name: str
+    velocity: tuple
+    spin: sp.Expr
+    outward: sp.MatrixBase
+    world: bool = False
+
+
+class Shape:
+    """A kind of body: its scene fields, how they make a body, its outline's features."""
+
+    name: ClassVar[str]
+    fields: ClassVar[tuple[str, ...]]  # beyond name, shape, velocity, spin and pivot
+    required: ClassVar[tuple[str, ...]]
+    spins: ClassVar[bool] = True  # takes a `spin` field
+    moves: ClassVar[bool] = True  # takes `velocity` and `pivot`
+    round: ClassVar[bool] = False
+    segment: ClassVar[bool] = False
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        raise NotImplementedError
+
+
+class Particle(Shape):
+    """A point mass at O; it has no spin an impact could change or use."""
+
+    name, fields, required, spins = "particle", ("mass", "position"), ("mass",), False
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        body = Body.particle(given.expr("mass"), given.velocity, given.name)
+        if "position" not in given.table:  # at O (with several contacts, the origin)
+            return body
+        return replace(body, position=given.vector("position"))
+
+
+class Barbell(Shape):
+    """Two equal point masses on a massless rod, one of them (``struck``) at O."""
+
+    name, segment = "barbell", True
+    fields = ("mass", "half_length", "angle", "struck")
+    required = ("mass", "half_length", "angle")
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        return Body.barbell(given.expr("mass"), given.expr("half_length"),
+                            given.expr("angle"), given.velocity, given.spin, given.name,
+                            given.table.get("struck", "A"))
+
+
+class Rod(Shape):
+    """A uniform thin rod struck at ``struck_at`` from its centre."""
+
+    name, segment = "rod", True
+    fields = required = ("mass", "length", "angle", "struck_at")
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        return Body.rod(given.expr("mass"), given.expr("length"), given.expr("angle"),
+                        given.expr("struck_at"), given.velocity, given.spin, given.name)
+
+
+class Rigid(Shape):
+    """Any body given by its mass, central inertia and centre."""
+
+    name = "rigid"
+    fields = required = ("mass", "inertia", "position")
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        return Body.rigid(given.expr("mass"), given.expr("inertia"), given.vector("position"),
+                          given.velocity, given.spin, given.name)
+
+
+class _Round(Shape):
+    """A body that touches along the normal at its radius."""
+
+    fields, required, round = ("mass", "radius", "position"), ("mass", "radius"), True
+    factor: ClassVar[sp.Expr]  # central inertia over m r^2
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        radius = given.expr("radius")
+        if given.world:  # from the world origin: the contacts check the radius
+            mass = given.expr("mass")
+            return Body(given.name, mass, cls.factor * mass * radius**2,
+                        given.vector("position"), given.velocity, given.spin, cls.name,
+                        (("radius", radius),))
+        position = (given.vector("position") if "position" in given.table
+                    else tuple(radius * given.outward))
+        maker = getattr(Body, cls.name)
+        return maker(given.expr("mass"), radius, position, 1, given.velocity, given.spin,
+                     given.name)
+
+
+class Disc(_Round):
+    """A uniform disc (central inertia m r^2 / 2)."""
+
+    name, factor = "disc", sp.Rational(1, 2)
+
+
+class Ring(_Round):
+    """A thin ring (central inertia m r^2)."""
+
+    name, factor = "ring", sp.Integer(1)
+
+
+class Sphere(_Round):
+    """A uniform solid sphere moving in the plane (central inertia 2 m r^2 / 5)."""
+
+    name, factor = "sphere", sp.Rational(2, 5)
+
+
+class Fixed(Shape):
+    """An immovable partner: a wall, a floor, a nail."""
+
+    name, fields, required, spins, moves = "fixed", (), (), False, False
+
+    @classmethod
+    def build(cls, given: Fields) -> Body:
+        return Body.fixed(given.name)
+
+
+SHAPES: dict[str, type[Shape]] = {
+    s.name: s for s in (Particle, Barbell, Rod, Disc, Ring, Sphere, Rigid, Fixed)}
+
+
+def is_round(shape: str) -> bool:
+    """Whether a body of this shape touches along the normal at its radius.
+
+    Examples
+    --------
+    >>> is_round("ring"), is_round("rod")
+    (True, False)
+    """
+    return shape in SHAPES and SHAPES[shape].round
+
+
+def is_segment(shape: str) -> bool:
+    """Whether a body of this shape is a straight bar with two ends.
+
+    Examples
+    --------
+    >>> is_segment("barbell"), is_segment("disc")
+    (True, False)
+    """
+    return shape in SHAPES and SHAPES[shape].segment

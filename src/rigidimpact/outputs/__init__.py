@@ -1,0 +1,2 @@
+"""What a derivation is turned into: LaTeX, numeric kernels, plots, sweeps, and files
+written atomically."""

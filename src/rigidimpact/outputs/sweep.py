@@ -1,0 +1,186 @@
+"""Results over a grid of parameter sets, chunk by chunk, in bounded memory.
+
+``rigidimpact sweep`` evaluates a derivation's results at every point of a grid: the
+product of ranges such as ``theta=0:pi/2:10000`` and ``M=0.1:10:10000`` (10^8 sets), the
+other symbols fixed by ``--set`` or the scene's ``[values]``. The fused kernel
+(:class:`rigidimpact.outputs.numeric.Fused`) runs one chunk at a time: the inputs of a chunk are
+made from its indices (the grid itself is never built), and each result is written
+into a memory-mapped ``.npy`` file, so memory stays bounded however many sets there are.
+The folder is written whole or not at all, with ``summary.json`` (the grid, each
+result's least and greatest value and how many values were not finite, the time).
+
+Examples
+--------
+>>> from rigidimpact.paper.problems import derive
+>>> grid = parse_grid(["theta=0:pi/2:3"], {"theta": derive("barbell").symbols["theta"]})
+>>> [round(float(x), 6) for x in grid["theta"]]
+[0.0, 0.785398, 1.570796]
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import time
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.outputs.atomic import replace_folder
+from rigidimpact.outputs.numeric import fused
+from rigidimpact.symbolic.expr import parse_expression
+
+__all__ = ["parse_grid", "run_sweep", "MAX_SETS"]
+
+MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
+
+
+def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[str, np.ndarray]:
+    """``NAME=START:STOP:COUNT`` ranges (endpoints included; START and STOP are exact
+    expressions such as ``pi/2``, read by the safe expression parser)."""
+
+    grid: dict[str, np.ndarray] = {}
+    for spec in specs:
+        name, eq, text = spec.partition("=")
+        name = name.strip()
+        where = f"--grid {name or spec}"
+        parts = text.split(":")
+        if not eq or not name or len(parts) != 3:
+            raise InputError("--grid", f"expected NAME=START:STOP:COUNT, got {spec!r}")
+        if name not in symbols:
+            raise InputError(where, f"not a symbol here; the symbols are "
+                             f"{', '.join(sorted(symbols)) or 'none'}")
+        if name in grid:
+            raise InputError(where, "given twice")
+        ends = []
+        for part in parts[:2]:
+            value = parse_expression(part, where)
+            if not value.is_number or not value.is_real:
+                raise InputError(where, f"{part!r} is not a real number")
+            ends.append(float(value))
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise InputError(where, f"COUNT must be a whole number, got {parts[2]!r}") \
+                from None
+        if not 1 <= count <= MAX_SETS:
+            raise InputError(where, f"COUNT must lie between 1 and {MAX_SETS:.0e}")
+        grid[name] = np.linspace(ends[0], ends[1], count)
+    total = int(np.prod([len(a) for a in grid.values()], dtype=object)) if grid else 0
+    if total > MAX_SETS:
+        raise InputError("--grid", f"{total:.2e} parameter sets; at most {MAX_SETS:.0e}")
+    return grid
+
+
+def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
+              fixed: Mapping[str, float], folder: Path, backend: str = "numpy",
+              progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+    """Evaluate `results` over `grid` into ``folder/KEY.npy`` files; return the summary.
+
+    Raises
+    ------
+    InputError
+        A symbol with neither a range nor a value, or an output folder that cannot be
+        written (see :func:`rigidimpact.outputs.atomic.replace_folder`).
+    """
+
+    kernel = fused(results, backend)
+    missing = [n for n in kernel.arguments if n not in grid and n not in fixed]
+    if missing:
+        raise InputError("--set", f"give a range (--grid) or a value (--set) for "
+                         f"{', '.join(missing)}")
+    unused = sorted(set(grid) - set(kernel.arguments))
+    if unused:
+        raise InputError(f"--grid {unused[0]}", "the results do not depend on it")
+    shape = tuple(len(a) for a in grid.values())
+    total = int(np.prod(shape)) if shape else 1
+    need = 8 * total * len(kernel.keys)
+    parent = Path(folder).resolve().parent
+    while not parent.exists():
+        parent = parent.parent
+    free = shutil.disk_usage(parent).free
+    if need > 0.9 * free:
+        raise InputError("--out", f"the results need {need / 1e9:.1f} GB and "
+                         f"{str(parent)!r} has {free / 1e9:.1f} GB free; sweep fewer sets "
+                         "or fewer --keys")
+    summary: dict[str, Any] = {}
+
+    def fill(staging: Path) -> list[str]:
+        outputs = {k: np.lib.format.open_memmap(staging / f"{k}.npy", mode="w+",
+                                                dtype=np.float64, shape=(total,))
+                   for k in kernel.keys}
+        start = time.perf_counter()
+        grid_or_point = dict(grid) if grid else {}
+        if grid_or_point:
+            kernel.sweep(grid_or_point, fixed, outputs, progress)
+        else:
+            one = kernel(**fixed)
+            for k in kernel.keys:
+                outputs[k][:] = one[k].reshape(-1)
+        seconds = time.perf_counter() - start
+        stats = {}
+        for k, out in outputs.items():
+            stats[k] = _stats(out)
+            out.flush()
+        summary.update({
+            "grid": {n: {"start": float(a[0]), "stop": float(a[-1]), "count": len(a)}
+                     for n, a in grid.items()},
+            "fixed": {n: float(v) for n, v in fixed.items() if n in kernel.arguments},
+            "order": list(grid), "shape": list(shape), "sets": total, "backend": backend,
+            "seconds": seconds, "sets_per_s": total / seconds if seconds > 0 else None,
+            "results": stats, "warnings": sweep_warnings(stats, total)})
+        del outputs
+        (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
+                                              encoding="utf-8")
+        return [f"{k}.npy" for k in kernel.keys] + ["summary.json"]
+
+    replace_folder(Path(folder), fill, (".npy", ".json"))
+    return summary
+
+
+NEGATIVE = 1e-12  # below this a value counts as negative (a warning), not as rounding
+
+
+def _stats(values: np.ndarray, block: int = 1 << 22) -> dict[str, Any]:
+    """Least and greatest finite value and the count of values that are not finite,
+    read block by block (the array may be larger than memory)."""
+    low, high, bad, negative = np.inf, -np.inf, 0, 0
+    for start in range(0, len(values), block):
+        part = np.asarray(values[start:start + block])
+        finite = np.isfinite(part)
+        bad += int(part.size - finite.sum())
+        negative += int(np.count_nonzero(part[finite] < -NEGATIVE))
+        if finite.any():
+            low, high = min(low, float(part[finite].min())), max(high, float(part[finite].max()))
+    return {"min": low if np.isfinite(low) else None,
+            "max": high if np.isfinite(high) else None, "not_finite": bad,
+            "negative": negative}
+
+
+def sweep_warnings(stats: Mapping[str, Mapping[str, Any]], sets: int) -> list[str]:
+    """What `evaluate` would warn at each point, counted over the grid: kinetic energy
+    created (a negative energy lost) and contacts that would have to pull (a negative
+    normal impulse), beyond rounding (1e-12).
+
+    Examples
+    --------
+    >>> sweep_warnings({"energy_loss_fraction": {"negative": 3, "min": -0.165}}, 100)
+    ['kinetic energy is created at 3 of 100 parameter sets (down to -0.165 of the energy before): the model cannot honour the physics there']
+    """  # noqa: E501
+    found = []
+    for key, stat in stats.items():
+        if not stat.get("negative"):
+            continue
+        if key == "energy_loss_fraction":
+            found.append(f"kinetic energy is created at {stat['negative']} of {sets} "
+                         f"parameter sets (down to {stat['min']:.6g} of the energy before): "
+                         "the model cannot honour the physics there")
+        elif key.endswith("normal_impulse") or key == "impulse":
+            found.append(f"{key} is negative at {stat['negative']} of {sets} parameter "
+                         f"sets (down to {stat['min']:.6g}): the contact would have to "
+                         "pull; the model cannot honour the physics there")
+    return found

@@ -1,0 +1,1 @@
+"""The scene format (TOML) and its one reader."""

@@ -1,0 +1,635 @@
+"""Scene files: a collision stated once in TOML, read safely.
+
+Expressions in a scene are read by the bounded parser of :mod:`rigidimpact.symbolic.expr`
+(numbers, declared symbols, ``+ - * / **`` and ``^``, parentheses, ``sin cos tan sqrt``
+and ``pi``, an optional trailing ``deg``): text from a file never reaches ``eval``,
+``sympify`` or ``parse_expr``. Every problem is reported as an
+:class:`~rigidimpact.errors.InputError` naming the field.
+
+Examples
+--------
+>>> parse_expression("2*M + m*(1 + sin(theta)^2)", "demo")
+2*M + m*(sin(theta)**2 + 1)
+>>> parse_expression("30 deg", "demo")
+pi/6
+>>> parse_expression("__import__(1)", "demo")
+Traceback (most recent call last):
+...
+rigidimpact.errors.InputError: demo: unknown function '__import__'; use sin, cos, tan or sqrt
+"""
+
+from __future__ import annotations
+
+import keyword
+import re
+import time
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
+from rigidimpact.model.shapes import SHAPES, Fields
+from rigidimpact.solve.collision import (
+    Collision,
+    Compliant,
+    Outcome,
+    Rule,
+    Sequential,
+    Simultaneous,
+)
+from rigidimpact.solve.derivation import Derivation, model_warnings, read_values
+from rigidimpact.solve.impact import Impact
+from rigidimpact.symbolic import expr as expressions
+from rigidimpact.symbolic.geometry import spin_cross
+from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
+from rigidimpact.symbolic.rewrite import tidy
+
+__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
+
+ASSUMPTIONS = ("positive", "nonnegative", "negative", "nonpositive", "real", "nonzero")
+
+
+def parse_expression(value: Any, where: str,
+                     symbols: Mapping[str, sp.Symbol] = SYMBOLS) -> sp.Expr:
+    """An exact SymPy expression from a scene value, over the project's symbols by default.
+
+    The bounded parser itself is :func:`rigidimpact.symbolic.expr.parse_expression`.
+
+    Examples
+    --------
+    >>> parse_expression(0.25, "x")
+    1/4
+    >>> parse_expression("2*m", "x")
+    2*m
+    """
+    return expressions.parse_expression(value, where, symbols)
+
+
+def _vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
+    if not isinstance(value, list) or len(value) != 2:
+        raise InputError(where, "expected a list of two components [x, y]")
+    return tuple(parse_expression(c, f"{where}[{i}]", symbols) for i, c in enumerate(value))
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A collision read from a scene file.
+
+    Parameters
+    ----------
+    title : str
+    symbols : mapping of name to Symbol
+        Every name the scene may use.
+    values : mapping of Symbol to number
+        Numbers for evaluate and simulate.
+    bodies : tuple of Body
+        In the order of ``contact.bodies`` (first on the -x side of O).
+    contact : Contact
+    simulate : mapping
+        The ``[simulate]`` table as read (checked by the simulation planner).
+    name : str
+        The file's stem.
+    """
+
+    title: str
+    symbols: Mapping[str, sp.Symbol]
+    values: Mapping[sp.Symbol, sp.Expr]
+    bodies: tuple[Body, ...]
+    contact: Contact
+    simulate: Mapping[str, Any] = field(default_factory=dict)
+    name: str = "scene"
+    contacts: tuple[Contact, ...] = ()
+    rule: str = "simultaneous"
+    order: tuple[str, ...] | None = None
+    compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
+
+    @property
+    def several(self) -> bool:
+        """Whether the scene has several contacts (solved by :mod:`rigidimpact.solve.collision`)."""
+        return len(self.contacts) > 1
+
+    @property
+    def roles(self) -> tuple[Role, ...]:
+        """What bounds the scene's data by role (see :mod:`rigidimpact.model.roles`)."""
+        return roles_of(self.bodies, self.contacts or (self.contact,),
+                        self.contacts if self.several else None)
+
+    def impact(self) -> Impact:
+        """The scene's impact (one contact)."""
+        if self.several:
+            raise InputError("contacts", "this scene has several contacts: derive and "
+                             "evaluate solve it; this command follows one contact")
+        return Impact(self.bodies[0], self.bodies[1], self.contact)
+
+    @property
+    def data_symbols(self) -> dict[str, sp.Symbol]:
+        """The symbols the scene's bodies and contacts use, by name.
+
+        Examples
+        --------
+        >>> import rigidimpact
+        >>> root = Path(rigidimpact.__file__).parents[2]
+        >>> sorted(load_scene(root / "derivations" / "two-ball-drop.toml").data_symbols)
+        ['e']
+        """
+        found: set[sp.Symbol] = set()
+        for b in self.bodies:
+            pivot = () if b.pivot is None else tuple(b.pivot)
+            found |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
+                              *pivot).free_symbols
+        for c in self.contacts or (self.contact,):
+            found |= sp.Tuple(c.restitution, *c.normal, *c.point, c.friction or 0,
+                              c.tangential_restitution or 0).free_symbols
+        return {s.name: s for s in sorted(found, key=lambda s: s.name)}
+
+    def with_values(self, settings: Mapping[str, Any], sources: Mapping[str, str]) -> Scene:
+        """The scene with other numbers for its symbols (``--set``), checked through the
+        same door as ``[values]``: assumptions, roles, geometry, and (one contact) that
+        the bodies still approach.
+
+        Examples
+        --------
+        >>> scene = parse_scene('''
+        ... [values]
+        ... v = 1
+        ... [[bodies]]
+        ... name = "a"
+        ... shape = "particle"
+        ... mass = "1"
+        ... velocity = ["v", "0"]
+        ... [[bodies]]
+        ... name = "b"
+        ... shape = "particle"
+        ... mass = "1"
+        ... [contact]
+        ... restitution = "1"
+        ... ''')
+        >>> scene.with_values({"v": "2"}, {"v": "--set v"}).values
+        {v: 2}
+        """
+        values: dict[str, Any] = {s.name: v for s, v in self.values.items()}
+        values.update(settings)
+        every = {s.name: f"values.{s.name}" for s in self.values}
+        every.update(sources)
+        exact = read_values(values, every, self.data_symbols, self.roles, self.name)
+        scene = replace(self, values=exact)
+        if not self.several:
+            _check_scene(scene)
+        return scene
+
+    def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
+        """The scene's several contacts with numbers for its symbols."""
+        return Collision.from_values(self.bodies, self.contacts,
+                                     dict(self.values if values is None else values))
+
+    def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Outcome, ...]:
+        """What the scene's rule makes of its several contacts (every order when a
+        sequential rule has none)."""
+        return self.collision(values).solve(self.impact_rule)
+
+    @property
+    def impact_rule(self) -> Rule:
+        """The ``[impact]`` rule as its object (the scene reader is where names end)."""
+        if self.rule == "compliant":
+            stiffness, hertz = self.compliance
+            return Compliant(stiffness, hertz)
+        if self.rule == "sequential":
+            return Sequential(self.order)
+        return Simultaneous()
+
+    def derivation(self) -> Derivation:
+        """Solve the scene's impact symbolically.
+
+        Examples
+        --------
+        >>> scene = parse_scene('''
+        ... [[bodies]]
+        ... name = "a"
+        ... shape = "particle"
+        ... mass = "m"
+        ... velocity = ["v_ix", "0"]
+        ... [[bodies]]
+        ... name = "b"
+        ... shape = "particle"
+        ... mass = "m"
+        ... [contact]
+        ... bodies = ["a", "b"]
+        ... restitution = "e"
+        ... ''')
+        >>> scene.derivation().results["b.vx"]
+        v_ix*(e + 1)/2
+        """
+        start = time.perf_counter()
+        if self.several:
+            return self._several_derivation(start)
+        impact = self.impact()
+        solution = impact.solve()
+        first, second = self.bodies
+        setup = tuple(_described(b) for b in (first, second))
+        c = self.contact
+        friction = "" if c.friction is None else f", friction {c.friction}"
+        if c.tangential_restitution is not None:
+            friction += f", tangential restitution {c.tangential_restitution}"
+        setup += (f"contact: {c.tangential}{friction}, normal ({c.normal[0]}, {c.normal[1]}), "
+                  f"{c.law} restitution {c.restitution}",)
+        return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
+                          solution.results(), solution=solution,
+                          seconds=time.perf_counter() - start,
+                          warnings=model_warnings(self.contact))
+
+
+    def _several_derivation(self, start: float,
+                            values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
+        collision = self.collision(values)
+        outcomes = collision.solve(self.impact_rule)
+        # the momentum balance holds under every rule; a contact's own law only where
+        # one outcome is reported (each case or order imposes its own)
+        equations = collision.equations(outcomes[0])
+        if len(outcomes) > 1:
+            equations = tuple(eq for eq in equations if eq.law == "momentum")
+        setup = tuple(_described(b) for b in self.bodies)
+        setup += tuple(f"contact {t.name}: {t.first} -> {t.second} at ({t.point[0]}, "
+                       f"{t.point[1]}), normal ({t.normal[0]}, {t.normal[1]}), {t.law} "
+                       f"restitution {t.restitution}, " + _tangential_words(t)
+                       for t in self.contacts)
+        setup += (f"rule: {self.rule}" + ("" if self.order is None
+                                          else f", order {', '.join(self.order)}"),)
+        results = outcomes[0].results()
+        if self.rule == "simultaneous" and len(outcomes) > 1:  # one case holds at a time
+            cases = [sp.And(*o.conditions) for o in outcomes]
+            results = {key: _cases([o.results()[key] for o in outcomes], cases)
+                       for key in results}
+        return Derivation(self.name, self.title, setup, equations, collision.unknowns(),
+                          results, seconds=time.perf_counter() - start, outcomes=outcomes)
+
+    def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
+        """With several contacts, the derivation at these numbers (they are solved with
+        numbers); with one contact, the symbolic derivation."""
+        if not self.several:
+            return self.derivation()
+        return self._several_derivation(time.perf_counter(), values)
+
+
+def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
+    """One expression over exclusive cases (a ``Piecewise`` unless all agree)."""
+    if all(p == parts[0] for p in parts):
+        return parts[0]
+    return sp.Piecewise(*zip(parts, conditions, strict=True))
+
+
+def _tangential_words(c: Contact) -> str:
+    """The contact's tangential law in words, with its coefficients."""
+    words = {"smooth": "smooth", "stick": "sticking", "coulomb": f"Coulomb friction {c.friction}",
+             "rough": f"rough (Walton), friction {c.friction}, tangential restitution "
+                      f"{c.tangential_restitution}"}
+    return words[c.tangential]
+
+
+def _described(b: Body) -> str:
+    """One line of the givens for a body."""
+    if b.support == "fixed":
+        return f"{b.name}: fixed (immovable)"
+    pivot = "" if b.pivot is None else f", on a pivot at ({b.pivot[0]}, {b.pivot[1]})"
+    return (f"{b.name}: {b.shape}, mass {b.mass}, centre ({b.position[0]}, {b.position[1]}) "
+            f"from O, velocity ({b.velocity[0]}, {b.velocity[1]}), spin {b.spin}{pivot}")
+
+
+def _table(data: Mapping[str, Any], key: str, form: str) -> dict[str, Any]:
+    """An optional top-level table of the scene (empty when absent)."""
+    table = data.get(key, {})
+    if not isinstance(table, dict):
+        raise InputError(key, f"must be a table of {form}")
+    return table
+
+
+def _symbols_table(table: Mapping[str, Any]) -> dict[str, sp.Symbol]:
+    symbols = dict(SYMBOLS)
+    for name, spec in table.items():
+        where = f"symbols.{name}"
+        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9]*(_[A-Za-z0-9]+)?", name):
+            raise InputError(where, "a symbol name is letters and digits, with at most one _")
+        if (name in expressions.FUNCTIONS or name in expressions.CONSTANTS or name == "deg"
+                or keyword.iskeyword(name) or name in ("True", "False", "None")):
+            raise InputError(where, f"{name!r} is reserved")
+        if not isinstance(spec, dict):
+            raise InputError(where, "expected a table such as { positive = true }")
+        for key, flag in spec.items():
+            if key not in ASSUMPTIONS:
+                raise InputError(f"{where}.{key}", f"unknown assumption; use one of "
+                                 f"{', '.join(ASSUMPTIONS)}")
+            if not isinstance(flag, bool):
+                raise InputError(f"{where}.{key}", "must be true or false")
+        try:
+            symbols[name] = make_symbol(name, **spec)
+        except ValueError as exc:
+            raise InputError(where, str(exc)) from None
+    return symbols
+
+
+def _values_table(table: Mapping[str, Any],
+                  symbols: Mapping[str, sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
+    values: dict[sp.Symbol, sp.Expr] = {}
+    for name, raw in table.items():
+        where = f"values.{name}"
+        if name not in symbols:
+            raise InputError(where, "unknown symbol; declare it under [symbols]")
+        value = parse_expression(raw, where, {})  # numbers only: a value names no symbol
+        values[symbols[name]] = check_assumptions(symbols[name], value, where)
+    return values
+
+
+def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
+          symbols: Mapping[str, sp.Symbol], origin: tuple = (0, 0),
+          world: bool = False) -> Body:
+    """One body from its table; positions and the pivot, given from the origin of the
+    scene, are moved to the contact point at `origin`."""
+    where = f"bodies[{index}]"
+    if not isinstance(table, dict):
+        raise InputError(where, "each [[bodies]] entry must be a table")
+    name = table.get("name")
+    if not isinstance(name, str) or not name.isidentifier():
+        raise InputError(f"{where}.name", "required: an identifier such as \"ball\"")
+    shape = table.get("shape")
+    if not isinstance(shape, str) or shape not in SHAPES:
+        raise InputError(f"{where}.shape", f"unknown shape {shape!r}; expected one of "
+                         f"{', '.join(SHAPES)}")
+    kind = SHAPES[shape]
+    allowed = set(kind.fields) | {"name", "shape"}
+    if kind.moves:
+        allowed |= {"velocity", "pivot"}
+    if kind.spins or (kind.moves and "pivot" in table):  # a bob's spin: its swing rate
+        allowed |= {"spin"}
+    for key in table:
+        if key not in allowed:
+            raise InputError(f"{where}.{key}", f"not a field of a {shape}; allowed: "
+                             f"{', '.join(sorted(allowed))}")
+    for key in kind.required:
+        if key not in table:
+            raise InputError(f"{where}.{key}", f"required for a {shape}")
+
+    velocity = _vector(table.get("velocity", [0, 0]), f"{where}.velocity", symbols)
+    spin = parse_expression(table["spin"], f"{where}.spin", symbols) if "spin" in table else 0
+    given = Fields(table, lambda key: parse_expression(table[key], f"{where}.{key}", symbols),
+                   lambda key: _from_contact(table, key, where, symbols, origin), name,
+                   velocity, spin, side * normal, world)
+    try:
+        body = kind.build(given)
+        if "pivot" in table:
+            pivot = _from_contact(table, "pivot", where, symbols, origin)
+            if "velocity" in table:  # given: it must be the turn about the pivot
+                body = replace(body, pivot=pivot)
+                stated = sp.sympify(spin)
+                if "spin" in table and not tidy(body.spin - stated).is_zero:
+                    raise InputError(f"{where}.spin", f"a pivoted body moves only by "
+                                     f"turning about its pivot: its velocity makes the "
+                                     f"spin {body.spin}, not {stated}; give one of the two")
+            else:  # the velocity follows from the spin
+                turn = spin_cross(spin, body.position - sp.ImmutableMatrix(pivot))
+                body = replace(body, pivot=pivot, velocity=turn, spin=spin)
+        return body
+    except InputError as exc:
+        # name the entry in the file, not only the body
+        field_name = exc.field.split(".", 1)[-1] if "." in exc.field else exc.field
+        raise InputError(f"{where}.{field_name}", exc.message) from None
+
+
+def _from_contact(table: Mapping[str, Any], key: str, where: str,
+                  symbols: Mapping[str, sp.Symbol], origin: tuple) -> tuple:
+    """A point of the scene (a centre, a pivot) as seen from the contact point."""
+    x, y = _vector(table[key], f"{where}.{key}", symbols)
+    return (x - origin[0], y - origin[1])
+
+
+CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
+                  "friction", "tangential_restitution")
+IMPACT_RULES = ("simultaneous", "sequential", "compliant")
+
+
+def _body_tables(data: Mapping[str, Any]) -> dict[str, tuple[int, dict]]:
+    """The ``[[bodies]]`` tables by name, with their index in the file."""
+    tables = data.get("bodies")
+    if not isinstance(tables, list) or len(tables) < 2:
+        raise InputError("bodies", "at least two [[bodies]] entries are required")
+    by_name: dict[str, tuple[int, dict]] = {}
+    for index, table in enumerate(tables):
+        if not isinstance(table, dict):
+            raise InputError(f"bodies[{index}]", "each [[bodies]] entry must be a table")
+        body_name = table.get("name")
+        if not isinstance(body_name, str) or not body_name.isidentifier():
+            raise InputError(f"bodies[{index}].name", "required: an identifier such as "
+                             "\"ball\"")
+        if body_name in by_name:
+            raise InputError(f"bodies[{index}].name", f"two bodies are named {body_name!r}")
+        by_name[body_name] = (index, table)
+    return by_name
+
+
+def _pair(table: Mapping[str, Any], place: str, default: list[str]) -> list[str]:
+    """The two body names a contact joins, first on the -x side of its normal."""
+    order = table.get("bodies", default)
+    if (not isinstance(order, list) or len(order) != 2
+            or not all(isinstance(x, str) for x in order) or order[0] == order[1]):
+        raise InputError(f"{place}.bodies", "must name the two bodies, e.g. "
+                         "[\"ball\", \"bar\"]")
+    return order
+
+
+def _read_contact(table: Mapping[str, Any], place: str,
+                  symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, tuple]:
+    """A contact's laws and its point (the origin offset for one contact)."""
+    for key in table:
+        if key not in CONTACT_FIELDS:
+            raise InputError(f"{place}.{key}", f"unknown field; expected "
+                             f"{', '.join(CONTACT_FIELDS)}")
+    normal = _vector(table.get("normal", [1, 0]), f"{place}.normal", symbols)
+    if "restitution" not in table:
+        raise InputError(f"{place}.restitution", "required: the coefficient e in [0, 1]")
+    restitution = parse_expression(table["restitution"], f"{place}.restitution", symbols)
+    contact_name = table.get("name", "contact")
+    if not isinstance(contact_name, str) or not contact_name.isidentifier():
+        raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
+    coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
+                    for key in ("friction", "tangential_restitution") if key in table}
+    contact = Contact(normal, restitution, table.get("tangential", "smooth"),
+                      table.get("law", "newton"), contact_name, **coefficients)
+    origin = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
+        else (sp.Integer(0), sp.Integer(0))
+    return contact, origin
+
+
+def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
+    """A scene with several contacts: bodies from the world origin, one rule for all."""
+    entries = data["contacts"]
+    contacts: list[Contact] = []
+    for k, table in enumerate(entries):
+        place = f"contacts[{k}]"
+        if not isinstance(table, dict):
+            raise InputError(place, "each [[contacts]] entry must be a table")
+        if "name" not in table:
+            raise InputError(f"{place}.name", "required with several contacts")
+        contact, point = _read_contact(table, place, symbols)
+        if contact.name in (c.name for c in contacts):
+            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
+        first, second = _pair(table, place, [])
+        for body_name in (first, second):
+            if body_name not in by_name:
+                raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
+        contacts.append(replace(contact, bodies=(first, second), point=point))
+    impact_table = _table(data, "impact", "settings")
+    rule, order = _impact_table(impact_table, [c.name for c in contacts])
+    compliance = _compliance(impact_table, len(contacts))
+    bodies = []
+    for index, table in by_name.values():
+        bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
+    scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
+                  contacts=tuple(contacts), rule=rule, order=order,
+                  compliance=compliance)
+    # the roles hold the geometry too (a contact on each body's outline): checked now
+    # with what the file says, again whenever values arrive
+    check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
+    return scene
+
+
+def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...], bool]:
+    """``[impact]`` stiffness (one number, or one per contact in their order) and model."""
+    raw = table.get("stiffness", 1e6)
+    values = raw if isinstance(raw, list) else [raw] * count
+    if len(values) != count or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and 1e-3 <= v <= 1e16
+            for v in values):
+        raise InputError("impact.stiffness", f"one number in [1e-3, 1e16] (N/m), or a list "
+                         f"of {count}, one per contact")
+    model = table.get("model", "linear")
+    if model not in ("linear", "hertz"):
+        raise InputError("impact.model", f"must be linear or hertz, got {model!r}")
+    return tuple(float(v) for v in values), model == "hertz"
+
+
+def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
+    """The one contact, from ``[contact]`` or a single ``[[contacts]]`` entry, and the
+    place to name in messages."""
+    if "contact" in data and "contacts" in data:
+        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
+    if "contacts" in data:
+        entries = data["contacts"]
+        if not isinstance(entries, list) or not entries:
+            raise InputError("contacts", "[[contacts]] must hold at least one table")
+        if len(entries) > 1:
+            raise InputError("contacts", f"{len(entries)} contacts given: this version solves "
+                             "one contact per scene")
+        if not isinstance(entries[0], dict):
+            raise InputError("contacts[0]", "each [[contacts]] entry must be a table")
+        return entries[0], "contacts[0]"
+    table = data.get("contact")
+    if not isinstance(table, dict):
+        raise InputError("contact", "a [contact] table (or one [[contacts]] entry) is required")
+    return table, "contact"
+
+
+def _impact_table(table: Mapping[str, Any],
+                  names: list[str]) -> tuple[str, tuple[str, ...] | None]:
+    """Check ``[impact]`` and return its rule and order (None: every order).
+
+    With one contact every rule gives the same answer."""
+    for key in table:
+        if key not in ("rule", "order", "stiffness", "model"):
+            raise InputError(f"impact.{key}", "unknown field; expected rule, order, "
+                             "stiffness, model")
+    rule = table.get("rule", "simultaneous")
+    if rule not in IMPACT_RULES:
+        raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
+                         f"{rule!r}")
+    if "order" not in table:
+        return rule, None
+    order = table["order"]
+    if not isinstance(order, list) or sorted(map(str, order)) != sorted(names) or \
+            len(order) != len(names):
+        listed = ", ".join(f'"{n}"' for n in names)
+        raise InputError("impact.order", f"must list the scene's contacts by name, each "
+                         f"once: [{listed}]")
+    return rule, tuple(order)
+
+
+def parse_scene(text: str, name: str = "scene") -> Scene:
+    """Read a scene from TOML text.
+
+    Raises
+    ------
+    InputError
+        For malformed TOML or any bad field, naming the field.
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError("scene", f"malformed TOML: {exc}") from None
+    allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
+               "simulate"}
+    for key in data:
+        if key not in allowed:
+            raise InputError(key, f"unknown section; expected {', '.join(sorted(allowed))}")
+    title = data.get("title", name)
+    if not isinstance(title, str):
+        raise InputError("title", "must be text")
+    symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
+    values = _values_table(_table(data, "values", "name = number"), symbols)
+
+    by_name = _body_tables(data)
+    simulate = _table(data, "simulate", "settings")
+    if "contact" in data and "contacts" in data:
+        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
+    if isinstance(data.get("contacts"), list) and len(data["contacts"]) > 1:
+        return _several(data, title, symbols, values, by_name, simulate, name)
+    contact_table, place = _contact_table(data)
+    contact, origin = _read_contact(contact_table, place, symbols)
+    _impact_table(_table(data, "impact", "settings"), [contact.name])
+    unit = contact.frame.row(0).T
+    if len(by_name) != 2:
+        raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
+                         "contact")
+    order = _pair(contact_table, place, list(by_name))
+    bodies = []
+    for side, body_name in zip((-1, 1), order, strict=True):
+        if body_name not in by_name:
+            raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
+        index, table = by_name[body_name]
+        bodies.append(_body(table, index, side, unit, symbols, origin))
+
+    scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)
+    _check_scene(scene)
+    return scene
+
+
+def _check_scene(scene: Scene) -> None:
+    """Checks that need the whole scene: roles and approach with the given values."""
+    # geometry first (a normal pointing the wrong way also makes the bodies recede)
+    check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
+    impact = scene.impact()  # refuses bodies known not to approach
+    if scene.values:
+        approach = impact.approach_speed.xreplace(dict(scene.values))
+        if approach.is_number and approach <= 0:
+            raise InputError("bodies", f"the bodies are not approaching at O with [values] "
+                             f"(normal approach speed {sp.N(approach, 6)})")
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read a scene file.
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read or any field is bad.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark is accepted
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(str(path), f"cannot read the scene file: "
+                         f"{getattr(exc, 'strerror', None) or exc}") from None
+    return parse_scene(text, path.stem)

@@ -1,0 +1,1160 @@
+"""Several smooth contacts closing at the same instant, under a stated rule.
+
+The bodies are placed in one world frame (origin O); each contact has its own point and
+normal. The generalized-impulse core extends row by row: the Jacobian J maps the
+generalized velocities u to the normal closing velocity of every contact (second minus
+first along the contact's normal), and ``W = J M^-1 J^T`` couples the contacts. Three
+rules say how the contacts act together:
+
+- ``simultaneous``: all at once, with Newton's or Poisson's law at every contact, solved
+  as a linear complementarity problem so that no contact pulls: each contact either
+  pushes (P >= 0) and meets its law, or is released (P = 0) and separates at least as
+  fast as the law asks. The result says which contacts acted.
+- ``sequential``: one contact at a time in a given order, each a two-body impact with
+  Newton's e, passes repeated in that order until no contact still approaches.
+- every order: with ``sequential`` and no order given, each order is run and reported.
+- ``compliant``: every contact a push-only spring-dashpot (or an elastic Hertz spring),
+  integrated numerically until all contacts let go; the stiffnesses' ratios decide.
+
+A contact may have Coulomb friction: the sequential rule then runs Routh's method at each
+step (:mod:`rigidimpact.laws.routh`), the simultaneous rule solves friction at the velocity
+level over every combination of contact states. With symbols left the simultaneous and
+one-pass sequential rules give formulas, each with the conditions under which it holds.
+
+The numbers are exact (rationals stay rationals), so the rules can be compared exactly.
+
+Examples
+--------
+>>> from rigidimpact.model.bodies import Body
+>>> balls = [Body.rigid(1, 1, (2 * k, 0), (1 if k == 0 else 0, 0), name=f"b{k}")
+...          for k in range(3)]
+>>> touching = [Contact(restitution=1, name="left", bodies=("b0", "b1"), point=(1, 0)),
+...             Contact(restitution=1, name="right", bodies=("b1", "b2"), point=(3, 0))]
+>>> problem = Collision(tuple(balls), tuple(touching))
+>>> [problem.simultaneous().results()[f"b{k}.vx"] for k in range(3)]
+[-1/3, 2/3, 2/3]
+>>> [problem.sequential(("left", "right")).results()[f"b{k}.vx"] for k in range(3)]
+[0, 0, 1]
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import Any, ClassVar
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.compliance import damping_ratio_for
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import Equation
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.impulse import Coordinate, coordinates_of, moving
+from rigidimpact.symbolic.geometry import cross
+from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
+from rigidimpact.symbolic.rewrite import tidy
+
+__all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
+           "Rule", "Simultaneous", "Sequential", "Compliant", "RULE_TYPES",
+           "rule_laws"]
+
+RULES = ("simultaneous", "sequential", "compliant")
+MAX_PASSES = 1000  # sequential passes before the rule is declared endless
+# a sequence of one-at-a-time impacts can go on forever while converging (inelastic
+# collapse); it is cut where every closing speed left is this small next to the first
+SETTLED = sp.Rational(1, 10**40)
+MAX_ORDERS = 720  # every order of up to six contacts
+# the simultaneous rule with symbols: a case (signs before x acting contacts) that can
+# hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
+# past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
+# the cases are counted first and the work is given a time
+MAX_SYMBOLIC_CASES = 4096
+# the compliant rule integrates at rtol 1e-10; an elastic Hertz chain of 3 to 8 balls kept
+# its energy to 6e-10 to 9e-10: a gain is reported only beyond 1000 times the rtol
+COMPLIANT_ENERGY_TOLERANCE = 1e-7
+MAX_SYMBOLIC_SECONDS = 20.0
+RULE_LAWS = {
+    "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
+                    "restitution law at each contact that acts and no contact pulling "
+                    "(v+ = v- + W P, a complementarity problem)",
+    "sequential": "every contact smooth; one contact at a time in the order given, each a "
+                  "two-body impact with Newton's e, repeated until no contact approaches",
+    "compliant": "every contact a push-only spring-dashpot (linear, damping from e) or an "
+                 "elastic Hertz spring, integrated until all let go (floating point)",
+}
+FRICTION_LAWS = {
+    "simultaneous": "Coulomb friction at the velocity level: the impulses act together; "
+                    "each contact is released, sticks (Newton's e across, no slip after, "
+                    "|P_t| <= mu P_n) or slides (|P_t| = mu P_n against its slip after); "
+                    "every combination solved exactly",
+    "sequential": "one contact at a time in the order given, each that contact's own "
+                  "impact under its own laws (Routh's method for Coulomb friction, "
+                  "Walton's for a rough contact); repeated until no contact approaches",
+}
+
+
+_STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
+          "slide-": "slides", "mixed": "differs between the solutions"}
+
+
+def rule_laws(rule: str, frictional: bool = False) -> str:
+    """The laws a rule imposes, in words (with friction when any contact has it)."""
+    return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What one rule made of the collision: the bodies after, every contact's impulse,
+    which contacts acted, the energies."""
+
+    rule: str
+    order: tuple[str, ...]
+    before: tuple[Body, ...]
+    after: tuple[Body, ...]
+    impulses: dict[str, sp.Expr]
+    acted: tuple[str, ...]
+    passes: int = 1  # sequential: passes in which a contact acted
+    # compliant, when asked: (times, generalized velocities at those times) of the run
+    history: Any = field(default=None, repr=False, compare=False)
+    # with symbols: when this outcome is the rule's (each a relation; (True,) always)
+    conditions: tuple[Any, ...] = ()
+    # with friction: each contact's tangential impulse, and what each step did
+    tangential: dict[str, sp.Expr] = field(default_factory=dict)
+    courses: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
+    # the relative energy error the rule's numbers carry (an integration's), else None
+    energy_tolerance: float | None = field(default=None, repr=False)
+    # each pivoted body's reaction impulse (scene frame), filled by Collision.solve
+    pivot_reactions: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+                                                                  repr=False)
+
+    @property
+    def kinetic_energy_before(self) -> sp.Expr:
+        return sum((b.kinetic_energy for b in self.before), sp.Integer(0))
+
+    @property
+    def energy_loss_fraction(self) -> sp.Expr:
+        """``(K_i - K_f) / K_i``; negative when the rule created energy."""
+        after = sum((b.kinetic_energy for b in self.after), sp.Integer(0))
+        return tidy(1 - after / self.kinetic_energy_before)
+
+    @property
+    def frictional(self) -> bool:
+        """Whether the rule ran with friction (its tangential impulses are kept)."""
+        return bool(self.tangential)
+
+    @property
+    def label(self) -> str:
+        """``simultaneous`` or ``sequential left, right``."""
+        return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
+
+    def _repr_latex_(self) -> str:
+        r"""The rule's results, typeset (Jupyter).
+
+        Examples
+        --------
+        >>> print(chain(2).simultaneous()._repr_latex_()[:45])
+        $$\begin{aligned} V_x^{(\mathrm{ball0})} &= 0
+        """
+
+        return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
+
+    def results(self) -> dict[str, sp.Expr]:
+        """Results under the scene keys: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
+        ``CONTACT.normal_impulse``, ``CONTACT.tangential_impulse``, ``impulse`` (the
+        first contact's) and ``energy_loss_fraction``."""
+        results: dict[str, sp.Expr] = {}
+        for body in self.after:
+            if body.support == "fixed":
+                continue
+            results[f"{body.name}.vx"] = tidy(body.velocity[0])
+            results[f"{body.name}.vy"] = tidy(body.velocity[1])
+            results[f"{body.name}.omega"] = tidy(sp.sympify(body.spin))
+        first = next(iter(self.impulses))
+        results["impulse"] = self.impulses[first]
+        results["energy_loss_fraction"] = self.energy_loss_fraction
+        for name, impulse in self.impulses.items():
+            results[f"{name}.normal_impulse"] = impulse
+            results[f"{name}.tangential_impulse"] = self.tangential.get(name, sp.Integer(0))
+        for name, (x, y) in self.pivot_reactions.items():
+            results[f"{name}.pivot_impulse_x"], results[f"{name}.pivot_impulse_y"] = x, y
+        return results
+
+
+@dataclass(frozen=True)
+class Collision:
+    """Bodies in the world frame and the smooth contacts that close together.
+
+    Parameters
+    ----------
+    bodies : tuple of Body
+        Positions (and pivots) from the world origin.
+    contacts : tuple of Contact
+        Each with its two `bodies` named and its `point` (world frame).
+    """
+
+    bodies: tuple[Body, ...]
+    contacts: tuple[Contact, ...]
+
+    def __post_init__(self) -> None:
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise InputError("bodies", "two bodies share a name")
+        if len({t.name for t in self.contacts}) != len(self.contacts):
+            raise InputError("contacts", "two contacts share a name")
+        for touch in self.contacts:
+            if touch.bodies is None:
+                raise InputError(f"{touch.name}.bodies", "required: name the two bodies")
+            for side in (touch.first, touch.second):
+                if side not in names:
+                    raise InputError(f"{touch.name}.bodies", f"no body named {side!r}")
+            if all(self._body(side).support == "fixed" for side in (touch.first,
+                                                                     touch.second)):
+                raise InputError(f"{touch.name}.bodies", "two fixed bodies cannot collide: "
+                                 "at least one must move")
+            for side in (touch.first, touch.second):
+                body = self._body(side)
+                if body.inertia.is_zero and body.support != "fixed" and \
+                        any(not c.is_zero for c in body.position - touch.point):
+                    raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
+                                     "contact must be where it is")
+        if not self.symbols and all(v >= 0 for v in self.velocity_before):
+            raise InputError("bodies", "no contact is approaching: there is no impact")
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        """The symbols left in the collision (none: every rule runs; some: the
+        simultaneous and one-pass sequential formulas, each with its conditions)."""
+        return frozenset(self.W.free_symbols | self.velocity_before.free_symbols
+                         | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
+                                                  t.tangential_restitution or 0).free_symbols
+                                         for t in self.contacts)))
+
+    def _smooth_only(self, where: str) -> None:
+        rough = [t.name for t in self.contacts if t.laws[1].grips]
+        if rough:
+            raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
+                             f"solved with numbers, by the simultaneous or sequential rule; "
+                             f"not {where}")
+
+    def _numbers_only(self, rule: str) -> None:
+        if self.symbols:
+            raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
+                             f"{', '.join(sorted(map(str, self.symbols)))}")
+
+    @classmethod
+    def from_values(cls, bodies: Sequence[Body], contacts: Sequence[Contact],
+                    values: dict) -> Collision:
+        """The collision with numbers put in for its symbols.
+
+        Examples
+        --------
+        >>> x = sp.Symbol("x")
+        >>> c = Collision.from_values([Body.rigid(1, 0, (0, 0), (x, 0), name="a"),
+        ...                            Body.fixed("wall")],
+        ...                           [Contact(restitution=1, bodies=("a", "wall"))], {x: 2})
+        >>> c.simultaneous().results()["a.vx"]
+        -2
+        """
+        def number(v):
+            return sp.sympify(v).xreplace(values)
+
+        def vector(v):
+            return None if v is None else sp.ImmutableMatrix(v).xreplace(values)
+
+        bodies = tuple(b if b.support == "fixed" else replace(
+            b, mass=number(b.mass), inertia=number(b.inertia), position=vector(b.position),
+            velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
+            for b in bodies)
+        return cls(bodies, tuple(c.at(values) for c in contacts))
+
+    def _body(self, name: str) -> Body:
+        return next(b for b in self.bodies if b.name == name)
+
+    @cached_property
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        """The generalized velocities (see :func:`rigidimpact.solve.impulse.coordinates_of`)."""
+        return coordinates_of(self.bodies)
+
+    @cached_property
+    def J(self) -> sp.Matrix:
+        """One row per contact: its normal closing velocity as a function of u."""
+        return sp.Matrix([self._row(t, t.unit_normal) for t in self.contacts])
+
+    @cached_property
+    def J_t(self) -> sp.Matrix:
+        """One row per contact: the tangential velocity (second minus first) along its
+        tangent, as a function of u."""
+        return sp.Matrix([self._row(t, t.tangent) for t in self.contacts])
+
+    def _row(self, touch: Contact, direction: sp.MatrixBase) -> list[sp.Expr]:
+        row = []
+        for coordinate in self.coordinates:
+            name, kind = coordinate.body, coordinate.kind
+            sign = -1 if name == touch.first else 1 if name == touch.second else 0
+            body = self._body(name)
+            if sign == 0:
+                row.append(sp.Integer(0))
+            elif kind == "vx":
+                row.append(sign * direction[0])
+            elif kind == "vy":
+                row.append(sign * direction[1])
+            else:  # d . (z x (p - axis)) = (p - axis) x d
+                axis = body.pivot if body.support == "pivot" else body.position
+                row.append(sign * cross(touch.point - axis, direction))
+        return row
+
+    @property
+    def frictional(self) -> bool:
+        """Whether any contact's tangential law gives a tangential impulse."""
+        return any(t.laws[1].grips for t in self.contacts)
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        return sp.diag(*[1 / c.inertia for c in self.coordinates])
+
+    @cached_property
+    def W(self) -> sp.Matrix:
+        """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
+        return (self.J * self.M_inverse * self.J.T).applyfunc(sp.nsimplify)
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix([c.before for c in self.coordinates])
+
+    @cached_property
+    def velocity_before(self) -> sp.Matrix:
+        """Normal closing velocity of every contact before (negative: approaching)."""
+        return (self.J * self.u_before).applyfunc(tidy)
+
+    def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
+        return moving(self.bodies, self.coordinates, list(u))
+
+    def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        return (u + self.M_inverse * self.J.T * impulses).applyfunc(tidy)
+
+    def simultaneous(self) -> Outcome:
+        """All contacts at once, no contact pulling (a complementarity problem).
+
+        Newton's law: every acting contact leaves at ``-e`` times its closing velocity
+        before, every released one at least that fast. Poisson's law: the compression
+        impulses solve the same problem with target zero, and each is scaled by 1 + e.
+        Active sets are tried from the largest down; for a positive-definite W exactly
+        one fits.
+        """
+        self._numbers_only("simultaneous")
+        if self.frictional:
+            return self._frictional_simultaneous()
+        v = self.velocity_before
+        e = sp.Matrix([t.restitution for t in self.contacts])
+        poisson = self._poisson()
+        target = sp.zeros(len(v), 1) if poisson else \
+            sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
+        impulses = self._complementarity(v, target)
+        if poisson:
+            impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
+        u = self._kick(self.u_before, impulses)
+        return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
+                       tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
+                             if p > 0), notes=self._still_closing(u))
+
+    def _still_closing(self, u: sp.Matrix) -> tuple[str, ...]:
+        """A warning for every contact that still approaches after the impact (the bodies
+        would pass into each other): Poisson's law scales each compression impulse by
+        its own 1 + e, which need not leave every contact opening."""
+        after = (self.J * u).applyfunc(tidy)
+        scale = max(abs(x) for x in self.velocity_before)
+        closing = [(t.name, after[i]) for i, t in enumerate(self.contacts)
+                   if after[i] < -sp.Rational(1, 10**12) * scale]
+        return tuple(f"{name} still approaches after the impact (normal velocity "
+                     f"{float(speed):.6g}): the bodies would pass into each other; the "
+                     f"simultaneous rule with Poisson's law cannot honour the physics here "
+                     f"(the sequential rule can)" for name, speed in closing)
+
+    def _frictional_simultaneous(self) -> Outcome:
+        """All contacts at once with Coulomb friction, at the velocity level.
+
+        Each contact is released (no impulse, separating at least as fast as Newton's
+        law asks), sticking (it leaves with Newton's normal velocity and no slip, its
+        tangential impulse inside the cone |P_t| <= mu P_n) or sliding (on the cone's
+        edge, opposite to the slip it leaves with). This is the model of time-stepping
+        codes (Stewart and Trinkle, Anitescu and Potra), not Routh's integration over
+        the impact: friction acts on the velocities after, so it agrees with Routh's
+        method when the slip does not change during the impact. Every combination of
+        states is solved exactly; with friction the problem can have several solutions,
+        or none (Painleve's paradox), and the outcome says so.
+        """
+        if len(self.contacts) == 1:  # one contact: its own exact answer, under any law
+            return self._one_acting(0, [sp.Integer(0)])
+        restitution, tangential = zip(*(t.laws for t in self.contacts), strict=True)
+        late = [t.name for t, r in zip(self.contacts, restitution, strict=True)
+                if r.together != "velocity"]
+        if late:
+            raise InputError(f"{late[0]}.law", "with friction the simultaneous rule takes "
+                             "Newton's law at every contact (the sequential rule takes "
+                             "each law)")
+        formless = [(t.name, law.name) for t, law in zip(self.contacts, tangential,
+                                                          strict=True)
+                    if not law.velocity_states]
+        if formless:
+            raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
+                             "has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        n = len(self.contacts)
+        v_n, v_t = self.velocity_before, (self.J_t * self.u_before).applyfunc(tidy)
+        e = [t.restitution for t in self.contacts]
+        mu = [law.cone() for law in tangential]
+        target = [-e[i] * min(v_n[i], 0) for i in range(n)]
+        rows = sp.Matrix.vstack(self.J, self.J_t)
+        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        states = [("off",) + law.velocity_states for law in tangential]
+        found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
+        count = math.prod(len(s) for s in states)
+        if count > MAX_SYMBOLIC_CASES:
+            raise InputError("contacts", _too_many_states(n, count))
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+        for pattern in itertools.product(*states):
+            if all(state == "off" for state in pattern):
+                continue
+            if time.perf_counter() > deadline:
+                raise InputError("contacts", _too_many_states(n, count))
+            solved = self._friction_pattern(pattern, W, v_n, v_t, target, mu)
+            if solved is not None and all(solved != f for f, _ in found):
+                found.append((solved, pattern))
+        if not found:
+            raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
+                             "friction here (a Painleve-type inconsistency); try the "
+                             "sequential rule")
+        acting = {tuple(i for i in range(n) if f[i] > 0) for f, _ in found}
+        if len(acting) == 1 and len(next(iter(acting))) == 1:
+            (k,), = acting
+            if tangential[k].solved_by_regimes:  # one contact acts: its own exact answer
+                return self._one_acting(k, target)
+        impulses, pattern = found[0]
+        motions = [(self.u_before + self.M_inverse * rows.T * f).applyfunc(tidy)
+                   for f, _ in found]
+        u = motions[0]
+        notes: tuple[str, ...] = ()
+        if len(found) > 1 and all(m == u for m in motions):
+            # with the velocities after fixed, the conditions on the impulses are convex:
+            # every mixture of the solutions found is one too; the mean is shown
+            impulses = (sum((f for f, _ in found), sp.zeros(2 * n, 1)) / len(found)
+                        ).applyfunc(tidy)
+            pattern = tuple(pattern[i] if all(p[i] == pattern[i] for _, p in found)
+                            else "mixed" for i in range(n))
+            notes = (f"the motion after is unique but the impulses are not: {len(found)} "
+                     "ways to share them between the contacts fit the rule, and every "
+                     "mixture of them; shown: their mean",)
+        elif len(found) > 1:
+            notes = (f"the simultaneous rule with friction has {len(found)} solutions here, "
+                     "with different motions after; shown: " + ", ".join(
+                         _STATE[s] for s in pattern) + "; others: " + "; ".join(
+                         ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
+        normal = impulses[:n, 0]
+        return Outcome("simultaneous", (), self.bodies, self._after(u),
+                       self._named(normal), tuple(t.name for t, p in
+                                                  zip(self.contacts, normal, strict=True)
+                                                  if p > 0),
+                       tangential=self._named(impulses[n:, 0]),
+                       courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                                     zip(self.contacts, pattern, strict=True)),
+                       notes=notes)
+
+    def _one_acting(self, k: int, target: list[sp.Expr]) -> Outcome:
+        """Only contact k acts: its frictional impact alone by Routh's method (the answer
+        for one contact under every rule), if that leaves every other contact opening
+        at least as fast as its law asks; otherwise one line saying so."""
+        normal, along, course, u = self._routh_step(k, self.u_before)
+        after = (self.J * u).applyfunc(tidy)
+        blocked = [t.name for i, t in enumerate(self.contacts)
+                   if i != k and after[i] < target[i]]
+        name = self.contacts[k].name
+        if blocked:
+            raise InputError("impact.rule", f"only {name} acts at the velocity level, but "
+                             f"its exact (Routh) impulse leaves {', '.join(blocked)} "
+                             "closing: the simultaneous rule has no consistent answer here; "
+                             "try the sequential rule")
+        zeros = sp.zeros(len(self.contacts), 1)
+        normals, tangentials = zeros.copy(), zeros.copy()
+        normals[k], tangentials[k] = normal, along
+        return Outcome("simultaneous", (), self.bodies, self._after(u),
+                       self._named(normals), (name,),
+                       tangential=self._named(tangentials) if self.frictional else {},
+                       courses=tuple(f"{t.name}: {course}" if i == k else
+                                     f"{t.name}: {_STATE['off']}"
+                                     for i, t in enumerate(self.contacts)))
+
+    def _friction_pattern(self, pattern, W, v_n, v_t, target, mu) -> sp.Matrix | None:
+        """The impulses (normal then tangential) for one choice of contact states, if
+        that choice is consistent."""
+        n = len(pattern)
+        P = sp.symbols(f"p0:{2 * n}")
+        after = sp.Matrix(list(v_n) + list(v_t)) + W * sp.Matrix(P)
+        equations = []
+        for i, state in enumerate(pattern):
+            if state == "off":
+                equations += [P[i], P[n + i]]
+                continue
+            equations.append(after[i] - target[i])
+            if state in ("on",):
+                equations.append(P[n + i])
+            elif state == "stick":
+                equations.append(after[n + i])
+            else:
+                equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
+        matrix, rhs = sp.linear_eq_to_matrix(equations, P)
+        impulses = _exact_solve(matrix, rhs)
+        if impulses is None:  # these states do not fix the impulses
+            return None
+        after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
+        for i, state in enumerate(pattern):
+            p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
+            if state == "off":
+                if after[i] < target[i]:
+                    return None
+                continue
+            if p_n < 0:
+                return None
+            if state == "stick" and mu[i] is not None and abs(p_t) > mu[i] * p_n:
+                return None
+            if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
+                return None
+        return impulses
+
+    def _poisson(self) -> bool:
+        """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
+        if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
+            return False
+        forms = [t.laws[0].together for t in self.contacts]
+        if None in forms:
+            name = self.contacts[forms.index(None)].name
+            raise InputError(f"{name}.law", f"the {self.contacts[forms.index(None)].law} "
+                             "law has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        if len(set(forms)) > 1:
+            raise InputError("contacts", "give every contact the same law to act together")
+        return forms[0] == "impulse"
+
+    def _active_sets(self, v: sp.Matrix, target: sp.Matrix):
+        """Each set of acting contacts whose block of W is invertible, largest first:
+        ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
+        and zero elsewhere (the conditions that pick a set are the caller's)."""
+        n = len(v)
+        for size in range(n, 0, -1):
+            for active in itertools.combinations(range(n), size):
+                block = self.W.extract(list(active), list(active))
+                if tidy(block.det()) == 0:
+                    continue
+                solved = block.LUsolve(sp.Matrix([target[i] - v[i] for i in active]))
+                impulses = sp.zeros(n, 1)
+                for k, i in enumerate(active):
+                    impulses[i] = tidy(solved[k])
+                yield active, impulses, v + self.W * impulses
+
+    def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
+        for active, impulses, after in self._active_sets(v, target):
+            if all(impulses[i] >= 0 for i in active) and all(
+                    after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
+                return impulses
+        return sp.zeros(len(v), 1)
+
+    def _smooth_step(self, k: int, u: sp.Matrix, closing: sp.Expr) -> tuple[sp.Expr,
+                                                                              sp.Matrix]:
+        """Contact k alone, smooth, with Newton's e: its impulse and the motion after."""
+        impulse = tidy(-(1 + self.contacts[k].restitution) * closing / self.W[k, k])
+        kick = sp.zeros(len(self.contacts), 1)
+        kick[k] = impulse
+        return impulse, self._kick(u, kick)
+
+    def sequential(self, order: Sequence[str]) -> Outcome:
+        """One contact at a time in `order`, passes repeated until none approaches.
+
+        With e < 1 the passes can go on forever while the closing speeds shrink
+        geometrically (a stack coming to rest): they stop once every closing speed left
+        is below 1e-40 of the largest before, so such results are exact to that size.
+        """
+        self._numbers_only("sequential")
+        index = self._order_index(order)
+        u, total = self.u_before, sp.zeros(len(index), 1)
+        tangential, courses = sp.zeros(len(index), 1), []
+        scale = max(abs(v) for v in self.velocity_before)
+        passes, acted_now = 0, True
+        while acted_now:  # a pass in which no contact acted ends the rule
+            if passes == MAX_PASSES:
+                raise InputError("impact.rule", f"the sequential rule did not settle in "
+                                 f"{MAX_PASSES} passes (e = 1 chains can ring forever)")
+            passes, acted_now = passes + 1, False
+            for name in order:
+                k = index[name]
+                closing = tidy((self.J[k, :] * u)[0])
+                if closing >= 0 or -closing <= SETTLED * scale:
+                    continue
+                touch = self.contacts[k]
+                if touch.laws[1].grips:  # one contact's own impact (Routh's for Coulomb)
+                    impulse, along, course, u = self._routh_step(k, u)
+                    tangential[k] += along
+                    courses.append(f"{name}: {course}")
+                else:
+                    impulse, u = self._smooth_step(k, u, closing)
+                total[k] += impulse
+                acted_now = True
+        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+                       self._named(total.applyfunc(tidy)),
+                       tuple(t.name for t, p in zip(self.contacts, total, strict=True) if p > 0),
+                       passes - 1, tangential=self._named(tangential.applyfunc(tidy))
+                       if self.frictional else {}, courses=tuple(courses))
+
+    def _routh_step(self, k: int,
+                    u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
+        """Contact k's impact alone under its own laws (Routh's method for Coulomb,
+        Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
+        restitution, tangential = self.contacts[k].laws
+        rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
+        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        if W.det() == 0 and tangential.grips:
+            raise InputError(f"{self.contacts[k].name}.tangential",
+                             "the touching point cannot move both along and across the "
+                             "contact (its 2x2 W is singular): a grip along it is not "
+                             "determined; make the contact smooth")
+        normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
+        normal, along = tidy(normal), tidy(along)
+        u_after = (u + self.M_inverse * (self.J[k, :].T * normal
+                                         + self.J_t[k, :].T * along)).applyfunc(tidy)
+        return normal, along, course, u_after
+
+    def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
+                  tolerance: float = 1e-10, record: bool = False) -> Outcome:
+        """Every contact a push-only spring-dashpot, integrated until all have let go.
+
+        The contact's compression grows at its closing speed, ``d' = -(J u)``, and it
+        pushes with ``k d + c d'`` (``k d^(3/2)`` with `hertz`, elastic only), never
+        pulling; ``u' = M^-1 J^T f``. The bodies do not move appreciably during the
+        contact, so the geometry is that of the instant of impact (the limit the rigid
+        rules describe). A linear contact's damping follows from its e (see
+        :mod:`rigidimpact.laws.compliance`, on the contact's effective mass ``1/W_ii``), which
+        gives back exactly e for that contact alone. Equal stiffnesses give a result
+        independent of their size; the ratios between contacts decide it, and as one
+        contact grows far stiffer than the next, the result tends to the sequential
+        rule in that order. With `record`, the outcome's ``history`` holds the
+        integrator's times and the generalized velocities u there (rows: coordinates).
+
+        Examples
+        --------
+        >>> out = chain(2).compliant()
+        >>> round(float(out.results()["ball1.vx"]), 6)
+        1.0
+        """
+        import math
+
+        import numpy as np
+        from scipy.integrate import solve_ivp
+
+        self._numbers_only("compliant")
+        self._smooth_only("under the compliant rule")
+        k = len(self.contacts)
+        stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
+        if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
+            raise InputError("stiffness", "every contact stiffness must be a positive number")
+        J = np.array(self.J.evalf(), dtype=float)
+        M_inv = np.array(self.M_inverse.evalf(), dtype=float)
+        W = J @ M_inv @ J.T
+        e = np.array([float(t.restitution) for t in self.contacts])
+        if hertz and np.any(e < 1):
+            raise InputError("restitution", "Hertzian contacts here are elastic (e = 1)")
+        ratio = np.array([damping_ratio_for(float(x)) for x in e])
+        damping = 0.0 if hertz else 2 * ratio * np.sqrt(stiff / np.diag(W))
+        n = len(self.coordinates)
+
+        def force(depth, rate):
+            pressed = depth > 0
+            if hertz:
+                push = stiff * np.where(pressed, depth, 0.0) ** 1.5
+            else:
+                push = stiff * depth + damping * rate
+            return np.where(pressed, np.maximum(push, 0.0), 0.0)
+
+        def rhs(_, y):
+            u, depth = y[:n], y[n:n + k]
+            rate = -(J @ u)
+            f = force(depth, rate)
+            return np.concatenate([M_inv @ J.T @ f, rate, f])
+
+        y = np.concatenate([np.array(self.u_before.evalf(), dtype=float).ravel(),
+                            np.zeros(k), np.zeros(k)])
+        speed = float(max(abs(v) for v in self.velocity_before))
+        mass = 1 / np.diag(W)  # each contact's effective mass
+        if hertz:  # a Hertz contact lasts about 3 (m^2 / (k^2 v))^(1/5)
+            period = 3 * float(((mass / stiff) ** 2 / speed).max() ** 0.2)
+        else:
+            period = math.pi * float(np.sqrt(mass / stiff).max())
+        times, states, elapsed = [], [], 0.0
+        for _ in range(2000):  # until every contact has let go and none approaches
+            run = solve_ivp(rhs, (0.0, period), y, method="LSODA", rtol=tolerance,
+                            atol=tolerance * max(speed, 1.0) * period)
+            y = run.y[:, -1]
+            if record:
+                times.append(run.t + elapsed)
+                states.append(run.y[:n])
+                elapsed += period
+            u, depth = y[:n], y[n:n + k]
+            if np.all(depth <= 0) and np.all(J @ u >= -tolerance * speed):
+                break
+        else:
+            raise InputError("impact.rule", "the compliant contacts did not let go")
+        u_after = sp.Matrix([sp.Float(x, 17) for x in y[:n]])
+        impulses = sp.Matrix([sp.Float(x, 17) for x in y[n + k:]])
+        history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
+        return Outcome("compliant", (), self.bodies, self._after(u_after),
+                       self._named(impulses),
+                       tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
+                             if p > 0), history=history,
+                       energy_tolerance=COMPLIANT_ENERGY_TOLERANCE)
+
+    def _order_index(self, order: Sequence[str]) -> dict[str, int]:
+        index = {t.name: k for k, t in enumerate(self.contacts)}
+        unknown = [name for name in order if name not in index]
+        if unknown or sorted(order) != sorted(index):
+            raise InputError("impact.order", f"must list every contact once: "
+                             f"{', '.join(index)}")
+        return index
+
+    def simultaneous_cases(self) -> tuple[Outcome, ...]:
+        """The simultaneous rule with symbols: one outcome per set of acting contacts,
+        each with the conditions under which it is the one (its impulses >= 0, every
+        released contact separating at least as fast as its law asks, every contact
+        closing or at rest before). Where W is positive definite exactly one case holds
+        at any numbers. Under Newton's law each contact's sign before decides its target
+        (-e v- if it closes, 0 if it opens), so the cases are also split by those signs.
+
+        Examples
+        --------
+        >>> m = sp.Symbol("m", positive=True)
+        >>> balls = [Body.rigid(1, 1, (0, 0), (1, 0), name="a"),
+        ...          Body.rigid(m, 1, (2, 0), (0, 0), name="b"),
+        ...          Body.rigid(1, 1, (4, 0), (0, 0), name="c")]
+        >>> touches = [Contact(restitution=1, name="ab", bodies=("a", "b"), point=(1, 0)),
+        ...            Contact(restitution=1, name="bc", bodies=("b", "c"), point=(3, 0))]
+        >>> both = Collision(tuple(balls), tuple(touches)).simultaneous_cases()[0]
+        >>> both.results()["c.vx"], both.conditions
+        (2/(m + 2), (True,))
+        """
+        self._smooth_only("with symbols")
+        v = self.velocity_before
+        e = sp.Matrix([t.restitution for t in self.contacts])
+        poisson = self._poisson()
+        n = len(v)
+        # Newton's target -e min(v, 0) depends on each contact's sign before: one
+        # pattern of signs at a time (a contact at rest, or under Poisson's law: one)
+        options = []
+        for i in range(n):
+            if poisson or tidy(v[i]).is_zero:
+                options.append([(sp.true, sp.Integer(0), v[i].is_negative is True)])
+                continue
+            options.append([(sp.Le(v[i], 0), -e[i] * v[i], True),
+                            (sp.Ge(v[i], 0), sp.Integer(0), False)])
+        count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
+        if count > MAX_SYMBOLIC_CASES:
+            raise InputError("contacts", _too_many_cases(n, count))
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+        cases = []
+        for pattern in itertools.product(*options):
+            if not poisson and not any(closing for _, _, closing in pattern):
+                continue  # nothing approaches: no impact
+            signs = _conditions([c for c, _, _ in pattern])
+            if signs == (sp.false,):
+                continue
+            target = sp.Matrix([t for _, t, _ in pattern])
+            for active, compression, after in self._active_sets(v, target):
+                if time.perf_counter() > deadline:
+                    raise InputError("contacts", _too_many_cases(n, count))
+                held = _conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
+                                   + [sp.Ge(tidy(after[i] - target[i]), 0)
+                                      for i in range(n) if i not in active])
+                if held == (sp.false,):
+                    continue
+                impulses = sp.Matrix([compression[i] * ((1 + e[i]) if poisson else 1)
+                                      for i in range(n)]).applyfunc(tidy)
+                u = self._kick(self.u_before, impulses)
+                cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
+                                     self._named(impulses),
+                                     tuple(self.contacts[i].name for i in active),
+                                     conditions=held))
+        return tuple(cases)
+
+    def sequential_pass(self, order: Sequence[str]) -> Outcome:
+        """The sequential rule with symbols: one pass in `order`, every contact acting
+        once, with the conditions that make it so (each contact closing at its turn) and
+        that end the rule there (no contact closing after the pass).
+
+        Examples
+        --------
+        >>> e = sp.Symbol("e", nonnegative=True)
+        >>> out = chain(3, e).sequential_pass(("c0", "c1"))
+        >>> [out.results()[f"ball{k}.vx"] for k in range(3)]
+        [-(e - 1)/2, (1 - e)*(e + 1)/4, (e + 1)**2/4]
+
+        With e < 1 the first pair still closes after the pass, so one pass ends the rule
+        only at e = 1:
+
+        >>> out.conditions
+        (e**2 - 2*e <= -1,)
+        """
+        self._smooth_only("with symbols")
+        index = self._order_index(order)
+        u = self.u_before
+        total = sp.zeros(len(index), 1)
+        conditions = []
+        for name in order:
+            k = index[name]
+            closing = tidy((self.J[k, :] * u)[0])
+            conditions.append(sp.Lt(closing, 0))
+            total[k], u = self._smooth_step(k, u, closing)
+        conditions += [sp.Ge(tidy((self.J[k, :] * u)[0]), 0) for k in range(len(index))]
+        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+                       self._named(total.applyfunc(tidy)), tuple(order),
+                       conditions=_conditions(conditions))
+
+    def every_order(self) -> tuple[Outcome, ...]:
+        """The sequential rule in every order of the contacts."""
+        names = [t.name for t in self.contacts]
+        count = math.factorial(len(names))  # counted before any order is made
+        if count > MAX_ORDERS:
+            raise InputError("impact.order", f"{len(names)} contacts have {count} orders "
+                             f"(at most {MAX_ORDERS} are run): give one")
+        orders = list(itertools.permutations(names))
+        if self.symbols:
+            return tuple(self.sequential_pass(order) for order in orders)
+        return tuple(self.sequential(order) for order in orders)
+
+    def solve(self, rule: Rule) -> tuple[Outcome, ...]:
+        """What `rule` makes of the collision (see :class:`Rule`): the model is built once
+        and the rule is an argument, as sympy's ``System.form_eoms`` takes its method.
+
+        Examples
+        --------
+        >>> chain(3).solve(Sequential(("c0", "c1")))[0].results()["ball2.vx"]
+        1
+        """
+        return tuple(replace(o, pivot_reactions=self._pivot_reactions(o))
+                     for o in rule.outcomes(self))
+
+    def _pivot_reactions(self, outcome: Outcome) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """What each pivot gives its body: the body's change of linear momentum less the
+        contact impulses it received (each along its contact's unit normal and tangent;
+        the second body of a contact receives +P, the first -P)."""
+        found = {}
+        for before, after in zip(outcome.before, outcome.after, strict=True):
+            if before.support != "pivot":
+                continue
+            received = sp.zeros(2, 1)
+            for t in self.contacts:
+                if before.name not in (t.first, t.second):
+                    continue
+                push = outcome.impulses[t.name] * t.unit_normal + \
+                    outcome.tangential.get(t.name, sp.Integer(0)) * t.tangent
+                received += push if before.name == t.second else -push
+            reaction = before.mass * (after.velocity - before.velocity) - received
+            found[before.name] = (tidy(reaction[0]), tidy(reaction[1]))
+        return found
+
+    def unknowns(self) -> tuple[sp.Symbol, ...]:
+        """What the printed equations are solved for: each generalized velocity after
+        (``V_BODYfx``, ``V_BODYfy``, ``omega_BODYfz``), then each contact's normal and
+        (with friction) tangential impulse (``Pn_CONTACT``, ``Pt_CONTACT``)."""
+        speeds = [sp.Symbol(f"omega_{c.body}fz" if c.kind == "omega"
+                            else f"V_{c.body}f{c.kind[1]}", real=True)
+                  for c in self.coordinates]
+        pushes = [sp.Symbol(f"Pn_{t.name}", real=True) for t in self.contacts]
+        if self.frictional:
+            pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
+        return tuple(speeds + pushes)
+
+    def equations(self, outcome: Outcome) -> tuple[Equation, ...]:
+        """The labelled equations `outcome` solves, over :meth:`unknowns`: the momentum
+        balance of every generalized velocity (``M (u+ - u-) = J^T P``, the same for
+        every rule), then what the rule imposed at each contact. Substituting the
+        outcome's results makes every residual zero (tested), so what is printed is
+        what was solved.
+
+        Examples
+        --------
+        >>> c = chain(2)
+        >>> [str(eq.as_sympy()) for eq in c.equations(c.simultaneous())][-1]
+        'Eq(-V_ball0fx + V_ball1fx, 1)'
+        """
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        u_after, P_n = sp.Matrix(symbols[:size]), sp.Matrix(symbols[size:size + n])
+        P_t = sp.Matrix(symbols[size + n:]) if self.frictional else sp.zeros(n, 1)
+        push = self.J.T * P_n + self.J_t.T * P_t
+        found = []
+        for i, c in enumerate(self.coordinates):
+            body = self._body(c.body)
+            what = {"vx": f"x momentum of {c.body}", "vy": f"y momentum of {c.body}"}.get(
+                c.kind) or f"angular momentum of {c.body} about its " + (
+                "pivot" if body.support == "pivot" else "centre")
+            found.append(Equation(f"{what}: its change is the contacts' impulse", "",
+                                  c.inertia * (u_after[i] - c.before), tidy(push[i]),
+                                  law="momentum"))
+        u = self._u_of(outcome)
+        routh = outcome.rule == "simultaneous" and len(outcome.acted) == 1 and \
+            self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
+        for k, t in enumerate(self.contacts):
+            restitution, tangential = t.laws
+            closing = (self.J[k, :] * u_after)[0]
+            slip = (self.J_t[k, :] * u_after)[0]
+            normal, along = outcome.impulses[t.name], outcome.tangential.get(t.name, 0)
+            if outcome.rule != "simultaneous" or routh:
+                how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
+                                     "impact)",
+                       "compliant": f"{t.name}'s spring impulse, integrated",
+                       "simultaneous": f"{t.name} alone by its own law (Routh's method)"}
+                found.append(Equation(how[outcome.rule], "", P_n[k], normal,
+                                      law="rule"))
+                if self.frictional:
+                    found.append(Equation(how[outcome.rule] + ", tangential", "", P_t[k],
+                                          along, law="rule"))
+                continue
+            if t.name not in outcome.acted:
+                found.append(Equation(f"{t.name} released: no impulse", "", P_n[k], 0,
+                                      law="released"))
+            elif restitution.together == "impulse" and n > 1:
+                compression = (self.velocity_before[k] + sum(
+                    (self.W[k, j] * P_n[j] / (1 + self.contacts[j].restitution)
+                     for j in range(n)), sp.Integer(0)))
+                found.append(Equation(f"{t.name} at rest at the end of compression "
+                                      "(Poisson's law: each impulse is 1 + e times its "
+                                      "compression impulse)", "", tidy(compression), 0,
+                                      law="restitution"))
+            else:
+                before = self.velocity_before[k]
+                closed = before.is_negative
+                found.append(Equation(f"restitution at {t.name} (Newton's law" + (
+                    ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
+                    -t.restitution * before if closed else 0, law="restitution"))
+            if not self.frictional:
+                continue
+            after_slip = tidy((self.J_t[k, :] * u)[0])
+            if not tangential.grips or t.name not in outcome.acted:
+                found.append(Equation(f"{t.name}: no tangential impulse", "", P_t[k], 0,
+                                      law="tangential"))
+            elif after_slip == 0:
+                found.append(Equation(f"{t.name} sticks: no slip after", "", slip, 0,
+                                      law="tangential"))
+            else:
+                sign = -1 if after_slip > 0 else 1
+                found.append(Equation(f"{t.name} slides: Coulomb's friction against the "
+                                      "slip after", "", P_t[k], sign * tangential.cone()
+                                      * P_n[k], law="tangential"))
+        return tuple(found)
+
+    def _u_of(self, outcome: Outcome) -> sp.Matrix:
+        """The generalized velocities of `outcome`'s bodies after."""
+        after = {b.name: b for b in outcome.after}
+        values = []
+        for c in self.coordinates:
+            body = after[c.body]
+            values.append(body.spin if c.kind == "omega" else
+                          body.velocity[0 if c.kind == "vx" else 1])
+        return sp.Matrix(values)
+
+    def solved_values(self, outcome: Outcome) -> dict[sp.Symbol, sp.Expr]:
+        """:meth:`unknowns` -> their values in `outcome` (to check the equations)."""
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        values = dict(zip(symbols[:size], self._u_of(outcome), strict=True))
+        values.update({symbols[size + k]: outcome.impulses[t.name]
+                       for k, t in enumerate(self.contacts)})
+        if self.frictional:
+            values.update({symbols[size + n + k]: outcome.tangential.get(t.name, 0)
+                           for k, t in enumerate(self.contacts)})
+        return values
+
+    def _by_name(self, name: str) -> Contact:
+        return next(t for t in self.contacts if t.name == name)
+
+    def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
+        return {t.name: impulses[k] for k, t in enumerate(self.contacts)}
+
+
+def _too_many_cases(n: int, count: int) -> str:
+    return (f"{n} contacts with symbols make {count} cases (signs before x contacts "
+            f"acting), more than can be solved in {MAX_SYMBOLIC_SECONDS:.0f} s: give "
+            "numbers for the symbols (--set or [values]) and it is solved exactly at them")
+
+
+def _exact_solve(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
+    """The unique solution of a square linear system of numbers, or None when it is
+    singular. The numbers are taken into their own field (the rationals with sqrt(2)
+    adjoined, say), where elimination is exact and fast; SymPy's general expressions
+    would be factored at every step.
+
+    Examples
+    --------
+    >>> _exact_solve(sp.Matrix([[1, sp.sqrt(2)], [0, 2]]), sp.Matrix([1, 2])).T
+    Matrix([[1 - sqrt(2), 1]])
+    """
+    augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
+    reduced, pivots = augmented.rref()
+    size = matrix.shape[1]
+    if tuple(pivots) != tuple(range(size)):
+        return None
+    return reduced.to_Matrix()[:, size]
+
+
+def _too_many_states(n: int, count: int) -> str:
+    return (f"{n} frictional contacts have {count} combinations of states (released, "
+            f"sticking, sliding either way), more than can be solved exactly in "
+            f"{MAX_SYMBOLIC_SECONDS:.0f} s: try the sequential rule with an order")
+
+
+FLIPPED = {sp.GreaterThan: sp.LessThan, sp.LessThan: sp.GreaterThan,
+           sp.StrictGreaterThan: sp.StrictLessThan, sp.StrictLessThan: sp.StrictGreaterThan}
+
+
+def _sign_of(relation: sp.Basic) -> sp.Basic:
+    """``expr OP 0`` with every factor of known sign taken out (a positive mass, 1 + e),
+    so what is left is the condition itself.
+
+    Examples
+    --------
+    >>> m, v = sp.Symbol("m", positive=True), sp.Symbol("v", real=True)
+    >>> _sign_of(sp.Ge(-3 * m * v / (m + 1), 0))
+    v <= 0
+    """
+    if relation in (sp.true, sp.false):
+        return relation
+    op = type(relation)
+    expr = sp.factor(relation.lhs - relation.rhs)
+    numerator, denominator = sp.fraction(expr)
+    kept = []
+    for factor in sp.Mul.make_args(numerator) + sp.Mul.make_args(denominator):
+        if factor.is_positive:
+            continue
+        if factor.is_negative:
+            op = FLIPPED[op]
+            continue
+        kept.append(factor)
+    return op(sp.Mul(*kept), 0)
+
+
+def _conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
+    """Relations with the ones that always hold dropped: ``(True,)`` when none is left,
+    ``(False,)`` when they cannot all hold, or hold only on a boundary (an equality,
+    where the neighbouring case gives the same numbers)."""
+    kept = []
+    for relation in relations:
+        relation = _sign_of(relation)
+        if relation == sp.false:
+            return (sp.false,)
+        if relation != sp.true and relation not in kept:
+            kept.append(relation)
+    if not kept:
+        return (sp.true,)
+    joint = sp.simplify(sp.And(*kept))
+    if joint == sp.false or isinstance(joint, sp.Eq) or (
+            isinstance(joint, sp.And) and any(isinstance(a, sp.Eq) for a in joint.args)):
+        return (sp.false,)
+    return tuple(joint.args) if isinstance(joint, sp.And) else (joint,)
+
+
+def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
+    """Newton's cradle: n equal balls (mass 1, radius 1/2) in a line, touching, the first
+    moving at `speed` into the rest.
+
+    Examples
+    --------
+    >>> [chain(3).simultaneous().results()[f"ball{k}.vx"] for k in range(3)]
+    [-1/3, 2/3, 2/3]
+    """
+    if n < 2:
+        raise InputError("n", "a chain needs two balls or more")
+    bodies = tuple(Body.rigid(1, sp.Rational(1, 10), (k, 0), (speed if k == 0 else 0, 0),
+                              name=f"ball{k}") for k in range(n))
+    touches = tuple(Contact(restitution=restitution, name=f"c{k}",
+                            bodies=(f"ball{k}", f"ball{k + 1}"),
+                            point=(sp.Rational(2 * k + 1, 2), 0)) for k in range(n - 1))
+    return Collision(bodies, touches)
+
+
+# ---- rules: how contacts that close together act, each one small class ---------------
+
+class Rule:
+    """How several contacts that close at the same instant act together.
+
+    A rule is one small class: :meth:`outcomes` says what it makes of a collision (one
+    outcome, or one per case or order), built from the collision's own solvers, so every
+    rule returns the same :class:`Outcome`. :data:`RULE_TYPES` lists the built-in ones
+    for the scene reader; a new rule needs no entry there to be used from Python.
+    """
+
+    name: ClassVar[str] = ""
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        raise NotImplementedError
+
+    def laws(self, frictional: bool = False) -> str:
+        """What the rule imposes, in words."""
+        return rule_laws(self.name, frictional)
+
+
+@dataclass(frozen=True)
+class Simultaneous(Rule):
+    """All contacts at once, none pulling (a complementarity problem); with symbols, one
+    outcome per case, each with its conditions.
+
+    Examples
+    --------
+    >>> [o.label for o in chain(3).solve(Simultaneous())]
+    ['simultaneous']
+    """
+
+    name: ClassVar[str] = "simultaneous"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        if collision.symbols:
+            return collision.simultaneous_cases()
+        return (collision.simultaneous(),)
+
+
+@dataclass(frozen=True)
+class Sequential(Rule):
+    """One contact at a time in `order`; every order when `order` is None.
+
+    Examples
+    --------
+    >>> [o.label for o in chain(3).solve(Sequential(("c0", "c1")))]
+    ['sequential c0, c1']
+    """
+
+    order: tuple[str, ...] | None = None
+    name: ClassVar[str] = "sequential"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        if self.order is None:
+            return collision.every_order()
+        if collision.symbols:
+            return (collision.sequential_pass(self.order),)
+        return (collision.sequential(self.order),)
+
+
+@dataclass(frozen=True)
+class Compliant(Rule):
+    """Every contact a push-only spring (linear with damping from e, or Hertz's), with
+    one stiffness per contact in their order (N/m)."""
+
+    stiffness: tuple[float, ...] | float = 1e6
+    hertz: bool = False
+    name: ClassVar[str] = "compliant"
+
+    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        return (collision.compliant(self.stiffness, self.hertz),)
+
+
+RULE_TYPES: tuple[type[Rule], ...] = (Simultaneous, Sequential, Compliant)
