@@ -324,9 +324,21 @@ class ContactLaw:
             return sp.sympify(regime.impulse[0]), sp.sympify(regime.impulse[1]), regime.name
         return self._linear_alone(W, v_before, restitution)
 
+    def linear_conditions(self, v_before: sp.MatrixBase, v_after: sp.MatrixBase,
+                          impulse: sp.MatrixBase, e: sp.Expr) -> list[sp.Expr]:
+        """The two residuals, linear in the velocities after and the impulse (contact
+        space), that a law imposed as linear conditions asks to vanish: Newton's e across
+        (every restitution law reads so on a straight impulse path) and the tangential
+        condition. Any solver of W P = v+ - v- may impose them."""
+        return [v_after[0] + e * v_before[0], impulse[1]]
+
     def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
-        # a straight impulse path: every restitution law reads as Newton's
-        return -(1 + restitution.e) * v_before[0] / W[0, 0], sp.Integer(0), self.name
+        P = sp.Matrix(sp.symbols("p_n p_t"))
+        after = sp.Matrix(v_before) + sp.Matrix(W) * P
+        matrix, rhs = sp.linear_eq_to_matrix(
+            self.linear_conditions(v_before, after, P, restitution.e), list(P))
+        solved = matrix.LUsolve(rhs)
+        return solved[0], solved[1], self.name
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
@@ -403,11 +415,8 @@ class Stick(ContactLaw):
     def equations(self, before, after):
         return (no_slip(after[0], after[1]),)
 
-    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
-        # Newton's e across, no slip after: W P = (-(1 + e) v_n, -v_t)
-        P = sp.Matrix(W).LUsolve(sp.Matrix([-(1 + restitution.e) * v_before[0],
-                                            -v_before[1]]))
-        return P[0], P[1], self.name
+    def linear_conditions(self, v_before, v_after, impulse, e) -> list[sp.Expr]:
+        return [v_after[0] + e * v_before[0], v_after[1]]  # Newton's e across, no slip
 
 
 @dataclass(frozen=True, repr=False)

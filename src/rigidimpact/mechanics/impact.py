@@ -1,0 +1,429 @@
+"""The impact map of a sympy.physics.mechanics system.
+
+sympy.physics.mechanics builds the equations of motion of a multibody system (a
+``KanesMethod``, or a ``System`` after ``form_eoms``) but has no impulsive events. An
+impact at a point of such a system is the same problem as for the built-in shapes, in
+generalized speeds u instead of body velocities:
+
+- the mass matrix M(q) of the speeds is the system's own (``mass_matrix``);
+- each contact point's velocity, relative to the other body (or the fixed ground), is
+  linear in u: its components along the contact's unit normal and tangent give the
+  contact's two Jacobian rows, ``v = J u`` (sympy's partial velocities);
+- an impulse P at the contacts changes the speeds by ``M (u+ - u-) = J^T P``, so the
+  contact velocities change by ``W P`` with ``W = J M^-1 J^T``;
+- each contact's laws (the same objects as everywhere in rigidimpact: Newton's, Poisson's
+  or the energetic restitution, smooth, stick, Coulomb or rough) fix P in contact space.
+
+The normal of a contact points out of the surface, toward the system's point (the
+direction in which the contact pushes it); the tangent is the normal turned by +90
+degrees about the frame's z axis. A contact approaches when ``n . (v_point - v_other)`` is
+negative.
+
+Examples
+--------
+A pendulum (a particle of mass m on a massless rod of length l hinged at O) strikes a
+wall at its lowest point with Newton's e: its rate reverses and is scaled by e.
+
+>>> import sympy as sp
+>>> import sympy.physics.mechanics as me
+from sympy.polys.matrices import DomainMatrix
+>>> q, u = me.dynamicsymbols("q u")
+>>> m, l, e = sp.symbols("m l e", positive=True)
+>>> N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
+>>> A.orient_axis(N, N.z, q)
+>>> A.set_ang_vel(N, u * N.z)
+>>> O = me.Point("O"); O.set_vel(N, 0)
+>>> bob = O.locatenew("bob", -l * A.y)
+>>> bob.v2pt_theory(O, N, A)
+l*u(t)*A.x
+>>> kane = me.KanesMethod(N, [q], [u], [q.diff() - u])
+>>> _ = kane.kanes_equations([me.Particle("P", bob, m)], [])
+>>> hit = impact(kane, [contact(bob, N.x, restitution=e)], frame=N)
+>>> hit.solve().speeds_after[0].subs(q, 0)
+-e*u(t)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import sympy as sp
+import sympy.physics.mechanics as me
+from sympy.polys.matrices import DomainMatrix
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import Equation
+
+__all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
+
+
+@dataclass(frozen=True)
+class PointContact:
+    """A point of a mechanics system meeting the ground or another of its points.
+
+    Parameters
+    ----------
+    point : sympy.physics.mechanics.Point
+        The system's point that strikes (its velocity must be set in the frame).
+    normal : sympy.physics.mechanics.Vector
+        Out of the surface, toward `point` (any nonzero length).
+    laws : Contact
+        The contact's restitution and tangential laws (their coefficients).
+    other : Point, optional
+        The point it strikes on another body of the system; None for the fixed ground.
+    """
+
+    point: Any
+    normal: Any
+    laws: Contact
+    other: Any = None
+
+    @property
+    def name(self) -> str:
+        return self.laws.name
+
+
+def contact(point: Any, normal: Any, *, other: Any = None, restitution: Any = 0,
+            tangential: str = "smooth", law: str = "newton", friction: Any = None,
+            tangential_restitution: Any = None, name: str = "contact") -> PointContact:
+    """A contact of a mechanics system with its laws (as for a scene's ``[contact]``).
+
+    Examples
+    --------
+    >>> import sympy.physics.mechanics as me
+from sympy.polys.matrices import DomainMatrix
+    >>> N = me.ReferenceFrame("N")
+    >>> contact(me.Point("foot"), N.y, restitution=0, tangential="stick").laws
+    Contact(normal=(1, 0), restitution=0, tangential='stick', law='newton')
+    """
+    laws = Contact(restitution=restitution, tangential=tangential, law=law, name=name,
+                   friction=friction, tangential_restitution=tangential_restitution)
+    return PointContact(point, normal, laws, other)
+
+
+@dataclass(frozen=True)
+class ImpactMap:
+    """What an impact does to a mechanics system: the one result of :meth:`SystemImpact.solve`.
+
+    Attributes
+    ----------
+    speeds_before, speeds_after
+        The generalized speeds u before (the system's own symbols) and their closed forms
+        after, in q and the speeds before.
+    impulses : dict
+        Contact name -> (normal impulse, tangential impulse).
+    courses : dict
+        Contact name -> how its impulse came about (``stick``, ``smooth``, Routh's
+        ``slip``, ``slip-stick``, ``slip-reversal`` ...).
+    equations, unknowns
+        The labelled equations solved (generalized momentum balance ``M (u+ - u-) =
+        J^T P``, then each contact's laws) and what they were solved for.
+    energy_lost
+        ``T- - T+`` from the mass matrix (negative: the model created energy).
+    """
+
+    speeds_before: tuple[Any, ...]
+    speeds_after: sp.ImmutableMatrix
+    impulses: dict[str, tuple[sp.Expr, sp.Expr]]
+    courses: dict[str, str]
+    equations: tuple[Equation, ...]
+    unknowns: tuple[sp.Symbol, ...]
+    energy_lost: sp.Expr
+    warnings: tuple[str, ...] = field(default=())
+
+    @property
+    def matrix(self) -> sp.Matrix:
+        """H with ``u+ = H u-`` (the map is linear in the speeds before for every law
+        except friction whose course depends on them)."""
+        return self.speeds_after.jacobian(sp.Matrix(self.speeds_before))
+
+    def _repr_latex_(self) -> str:
+        rows = " \\\\ ".join(f"{sp.latex(u)}^{{+}} &= {sp.latex(v)}" for u, v in
+                             zip(self.speeds_before, self.speeds_after, strict=True))
+        return f"$$\\begin{{aligned}} {rows} \\end{{aligned}}$$"
+
+
+@dataclass(frozen=True)
+class SystemImpact:
+    """The impact problem of a mechanics system: M(q), one (normal, tangent) Jacobian row
+    pair per contact, and the contacts' laws. See :func:`impact`."""
+
+    frame: Any
+    q: tuple[Any, ...]
+    u: tuple[Any, ...]
+    M: sp.ImmutableMatrix
+    contacts: tuple[PointContact, ...]
+
+    def __post_init__(self) -> None:
+        for c in self.contacts:
+            if all(x == 0 for x in self._rows(c)[0]) and all(x == 0 for x in self._rows(c)[1]):
+                raise InputError(f"{c.name}.point", "its velocity does not depend on the "
+                                 "system's speeds: nothing there can be struck")
+
+    def _unit(self, c: PointContact) -> tuple[Any, Any]:
+        n = c.normal
+        length = sp.sqrt(sp.trigsimp(n.dot(n)))
+        if length == 0:
+            raise InputError(f"{c.name}.normal", "must not be the zero vector")
+        n = n / length
+        return n, self.frame.z.cross(n)
+
+    def _rows(self, c: PointContact) -> tuple[list[sp.Expr], list[sp.Expr]]:
+        velocity = c.point.vel(self.frame)
+        if c.other is not None:
+            velocity = velocity - c.other.vel(self.frame)
+        partials = me.partial_velocity([velocity], list(self.u), self.frame)[0]
+        rest = (velocity - sum((p * s for p, s in zip(partials, self.u, strict=True)),
+                               me.Vector(0))).simplify()
+        if rest != me.Vector(0) and any(x != 0 for x in rest.to_matrix(self.frame)):
+            raise InputError(f"{c.name}.point", "its velocity has a part that is not linear "
+                             "in the speeds (a driven or moving constraint): not supported")
+        n, t = self._unit(c)
+        return ([sp.trigsimp(p.dot(n)) for p in partials],
+                [sp.trigsimp(p.dot(t)) for p in partials])
+
+    @cached_property
+    def J(self) -> sp.ImmutableMatrix:
+        """Rows (normal, tangent) of every contact in turn: ``v = J u``."""
+        rows = []
+        for c in self.contacts:
+            rows += list(self._rows(c))
+        return sp.ImmutableMatrix(rows)
+
+    @cached_property
+    def _stand_ins(self) -> dict[sp.Basic, sp.Dummy]:
+        """A symbol for every sin and cos of a coordinate (and every coordinate and speed)
+        in M and J: the solve is then rational arithmetic, exact and fast, and the
+        trigonometric identities are applied once to the results (as the one-contact core
+        does for a symbolic tilt)."""
+        atoms = (self.M.atoms(sp.sin, sp.cos) | self.J.atoms(sp.sin, sp.cos)
+                 | set(self.q) | set(self.u))
+        return {a: sp.Dummy(f"s{i}") for i, a in enumerate(
+            sorted(atoms, key=lambda a: (a.count_ops(), sp.default_sort_key(a)), reverse=True))}
+
+    def _in(self, matrix: sp.MatrixBase) -> sp.Matrix:
+        return sp.Matrix(matrix).xreplace(self._stand_ins)
+
+    def _out(self, matrix: sp.MatrixBase) -> sp.Matrix:
+        back = {v: k for k, v in self._stand_ins.items()}
+        return sp.Matrix(matrix).xreplace(back)
+
+    @cached_property
+    def _field(self) -> tuple[Any, Any, Any]:
+        """The rational functions of the stand-ins and constants, and M^-1 J^T and W in
+        it (each entry one reduced fraction)."""
+        M, J = self._in(self.M), self._in(self.J)
+        speeds = self._in(sp.Matrix(self.u)).free_symbols
+        gens = sorted(M.free_symbols | J.free_symbols | speeds, key=sp.default_sort_key)
+        domain = sp.QQ.frac_field(*gens) if gens else sp.QQ
+        dm, dj = (DomainMatrix.from_Matrix(x).convert_to(domain) for x in (M, J))
+        x = dm.lu_solve(dj.transpose())
+        return domain, x, dj * x
+
+    @cached_property
+    def _solved(self) -> tuple[sp.Matrix, sp.Matrix]:
+        """``M^-1 J^T`` and ``W`` in the stand-ins."""
+        _, x, w = self._field
+        return x.to_Matrix(), w.to_Matrix()
+
+    @cached_property
+    def _M_inv_JT(self) -> sp.Matrix:
+        return self._out(self._solved[0])
+
+    @cached_property
+    def W(self) -> sp.Matrix:
+        """``J M^-1 J^T``: how the contacts' impulses change their velocities."""
+        return self._out(self._solved[1]).applyfunc(_tidy)
+
+    def solve(self) -> ImpactMap:
+        """The speeds after, each contact's impulse, the equations and the energy lost.
+
+        One contact: its own exact answer under its laws (Routh's method for Coulomb,
+        Walton's for rough; with symbols a friction law's course must be decided by
+        numbers). Several contacts: all act together, each under a linear law (smooth or
+        stick with its restitution), the impulses from one linear system; with numbers a
+        normal impulse that would pull is said in a warning.
+        """
+        laws = [c.laws.laws for c in self.contacts]
+        if all(not tangential.solved_by_regimes for _, tangential in laws):
+            return self._linear()
+        if len(self.contacts) > 1:
+            name = next(c.name for c, (_, t) in zip(self.contacts, laws, strict=True)
+                        if t.solved_by_regimes)
+            raise InputError(f"{name}.tangential", "friction by regimes (Coulomb, rough) "
+                             "at one of several contacts of a mechanics system is not "
+                             "supported: use smooth or stick there")
+        return self._by_regimes()
+
+    def _linear(self) -> ImpactMap:
+        """Every law a pair of linear conditions: one linear system in the speeds after
+        and the impulses, ``M u+ - J^T P = M u-`` with each contact's two conditions,
+        solved fraction-free over the polynomials of the stand-ins (no gcd until the
+        end, where each result is reduced once)."""
+        n, k = len(self.u), len(self.contacts)
+        M, J = self._in(self.M), self._in(self.J)
+        u = self._in(sp.Matrix(self.u))
+        after = sp.Matrix(sp.symbols(f"x0:{n}"))
+        P = sp.Matrix(sp.symbols(f"p0:{2 * k}"))
+        rows = list(M * after - J.T * P - M * u)
+        for i, c in enumerate(self.contacts):
+            restitution, tangential = c.laws.laws
+            pair = slice(2 * i, 2 * i + 2)
+            rows += tangential.linear_conditions(J[pair, :] * u, J[pair, :] * after,
+                                                 P[pair, 0], restitution.e)
+        A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
+        gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
+        ring = sp.QQ[tuple(gens)] if gens else sp.QQ
+        dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
+        if dA.det() == ring.zero:
+            raise InputError("contacts", "the contacts' conditions do not fix the impulses "
+                             "(more conditions than the system has freedoms)")
+        numerators, denominator = dA.solve_den(db)
+        field = ring.get_field() if gens else sp.QQ
+        x = [field.convert_from(numerators[i, 0].element, ring)
+             / field.convert_from(denominator, ring) for i in range(n + 2 * k)]
+        solved = [field.to_sympy(v) for v in x]
+        u_after, impulse = sp.Matrix(solved[:n]), sp.Matrix(solved[n:])
+        dM = DomainMatrix.from_Matrix(M).convert_to(field)
+        du = DomainMatrix.from_Matrix(u).convert_to(field)
+        dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
+        twice = (du.transpose() * dM * du - dx.transpose() * dM * dx)[0, 0].element
+        courses = {c.name: t.name for c, (_, t) in zip(self.contacts, (
+            c.laws.laws for c in self.contacts), strict=True)}
+        return self._map(u_after, impulse, courses, field.to_sympy(twice) / 2)
+
+    def _by_regimes(self) -> ImpactMap:
+        """One contact whose law picks its course from the numbers (Coulomb by Routh's
+        method, rough by Walton's): W and the velocities before must be numbers."""
+        c = self.contacts[0]
+        restitution, tangential = c.laws.laws
+        u = sp.Matrix(self.u)
+        W, v = self.W, (self.J * u)
+        if not (all(x.is_number for x in W) and all(x.is_number for x in v)):
+            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
+                             "depends on the numbers: give numbers for q, the speeds and "
+                             "the constants first (SystemImpact.at and the speeds' values)")
+        if W.det() == 0:
+            raise InputError(f"{c.name}.tangential", "the point cannot move both along and "
+                             "across the contact here (W is singular): a grip is not "
+                             "determined; make it smooth")
+        normal, along, course = tangential.alone(W, v, restitution)
+        impulse = sp.Matrix([normal, along])
+        after = u + self._M_inv_JT * impulse
+        energy = ((u.T * self.M * u)[0] - (after.T * self.M * after)[0]) / 2
+        return self._map(self._in(after), self._in(impulse), {c.name: course},
+                         self._in(sp.Matrix([energy]))[0])
+
+    def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
+             energy: sp.Expr) -> ImpactMap:
+        """The result, from the stand-ins back to q, the speeds and their sines."""
+        back = self._out
+        P = back(impulse)
+        impulses = {c.name: (_small(P[2 * i]), _small(P[2 * i + 1]))
+                    for i, c in enumerate(self.contacts)}
+        v = self.J * sp.Matrix(self.u)
+        equations, unknowns = self._equations(v, courses, impulses)
+        return ImpactMap(tuple(self.u), sp.ImmutableMatrix(back(after).applyfunc(_small)),
+                         impulses, courses, equations, unknowns,
+                         _small(back(sp.Matrix([energy]))[0]), self._warnings(impulses))
+
+    def at(self, values: dict) -> SystemImpact:
+        """The same impact with numbers (or expressions) for q and the constants."""
+        put = dict(values)
+        contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
+                         for c in self.contacts)
+        done = SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts)
+        object.__setattr__(done, "J", self.J.xreplace(put).applyfunc(sp.nsimplify))
+        return done
+
+    def _equations(self, v: sp.Matrix, courses: dict[str, str],
+                   impulses: dict[str, tuple[sp.Expr, sp.Expr]]
+                   ) -> tuple[tuple[Equation, ...], tuple]:
+        after = [sp.Symbol(f"{_name(s)}^+") for s in self.u]
+        pushes = []
+        for c in self.contacts:
+            pushes += [sp.Symbol(f"P_n,{c.name}"), sp.Symbol(f"P_t,{c.name}")]
+        U, U0, P = sp.Matrix(after), sp.Matrix(self.u), sp.Matrix(pushes)
+        balance = self.M * (U - U0)
+        generalized = self.J.T * P
+        found = [Equation(f"generalized momentum along {_name(s)}: M (u+ - u-) = J^T P", "",
+                          balance[i], generalized[i], law="momentum")
+                 for i, s in enumerate(self.u)]
+        v_after = self.J * U
+        for i, c in enumerate(self.contacts):
+            restitution, tangential = c.laws.laws
+            course = courses[c.name]
+            if not tangential.solved_by_regimes or course == "stick":
+                found.append(Equation(f"restitution at {c.name} ({restitution.name}'s law "
+                                      "on a straight impulse path)", "", v_after[2 * i],
+                                      -restitution.e * v[2 * i], law="restitution"))
+            if course == "stick":
+                found.append(Equation(f"{c.name} sticks: no slip after", "",
+                                      v_after[2 * i + 1], 0, law="tangential"))
+            elif not tangential.grips:
+                found.append(Equation(f"{c.name} is smooth: no tangential impulse", "",
+                                      P[2 * i + 1], 0, law="tangential"))
+            else:  # Routh's (or Walton's) exact impulse for the course taken
+                how = f"{c.name} alone by the {tangential.name} law, course {course}"
+                found += [Equation(how, "", P[2 * i], impulses[c.name][0], law="tangential"),
+                          Equation(how + ", tangential", "", P[2 * i + 1],
+                                   impulses[c.name][1], law="tangential")]
+        return tuple(found), tuple(after + pushes)
+
+    def _warnings(self, impulses: dict[str, tuple[sp.Expr, sp.Expr]]) -> tuple[str, ...]:
+        found = []
+        for name, (normal, _) in impulses.items():
+            if normal.is_number and normal < 0:
+                found.append(f"{name} would pull (normal impulse {float(normal):.6g}): "
+                             "the model cannot honour a push-only contact here")
+        return tuple(found)
+
+
+def _small(expr: sp.Expr) -> sp.Expr:
+    """sin^2 + cos^2 folded where the expression is small enough for that to be quick."""
+    return _tidy(expr) if sp.count_ops(expr) < 150 else expr
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """One rational function, with sin^2 + cos^2 folded."""
+    return sp.trigsimp(sp.cancel(sp.expand(expr)))
+
+
+def _name(speed: Any) -> str:
+    """``u1`` for ``u1(t)``."""
+    return str(getattr(speed, "func", speed))
+
+
+def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> SystemImpact:
+    """The impact problem of a sympy.physics.mechanics ``KanesMethod`` (after
+    ``kanes_equations``) or ``System`` (after ``form_eoms``) at `contacts`.
+
+    `frame` is the inertial frame (a ``System``'s own frame by default; for a
+    ``KanesMethod`` the frame of the first contact's normal).
+    """
+    try:
+        M = sp.ImmutableMatrix(system.mass_matrix)
+    except (AttributeError, ValueError) as exc:
+        raise InputError("system", f"no mass matrix ({exc}): form the equations of motion "
+                         "first (kanes_equations or form_eoms)") from None
+    q, u = tuple(system.q), tuple(system.u)
+    dependent = getattr(system, "u_dep", None)
+    if dependent is None:
+        dependent = getattr(system, "_udep", ())
+    if len(dependent):
+        raise InputError("system", "dependent speeds are not supported yet: give the "
+                         "system in independent speeds")
+    if M.shape != (len(u), len(u)):
+        raise InputError("system", f"its mass matrix is {M.shape[0]}x{M.shape[1]} for "
+                         f"{len(u)} speeds")
+    if not contacts:
+        raise InputError("contacts", "give at least one contact")
+    if frame is None:
+        frame = getattr(system, "frame", None)
+    if frame is None:
+        frame = contacts[0].normal.args[0][1]
+    return SystemImpact(frame, q, u, M, tuple(contacts))
