@@ -16,6 +16,7 @@ from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on first use
+    from rigidimpact import mechanics as mechanics
     from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
     from rigidimpact.laws.contact import Contact as Contact
@@ -67,6 +68,8 @@ __version__ = "0.1.0"
 
 
 def __getattr__(name: str) -> Any:
+    if name == "mechanics":  # the sympy.physics.mechanics bridge, a folder of its own
+        return import_module("rigidimpact.mechanics")
     if name in _PUBLIC:
         value = getattr(import_module(f"rigidimpact.{_PUBLIC[name]}"), name)
         globals()[name] = value
@@ -75,4 +78,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *_PUBLIC])
+    return sorted([*globals(), *_PUBLIC, "mechanics"])

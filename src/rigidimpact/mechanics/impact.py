@@ -26,7 +26,6 @@ wall at its lowest point with Newton's e: its rate reverses and is scaled by e.
 
 >>> import sympy as sp
 >>> import sympy.physics.mechanics as me
-from sympy.polys.matrices import DomainMatrix
 >>> q, u = me.dynamicsymbols("q u")
 >>> m, l, e = sp.symbols("m l e", positive=True)
 >>> N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
@@ -95,7 +94,6 @@ def contact(point: Any, normal: Any, *, other: Any = None, restitution: Any = 0,
     Examples
     --------
     >>> import sympy.physics.mechanics as me
-from sympy.polys.matrices import DomainMatrix
     >>> N = me.ReferenceFrame("N")
     >>> contact(me.Point("foot"), N.y, restitution=0, tangential="stick").laws
     Contact(normal=(1, 0), restitution=0, tangential='stick', law='newton')
@@ -412,9 +410,9 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
                          "first (kanes_equations or form_eoms)") from None
     q, u = tuple(system.q), tuple(system.u)
     dependent = getattr(system, "u_dep", None)
-    if dependent is None:
+    if dependent is None:  # a KanesMethod keeps them here
         dependent = getattr(system, "_udep", ())
-    if len(dependent):
+    if dependent is not None and len(dependent):
         raise InputError("system", "dependent speeds are not supported yet: give the "
                          "system in independent speeds")
     if M.shape != (len(u), len(u)):

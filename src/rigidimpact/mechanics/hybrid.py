@@ -1,0 +1,215 @@
+"""Hybrid simulation through impacts: flow, an event on a gap function, the impact map,
+relabelling, and the Poincare map at the impacts with its fixed point and eigenvalues.
+
+The flow is integrated from the system's own equations of motion (``mass_matrix_full``
+and ``forcing_full`` of a ``KanesMethod`` or ``System``), generated once as numeric code
+(lambdify with common subexpressions), never evaluated symbolically inside the
+integrator. An event is a gap function of the coordinates (the height of a foot above the
+ground, say) crossing zero downward, with an optional guard that says whether a crossing
+is an impact (a swing foot passing the stance foot mid-stride is not). At each impact a
+`jump` maps the state before to the state after: the impact map of
+:mod:`rigidimpact.mechanics.impact`, and whatever relabelling the model needs (a walker's
+legs swap at heel strike).
+
+Examples
+--------
+A ball dropped from height 1 onto a floor with e = 1/2 (g = 1): each bounce's peak is a
+quarter of the one before, so the bounces come at t = sqrt(2) (1 + 1 + 1/2 + ...).
+
+>>> import numpy as np
+>>> ball = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
+...               lambda x: np.array([0.0, -0.5 * x[1]]))
+>>> walk = ball.simulate(np.array([1.0, 0.0]), impacts=3)
+>>> [round(t, 9) for t in walk.impact_times]
+[1.414213562, 2.828427125, 3.535533906]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from scipy.integrate import solve_ivp
+
+from rigidimpact.errors import InputError
+
+__all__ = ["Hybrid", "Walk", "flow_of", "FixedPoint"]
+
+State = np.ndarray
+
+
+def flow_of(system: Any, constants: dict, extra: Sequence[Any] = ()) -> Callable:
+    """``f(t, x)`` for ``x = [q, u]`` from a ``KanesMethod`` (after ``kanes_equations``) or
+    ``System`` (after ``form_eoms``), with numbers for its constants: the full mass
+    matrix and forcing, generated once as numeric code.
+
+    Raises
+    ------
+    InputError
+        When a constant is left without a number.
+    """
+    states = list(system.q) + list(system.u)
+    M = sp.Matrix(system.mass_matrix_full).xreplace(constants)
+    F = sp.Matrix(system.forcing_full).xreplace(constants)
+    time = {s for s in (M.free_symbols | F.free_symbols) if s.name == "t"}
+    left = (M.free_symbols | F.free_symbols) - time - set(extra)
+    if left:
+        raise InputError("constants", "simulation needs numbers for "
+                         f"{', '.join(sorted(map(str, left)))}")
+    symbols = sp.symbols(f"x0:{len(states)}")
+    plain = dict(zip(states, symbols, strict=True))
+    M_num = sp.lambdify([symbols], M.xreplace(plain), "numpy", cse=True)
+    F_num = sp.lambdify([symbols], F.xreplace(plain), "numpy", cse=True)
+
+    def rhs(_t: float, x: State) -> State:
+        return np.linalg.solve(np.asarray(M_num(x), float),
+                               np.asarray(F_num(x), float).ravel())
+
+    return rhs
+
+
+@dataclass
+class Walk:
+    """A simulated run: its trajectory and, at each impact, the time and the states just
+    before and just after the jump."""
+
+    times: list[np.ndarray] = field(default_factory=list)
+    states: list[np.ndarray] = field(default_factory=list)
+    impact_times: list[float] = field(default_factory=list)
+    before: list[State] = field(default_factory=list)
+    after: list[State] = field(default_factory=list)
+    stopped: str = ""
+
+
+@dataclass(frozen=True)
+class FixedPoint:
+    """A fixed point of the Poincare map and the eigenvalues of its Jacobian there
+    (stable when every one lies inside the unit circle)."""
+
+    state: np.ndarray
+    eigenvalues: np.ndarray
+    residual: float
+    iterations: int
+
+    @property
+    def stable(self) -> bool:
+        return bool(np.all(np.abs(self.eigenvalues) < 1))
+
+
+@dataclass(frozen=True)
+class Hybrid:
+    """Flow ⇄ impact map.
+
+    Parameters
+    ----------
+    rhs : callable ``(t, x) -> dx/dt``
+    gap : callable ``x -> float``
+        An impact when it crosses zero downward.
+    jump : callable ``x -> x``
+        The state after an impact from the state before (impact map, relabelling).
+    guard : callable ``x -> bool``, optional
+        Whether a crossing is an impact (default: every one).
+    fallen : callable ``x -> bool``, optional
+        Ends a run (a walker falls).
+    max_step_time : float
+        The longest flow between impacts before a run is declared never to impact.
+    """
+
+    rhs: Callable[[float, State], State]
+    gap: Callable[[State], float]
+    jump: Callable[[State], State]
+    guard: Callable[[State], bool] | None = None
+    fallen: Callable[[State], bool] | None = None
+    max_step_time: float = 20.0
+    rtol: float = 1e-11
+    atol: float = 1e-12
+
+    def step(self, x0: State, t0: float = 0.0) -> tuple[float, State, Any]:
+        """Flow from `x0` to the next impact: (its time, the state just before, the
+        integration's output)."""
+        def event(_t: float, x: State) -> float:
+            return float(self.gap(x))
+
+        event.terminal = True  # type: ignore[attr-defined]
+        event.direction = -1.0  # type: ignore[attr-defined]
+        start, x, pieces = t0, np.asarray(x0, float), []
+        while True:
+            run = solve_ivp(self.rhs, (start, t0 + self.max_step_time), x, method="DOP853",
+                            events=event, rtol=self.rtol, atol=self.atol, dense_output=False)
+            pieces.append(run)
+            if run.status == -1:
+                raise InputError("simulate", f"the integration failed: {run.message}")
+            if not run.t_events[0].size:
+                raise InputError("simulate", f"no impact within {self.max_step_time:g} s "
+                                 "of flow: the gap never crosses zero")
+            t, x = float(run.t_events[0][0]), run.y_events[0][0]
+            if self.fallen is not None and self.fallen(x):
+                return t, x, pieces
+            if self.guard is None or self.guard(x):
+                return t, x, pieces
+            start = t + 1e-9  # a crossing that is no impact (a foot scuffing): go on
+            x = solve_ivp(self.rhs, (t, start), x, rtol=self.rtol, atol=self.atol).y[:, -1]
+
+    def simulate(self, x0: State, impacts: int = 10, until: float = np.inf) -> Walk:
+        """Flow and jump until `impacts` impacts, the time `until`, or a fall."""
+        walk, x, t = Walk(), np.asarray(x0, float), 0.0
+        for _ in range(impacts):
+            t_hit, before, pieces = self.step(x, t)
+            for run in pieces:
+                walk.times.append(run.t)
+                walk.states.append(run.y)
+            if t_hit > until:
+                walk.stopped = "time"
+                return walk
+            if self.fallen is not None and self.fallen(before):
+                walk.stopped = "fell"
+                return walk
+            x, t = np.asarray(self.jump(before), float), t_hit
+            walk.impact_times.append(t_hit)
+            walk.before.append(before)
+            walk.after.append(x)
+        walk.stopped = "impacts"
+        return walk
+
+    def poincare(self, x: State) -> State:
+        """The state just after the next impact, from a state just after an impact."""
+        _, before, _ = self.step(x)
+        return np.asarray(self.jump(before), float)
+
+    def fixed_point(self, guess: State, free: Sequence[int], tol: float = 1e-11,
+                    max_iterations: int = 30, h: float = 1e-6,
+                    complete: Callable[[State], State] | None = None) -> FixedPoint:
+        """The fixed point of the Poincare map by Newton's method, over the entries
+        `free` of the state just after impact (the others follow from them through
+        `complete`, as a walker's swing angle follows from its stance angle at heel
+        strike), and the eigenvalues of the map's Jacobian (central differences)."""
+        free = list(free)
+
+        def full(z: np.ndarray) -> State:
+            x = np.array(guess, float)
+            x[free] = z
+            return complete(x) if complete is not None else x
+
+        def g(z: np.ndarray) -> np.ndarray:
+            return self.poincare(full(z))[free]
+
+        def jacobian(z: np.ndarray) -> np.ndarray:
+            columns = []
+            for i in range(len(z)):
+                d = np.zeros_like(z)
+                d[i] = h
+                columns.append((g(z + d) - g(z - d)) / (2 * h))
+            return np.array(columns).T
+
+        z, iterations = np.asarray(guess, float)[free], 0
+        while np.max(np.abs(r := g(z) - z)) >= tol:
+            if iterations == max_iterations:
+                raise InputError("fixed_point", f"Newton's method did not converge in "
+                                 f"{max_iterations} iterations (residual "
+                                 f"{np.max(np.abs(r)):.3g})")
+            z, iterations = z - np.linalg.solve(jacobian(z) - np.eye(len(z)), r), iterations + 1
+        return FixedPoint(full(z), np.linalg.eigvals(jacobian(z)), float(np.max(np.abs(r))),
+                          iterations)
