@@ -96,14 +96,15 @@ def impact_map(solution, kane) -> sp.Matrix:
         lambda x: sp.factor(sp.trigsimp(x)))
 
 
-def gait(solution, kane):
-    """The period-one gait's fixed point and eigenvalues (numbers)."""
+def gait(solution, kane, values=VALUES, guess=(0.27, -0.27, -1.1, -0.4)):
+    """The period-one gait's fixed point (slope frame) and eigenvalues, from `guess`
+    (near the stable gait, a long step)."""
     flow_kane, _, _, (st, sw), (w_st, w_sw) = legs(floating=False)
-    rhs = ri.mechanics.flow_of(flow_kane, VALUES)
+    rhs = ri.mechanics.flow_of(flow_kane, values)
     x_, y_, st_f, sw_f = kane.q
     ux, uy, w_st_f, w_sw_f = kane.u
     after = sp.lambdify([st_f, sw_f, w_st_f, w_sw_f],
-                        list(solution.speeds_after.xreplace({ux: 0, uy: 0}).xreplace(VALUES)),
+                        list(solution.speeds_after.xreplace({ux: 0, uy: 0}).xreplace(values)),
                         "numpy", cse=True)
 
     def jump(x):
@@ -116,12 +117,8 @@ def gait(solution, kane):
     biped = ri.mechanics.Hybrid(
         rhs, gap=lambda x: math.cos(x[0]) - math.cos(x[1]), jump=jump,
         guard=lambda x: x[1] > 0.05, fallen=lambda x: abs(x[0]) > 1.2)
-    slope = float(VALUES[gamma])
-    guess = np.array([0.27, -0.27, -1.1, -0.4])  # near the stable gait (a long step)
-    found = biped.fixed_point(guess, free=[0, 2, 3],
-                              complete=lambda x: np.array([x[0], -x[0], x[2], x[3]]))
-    vertical = found.state - np.array([slope, slope, 0, 0])  # from the true vertical
-    return vertical, found
+    return biped.fixed_point(np.array(guess, float), free=[0, 2, 3],
+                             complete=lambda x: np.array([x[0], -x[0], x[2], x[3]]))
 
 
 def main(argv=None) -> int:
@@ -132,7 +129,9 @@ def main(argv=None) -> int:
     kane, strike, solution = heel_strike()
     H = impact_map(solution, kane)
     derived = time.perf_counter() - start
-    state, found = gait(solution, kane)
+    found = gait(solution, kane)
+    slope = float(VALUES[gamma])
+    state = found.state - np.array([slope, slope, 0, 0])  # from the true vertical
     out = {"impact_map": str(H.tolist()),
            "fixed_point": [float(x) for x in state],
            "eigenvalues": [[float(z.real), float(z.imag)] for z in found.eigenvalues],

@@ -155,6 +155,11 @@ class SystemImpact:
     u: tuple[Any, ...]
     M: sp.ImmutableMatrix
     contacts: tuple[PointContact, ...]
+    before: tuple[Any, ...] | None = None  # the speeds' values before (None: u itself)
+
+    @property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix(self.before if self.before is not None else self.u)
 
     def __post_init__(self) -> None:
         for c in self.contacts:
@@ -171,9 +176,13 @@ class SystemImpact:
         return n, self.frame.z.cross(n)
 
     def _rows(self, c: PointContact) -> tuple[list[sp.Expr], list[sp.Expr]]:
-        velocity = c.point.vel(self.frame)
-        if c.other is not None:
-            velocity = velocity - c.other.vel(self.frame)
+        try:
+            velocity = c.point.vel(self.frame)
+            if c.other is not None:
+                velocity = velocity - c.other.vel(self.frame)
+        except ValueError:
+            raise InputError(f"{c.name}.point", f"its velocity in {self.frame} is not "
+                             "defined (set_vel or v2pt_theory)") from None
         partials = me.partial_velocity([velocity], list(self.u), self.frame)[0]
         rest = (velocity - sum((p * s for p, s in zip(partials, self.u, strict=True)),
                                me.Vector(0))).simplify()
@@ -228,13 +237,21 @@ class SystemImpact:
         _, x, w = self._field
         return x.to_Matrix(), w.to_Matrix()
 
+    @property
+    def _numbers(self) -> bool:
+        return not (self.M.free_symbols or self.J.free_symbols)
+
     @cached_property
     def _M_inv_JT(self) -> sp.Matrix:
+        if self._numbers:  # at numbers (floats allowed): solved as they are
+            return self.M.LUsolve(self.J.T)
         return self._out(self._solved[0])
 
     @cached_property
     def W(self) -> sp.Matrix:
         """``J M^-1 J^T``: how the contacts' impulses change their velocities."""
+        if self._numbers:
+            return self.J * self._M_inv_JT
         return self._out(self._solved[1]).applyfunc(_tidy)
 
     def solve(self) -> ImpactMap:
@@ -264,7 +281,7 @@ class SystemImpact:
         end, where each result is reduced once)."""
         n, k = len(self.u), len(self.contacts)
         M, J = self._in(self.M), self._in(self.J)
-        u = self._in(sp.Matrix(self.u))
+        u = self._in(self.u_before)
         after = sp.Matrix(sp.symbols(f"x0:{n}"))
         P = sp.Matrix(sp.symbols(f"p0:{2 * k}"))
         rows = list(M * after - J.T * P - M * u)
@@ -299,8 +316,11 @@ class SystemImpact:
         method, rough by Walton's): W and the velocities before must be numbers."""
         c = self.contacts[0]
         restitution, tangential = c.laws.laws
-        u = sp.Matrix(self.u)
+        u = self.u_before
         W, v = self.W, (self.J * u)
+        if v[0].is_number and v[0] >= 0:
+            raise InputError(f"{c.name}.point", f"not approaching (normal velocity "
+                             f"{float(v[0]):.6g} >= 0): there is no impact")
         if not (all(x.is_number for x in W) and all(x.is_number for x in v)):
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
                              "depends on the numbers: give numbers for q, the speeds and "
@@ -323,19 +343,31 @@ class SystemImpact:
         P = back(impulse)
         impulses = {c.name: (_small(P[2 * i]), _small(P[2 * i + 1]))
                     for i, c in enumerate(self.contacts)}
-        v = self.J * sp.Matrix(self.u)
+        v = self.J * self.u_before
         equations, unknowns = self._equations(v, courses, impulses)
+        lost = _small(back(sp.Matrix([energy]))[0])
+        warnings = self._warnings(impulses)
+        before = (self.u_before.T * self.M * self.u_before)[0] / 2
+        if lost.is_number and before.is_number and lost < -sp.Float(1e-12) * before:
+            warnings += (f"the impact created kinetic energy ({float(-lost):.6g}, "
+                         f"{float(-lost / before):.3%} of the energy before): the "
+                         f"{self.contacts[0].laws.law} law cannot honour the energy "
+                         "balance on this impulse path (Kane and Levinson's paradox of "
+                         "Newton's law where the slip reverses)",)
         return ImpactMap(tuple(self.u), sp.ImmutableMatrix(back(after).applyfunc(_small)),
-                         impulses, courses, equations, unknowns,
-                         _small(back(sp.Matrix([energy]))[0]), self._warnings(impulses))
+                         impulses, courses, equations, unknowns, lost, warnings)
 
     def at(self, values: dict) -> SystemImpact:
-        """The same impact with numbers (or expressions) for q and the constants."""
-        put = dict(values)
+        """The same impact with numbers (or expressions) for q, the constants and (keyed
+        by the speeds) the speeds before."""
+        put = {k: v for k, v in values.items() if k not in self.u}
+        speeds = tuple(sp.sympify(values.get(s, b)) for s, b in
+                       zip(self.u, self.u_before, strict=True))
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
                          for c in self.contacts)
-        done = SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts)
-        object.__setattr__(done, "J", self.J.xreplace(put).applyfunc(sp.nsimplify))
+        done = SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts,
+                            speeds)
+        object.__setattr__(done, "J", self.J.xreplace(put))
         return done
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
@@ -345,7 +377,7 @@ class SystemImpact:
         pushes = []
         for c in self.contacts:
             pushes += [sp.Symbol(f"P_n,{c.name}"), sp.Symbol(f"P_t,{c.name}")]
-        U, U0, P = sp.Matrix(after), sp.Matrix(self.u), sp.Matrix(pushes)
+        U, U0, P = sp.Matrix(after), self.u_before, sp.Matrix(pushes)
         balance = self.M * (U - U0)
         generalized = self.J.T * P
         found = [Equation(f"generalized momentum along {_name(s)}: M (u+ - u-) = J^T P", "",

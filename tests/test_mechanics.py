@@ -1,0 +1,350 @@
+"""The impact map of sympy.physics.mechanics systems, checked against the published
+walkers (their own equations, transcribed, solved here independently with SciPy) and
+against the laws; and the published examples' JSON keys."""
+
+from __future__ import annotations
+
+import json
+import math
+import random
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+import sympy.physics.mechanics as me
+from scipy.integrate import solve_ivp
+from scipy.optimize import fsolve
+
+import rigidimpact as ri
+from rigidimpact.errors import InputError
+
+DERIVATIONS = Path(__file__).resolve().parents[1] / "derivations"
+sys.path.insert(0, str(DERIVATIONS))
+
+import compass_gait  # noqa: E402
+import double_pendulum_floor  # noqa: E402
+import rimless_wheel  # noqa: E402
+import simplest_walker  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def biped():
+    kane, strike, solution = compass_gait.heel_strike()
+    return kane, strike, solution, compass_gait.impact_map(solution, kane)
+
+
+# ---- the compass gait (Goswami, Thuilot and Espiau) ---------------------------------
+
+def _goswami_Q(m, mH, a, b, alpha):
+    """Their transition matrices (angular momentum about the new contact for the whole
+    biped, and about the hip for the old stance leg), as published: Q+ w+ = Q- w- with
+    w = [swing rate, stance rate]."""
+    l, c = a + b, sp.cos(2 * alpha)
+    minus = sp.Matrix([[-m * a * b, -m * a * b + (mH * l**2 + 2 * m * a * l) * c],
+                       [0, -m * a * b]])
+    plus = sp.Matrix([[m * b * (b - l * c), m * l * (l - b * c) + m * a**2 + mH * l**2],
+                      [m * b**2, -m * b * l * c]])
+    return plus, minus
+
+
+def test_compass_heel_strike_map_is_goswamis(biped):
+    *_, H = biped
+    swap = sp.Matrix([[0, 1], [1, 0]])  # their [swing, stance] to our [stance, swing]
+    rng = random.Random(24)
+    for _ in range(6):
+        values = {compass_gait.m: rng.uniform(0.5, 8), compass_gait.m_H: rng.uniform(0.5, 20),
+                  compass_gait.a: rng.uniform(0.1, 1), compass_gait.b: rng.uniform(0.1, 1),
+                  compass_gait.alpha: rng.uniform(0.05, 0.6)}
+        plus, minus = _goswami_Q(*(values[s] for s in (
+            compass_gait.m, compass_gait.m_H, compass_gait.a, compass_gait.b,
+            compass_gait.alpha)))
+        expected = swap * plus.LUsolve(minus) * swap
+        got = H.xreplace(values)
+        assert np.allclose(np.array(got, float), np.array(expected, float), rtol=1e-12)
+
+
+def test_plastic_impact_is_the_projection(biped):
+    # e = 0 with stick: u+ = (I - M^-1 J^T W^-1 J) u-, the projection onto the speeds
+    # that leave the heel at rest, written out here from M and J alone; compared exactly
+    # at random rational points where sin(alpha) and cos(alpha) are rational too
+    # (t = tan(alpha/2) rational), so both sides are exact rational numbers times u-
+    kane, strike, solution, _ = biped
+    _, _, st, sw = kane.q
+    at = {st: -compass_gait.alpha, sw: compass_gait.alpha}
+    rng = random.Random(7)
+    after = solution.speeds_after.xreplace(at).applyfunc(sp.expand_trig)
+    M = strike.M.xreplace(at).applyfunc(sp.expand_trig)
+    J = strike.J.xreplace(at).applyfunc(sp.expand_trig)
+    for _ in range(5):
+        t = sp.Rational(rng.randint(1, 9), rng.randint(10, 20))
+        point = {sp.sin(compass_gait.alpha): 2 * t / (1 + t**2),
+                 sp.cos(compass_gait.alpha): (1 - t**2) / (1 + t**2),
+                 compass_gait.m: sp.Rational(rng.randint(1, 9)),
+                 compass_gait.m_H: sp.Rational(rng.randint(1, 20)),
+                 compass_gait.a: sp.Rational(rng.randint(1, 9), 10),
+                 compass_gait.b: sp.Rational(rng.randint(1, 9), 10)}
+        Mp, Jp = M.xreplace(point), J.xreplace(point)
+        Minv_JT = Mp.LUsolve(Jp.T)
+        projection = sp.eye(4) - Minv_JT * (Jp * Minv_JT).LUsolve(Jp)
+        expected = projection * sp.Matrix(kane.u)
+        got = after.xreplace(point).applyfunc(sp.expand)
+        assert (got - expected).applyfunc(sp.expand) == sp.zeros(4, 1)
+
+
+def _goswami_gait(m=5.0, mH=10.0, a=0.5, b=0.5, g=9.8, slope=3 * math.pi / 180):
+    """The period-one gait from their equations of motion (M, N and gravity, as
+    published, in angles from the true vertical) and their transition, by SciPy."""
+    l = a + b
+
+    def rhs(_t, x):
+        ns, s, dns, ds = x
+        c, sn = math.cos(s - ns), math.sin(s - ns)
+        M = np.array([[m * b * b, -m * l * b * c], [-m * l * b * c, (mH + m) * l * l + m * a * a]])
+        N = np.array([[0, m * l * b * sn * ds], [-m * l * b * sn * dns, 0]])
+        G = np.array([m * b * g * math.sin(ns), -(mH * l + m * a + m * l) * g * math.sin(s)])
+        return [dns, ds, *np.linalg.solve(M, -N @ [dns, ds] - G)]
+
+    def strike(_t, x):  # the swing foot on the slope
+        return x[0] + x[1] + 2 * slope
+
+    strike.terminal = True
+
+    def step(x):
+        t0 = 0.0
+        while True:
+            run = solve_ivp(rhs, (t0, t0 + 5), x, events=strike, rtol=1e-11, atol=1e-12,
+                            method="DOP853")
+            t, x = run.t_events[0][0], run.y_events[0][0]
+            if x[0] > x[1] + 0.05:  # the swing leg ahead: heel strike, not a scuff
+                break
+            t0 = t + 1e-9
+            x = solve_ivp(rhs, (t, t0), x, rtol=1e-11, atol=1e-12).y[:, -1]
+        alpha = (x[0] - x[1]) / 2
+        plus, minus = _goswami_Q(m, mH, a, b, alpha)
+        w = np.array(plus.LUsolve(minus * sp.Matrix(x[2:])), float).ravel()
+        return np.array([x[1], x[0], *w])
+
+    def residual(z):  # z = [stance angle, swing rate, stance rate] after heel strike
+        after = step(np.array([-2 * slope - z[0], z[0], z[1], z[2]]))
+        return after[[1, 2, 3]] - z
+
+    z = fsolve(residual, [0.3, -0.3, -1.3], xtol=1e-13)
+    return np.array([z[0], -2 * slope - z[0], z[2], z[1]])  # [st, sw, st rate, sw rate]
+
+
+def test_compass_gait_fixed_point_matches_goswamis_equations(biped):
+    kane, _, solution, _ = biped
+    found = compass_gait.gait(solution, kane)
+    slope = float(compass_gait.VALUES[compass_gait.gamma])
+    ours = found.state - np.array([slope, slope, 0, 0])
+    theirs = _goswami_gait()
+    assert np.allclose(ours, theirs, atol=1e-8), (ours, theirs)
+    assert found.stable
+    # the stable gait's eigenvalues: a complex pair inside the unit circle and one real
+    assert sorted(abs(found.eigenvalues.imag))[-1] > 0.1
+    assert np.all(abs(found.eigenvalues) < 1)
+
+
+# ---- the simplest walker (Garcia, Chatterjee, Ruina and Coleman) ---------------------
+
+def test_simplest_walker_heel_strike_is_garcias(biped):
+    kane, _, solution, _ = biped
+    H = simplest_walker.limit_map(solution, kane)
+    c = sp.cos(2 * compass_gait.alpha)
+    # theirs: thetadot+ = cos 2theta thetadot-, phidot+ = cos 2theta (1 - cos 2theta)
+    # thetadot-, with phi = stance - swing angle: the swing rate after is cos^2 2theta
+    # thetadot-, and neither depends on the swing rate before
+    expected = sp.Matrix([[c, 0], [c * c, 0]])
+    assert (H - expected).applyfunc(sp.simplify) == sp.zeros(2, 2)
+
+
+def _garcia_gait(gamma=0.009):
+    """The long-period gait from their scaled equations (transcribed), by SciPy."""
+    def rhs(_t, x):
+        th, ph, dth, dph = x
+        ddth = math.sin(th - gamma)
+        ddph = ddth + dth**2 * math.sin(ph) - math.cos(th - gamma) * math.sin(ph)
+        return [dth, dph, ddth, ddph]
+
+    def strike(_t, x):
+        return x[1] - 2 * x[0]
+
+    strike.terminal = True
+
+    def step(z):
+        th, dth = z
+        c = math.cos(2 * th)
+        x = [th, 2 * th, dth, c * (1 - c) * dth / c]  # just after heel strike
+        t0 = 0.0
+        while True:
+            run = solve_ivp(rhs, (t0, t0 + 10), x, events=strike, rtol=1e-12, atol=1e-13,
+                            method="DOP853")
+            t, x = run.t_events[0][0], run.y_events[0][0]
+            if x[0] < -0.05:  # past mid-stance: heel strike (not the scuff at phi = 0)
+                break
+            t0 = t + 1e-9
+            x = solve_ivp(rhs, (t, t0), x, rtol=1e-12, atol=1e-13).y[:, -1]
+        return np.array([-x[0], math.cos(2 * x[0]) * x[2]])
+
+    return fsolve(lambda z: step(z) - z, [0.2, -0.2], xtol=1e-13)
+
+
+def test_simplest_walker_gait_matches_garcias_equations(biped):
+    kane, _, solution, _ = biped
+    found = compass_gait.gait(solution, kane, simplest_walker.VALUES,
+                              guess=(0.2, -0.2, -0.2, -0.04))
+    theirs = _garcia_gait()
+    assert found.state[0] == pytest.approx(theirs[0], abs=1e-6)
+    assert found.state[2] == pytest.approx(theirs[1], abs=1e-6)
+    assert found.stable
+
+
+# ---- McGeer's rimless wheel ----------------------------------------------------------
+
+def test_rimless_wheel_ratio_and_roll():
+    _, ratio = rimless_wheel.landing()
+    alpha, l, r = rimless_wheel.alpha, rimless_wheel.l, rimless_wheel.r
+    # angular momentum about the landing foot: (l^2 cos 2 alpha + r^2) / (l^2 + r^2)
+    assert sp.simplify(ratio - (l**2 * sp.cos(2 * alpha) + r**2) / (l**2 + r**2)) == 0
+    found = rimless_wheel.roll(ratio)
+    # energy over one step (the hub falls 2 l sin alpha sin gamma) with the landing's
+    # factor cos 2 alpha: omega*^2 = cos^2 2a 4 (g/l) sin a sin g / (1 - cos^2 2a)
+    a, g = math.pi / 8, 0.08
+    expected = math.sqrt(math.cos(2 * a) ** 2 * 4 * 9.8 * math.sin(a) * math.sin(g)
+                         / math.sin(2 * a) ** 2)
+    assert -found.state[1] == pytest.approx(expected, rel=1e-9)
+    assert found.eigenvalues[0].real == pytest.approx(math.cos(2 * a) ** 2, rel=1e-6)
+
+
+# ---- the double pendulum on the floor: the laws ---------------------------------------
+
+@pytest.fixture(scope="module")
+def pendulum():
+    return double_pendulum_floor.pendulum()
+
+
+def _random_strikes(pendulum, law, count, seed):
+    kane, N, tip = pendulum
+    q1, q2 = kane.q
+    u1, u2 = kane.u
+    rng = random.Random(seed)
+    e, mu = sp.Rational(rng.randint(0, 10), 10), sp.Rational(rng.randint(0, 10), 10)
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        tip, N.y, restitution=e, tangential="coulomb", friction=mu, law=law, name="tip")],
+        frame=N)
+    done = 0
+    while done < count:
+        at = {q1: sp.Float(rng.uniform(-1.2, 1.2), 30), q2: sp.Float(rng.uniform(-1.5, 1.5), 30),
+              **double_pendulum_floor.VALUES}
+        speeds = {u1: sp.Rational(rng.randint(-30, 30), 10),
+                  u2: sp.Rational(rng.randint(-30, 30), 10)}
+        numbers = hit.at(at)
+        try:
+            solved = numbers.at(speeds).solve()
+        except InputError:  # not approaching: no impact
+            continue
+        done += 1
+        yield numbers.at(speeds), solved, e
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_double_pendulum_obeys_the_laws(pendulum, law):
+    for strike, solved, e in _random_strikes(pendulum, law, 12, seed=hash(law) % 1000):
+        u0, u1 = strike.u_before, solved.speeds_after
+        P = sp.Matrix(next(iter(solved.impulses.values())))
+        # generalized impulse-momentum: M (u+ - u-) = J^T P
+        assert np.allclose(np.array(strike.M * (u1 - u0), float),
+                           np.array(strike.J.T * P, float), atol=1e-20)
+        before, after = strike.J * u0, strike.J * u1
+        assert float(P[0]) >= 0  # the floor only pushes
+        course = next(iter(solved.courses.values()))
+        if law == "newton" or course in ("slip", "stick"):  # a straight path: Newton's e
+            assert float(after[0]) == pytest.approx(float(-e * before[0]), abs=1e-20)
+        lost = float(solved.energy_lost)
+        if law != "newton":
+            assert lost >= -1e-20, (law, course, lost)
+        assert (lost < -1e-20) == any("created kinetic energy" in w for w in solved.warnings)
+
+
+def test_newton_law_gain_is_said(pendulum):
+    kane, N, tip = pendulum
+    solved = double_pendulum_floor.strike("newton", kane, N, tip)
+    assert float(solved.energy_lost) < 0
+    assert any("created kinetic energy" in w for w in solved.warnings)
+    for law in ("poisson", "energetic"):
+        other = double_pendulum_floor.strike(law, kane, N, tip)
+        assert float(other.energy_lost) > 0 and not other.warnings
+
+
+def test_two_link_arm_against_a_wall_matches_the_builtin_hinged_rod():
+    # one link of a two-link arm: a uniform rod hinged at O swinging into a wall at its
+    # tip; the same as rigidimpact's own pivoted rod striking a fixed wall
+    q, u = me.dynamicsymbols("q u")
+    M_, L, e = sp.Integer(3), sp.Integer(2), sp.Rational(2, 5)
+    N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
+    A.orient_axis(N, N.z, q)
+    A.set_ang_vel(N, u * N.z)
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    centre, tip = O.locatenew("c", -L / 2 * A.y), O.locatenew("tip", -L * A.y)
+    centre.v2pt_theory(O, N, A)
+    tip.v2pt_theory(O, N, A)
+    rod = me.RigidBody("rod", centre, A, M_, (me.inertia(A, 0, 0, M_ * L**2 / 12), centre))
+    kane = me.KanesMethod(N, [q], [u], [q.diff() - u])
+    kane.kanes_equations([rod], [])
+    # the wall on the right at the tip (q = 0): its normal points back, -x
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(tip, -N.x, restitution=e)],
+                              frame=N).at({q: 0, u: 5})
+    ours = hit.solve().speeds_after[0]
+    builtin = ri.Impact(
+        ri.Body.rigid(M_, M_ * L**2 / 12, (0, L / 2), (5 * L / 2, 0), 5, "rod",
+                      pivot=(0, L)),
+        ri.Body.fixed("wall"), ri.Contact(restitution=e)).solve().results()["rod.omega"]
+    assert ours == builtin == -e * 5
+
+
+# ---- bad input -----------------------------------------------------------------------
+
+def test_bad_mechanics_input_is_one_clear_error(pendulum):
+    kane, N, tip = pendulum
+    fixed = me.Point("nail")
+    fixed.set_vel(N, 0)
+    with pytest.raises(InputError, match="does not depend on the system's speeds"):
+        ri.mechanics.impact(kane, [ri.mechanics.contact(fixed, N.y)], frame=N)
+    with pytest.raises(InputError, match="its velocity in N is not defined"):
+        ri.mechanics.impact(kane, [ri.mechanics.contact(me.Point("loose"), N.y)], frame=N)
+    with pytest.raises(InputError, match="normal: must not be the zero vector"):
+        _ = ri.mechanics.impact(kane, [ri.mechanics.contact(tip, 0 * N.y)], frame=N).J
+    bare = me.KanesMethod(N, kane.q, kane.u, [x.diff() - y for x, y in
+                                                  zip(kane.q, kane.u, strict=True)])
+    with pytest.raises(InputError, match="no mass matrix"):
+        ri.mechanics.impact(bare, [ri.mechanics.contact(tip, N.y)], frame=N)
+    with pytest.raises(InputError, match="needs numbers for L_1"):
+        ri.mechanics.flow_of(kane, {double_pendulum_floor.m1: 1, double_pendulum_floor.m2: 1,
+                                    double_pendulum_floor.L2: 1})
+    ball = ri.mechanics.Hybrid(lambda t, x: np.array([x[1], 1.0]), lambda x: x[0],
+                               lambda x: x, max_step_time=2.0)
+    with pytest.raises(InputError, match="no impact within 2 s"):
+        ball.step(np.array([1.0, 0.0]))
+
+
+# ---- the published examples print their keys ----------------------------------------
+
+@pytest.mark.parametrize(("script", "keys"), [
+    (rimless_wheel, {"speed_ratio", "omega_star"}),
+    (simplest_walker, {"fixed_point", "eigenvalues"}),
+    (compass_gait, {"impact_map", "fixed_point"}),
+    (double_pendulum_floor, {"newton", "poisson", "energetic"}),
+])
+def test_examples_print_their_json_keys(capsys, script, keys):
+    assert script.main(["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert keys <= set(out)
+    if script is rimless_wheel:
+        assert out["speed_ratio"] == "cos(2*alpha)"
+    if script is compass_gait:
+        assert len(out["fixed_point"]) == 4
+        H = sp.sympify(out["impact_map"])  # the contract: a sympy matrix string
+        assert sp.Matrix(H).shape == (2, 2)
