@@ -121,9 +121,28 @@ def gait(solution, kane, values=VALUES, guess=(0.27, -0.27, -1.1, -0.4)):
                              complete=lambda x: np.array([x[0], -x[0], x[2], x[3]]))
 
 
+def plain_recipe():
+    """The baseline: the same map by the plain SymPy recipe (M from KanesMethod, J from
+    partial velocities, the impact equations solved with Matrix.solve)."""
+    kane, N, swing, _, _ = legs(floating=True)
+    M = kane.mass_matrix
+    u = sp.Matrix(kane.u)
+    partials = me.partial_velocity([swing.vel(N)], list(kane.u), N)[0]
+    J = sp.Matrix([[p.dot(N.y) for p in partials], [p.dot(N.x) for p in partials]])
+    after, P = sp.Matrix(sp.symbols("x0:4")), sp.Matrix(sp.symbols("p0:2"))
+    # M (u+ - u-) = J^T P, and the heel at rest after (e = 0, stick): J u+ = 0
+    A = sp.Matrix.vstack(sp.Matrix.hstack(M, -J.T), sp.Matrix.hstack(J, sp.zeros(2, 2)))
+    rhs = sp.Matrix.vstack(M * u, sp.zeros(2, 1))
+    solved = A.solve(rhs)
+    del after, P
+    return sp.Matrix(solved[:4])
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--baseline", action="store_true",
+                        help="also time the plain SymPy recipe for the same map")
     args = parser.parse_args(argv)
     start = time.perf_counter()
     kane, strike, solution = heel_strike()
@@ -138,6 +157,15 @@ def main(argv=None) -> int:
            "stable": found.stable,
            "seconds": {"impact_map": round(derived, 2),
                        "total": round(time.perf_counter() - start, 2)}}
+    if args.baseline:
+        begin = time.perf_counter()
+        plain = plain_recipe()
+        out["seconds"]["plain_recipe"] = round(time.perf_counter() - begin, 2)
+        kane_q = kane.q
+        check = {kane_q[2]: -0.3, kane_q[3]: 0.3, **VALUES}
+        difference = (plain.xreplace(check) - solution.speeds_after.xreplace(check)).xreplace(
+            {w: k + 1 for k, w in enumerate(kane.u)})
+        out["plain_recipe_agrees"] = bool(max(abs(float(x)) for x in difference) < 1e-12)
     if args.json:
         print(json.dumps(out, indent=2))
     else:
