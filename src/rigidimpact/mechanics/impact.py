@@ -349,11 +349,12 @@ class SystemImpact:
         warnings = self._warnings(impulses)
         before = (self.u_before.T * self.M * self.u_before)[0] / 2
         if lost.is_number and before.is_number and lost < -sp.Float(1e-12) * before:
+            laws = ", ".join(f"{c.laws.law} with {c.laws.tangential}" for c in self.contacts)
             warnings += (f"the impact created kinetic energy ({float(-lost):.6g}, "
-                         f"{float(-lost / before):.3%} of the energy before): the "
-                         f"{self.contacts[0].laws.law} law cannot honour the energy "
-                         "balance on this impulse path (Kane and Levinson's paradox of "
-                         "Newton's law where the slip reverses)",)
+                         f"{float(-lost / before):.3%} of the energy before): the laws "
+                         f"({laws}) cannot honour the energy balance here (Newton's law "
+                         "where the slip reverses: Kane and Levinson's paradox; stick with "
+                         "e > 0 where the contact's directions are coupled)",)
         return ImpactMap(tuple(self.u), sp.ImmutableMatrix(back(after).applyfunc(_small)),
                          impulses, courses, equations, unknowns, lost, warnings)
 
