@@ -44,6 +44,7 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from fractions import Fraction
 from functools import cached_property
 from typing import Any, ClassVar
 
@@ -55,6 +56,7 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impulse import Coordinate, coordinates_of, moving
+from rigidimpact.solve.lcp import NoSolution, lemke
 from rigidimpact.symbolic.geometry import cross
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
@@ -321,6 +323,12 @@ class Collision:
     @cached_property
     def W(self) -> sp.Matrix:
         """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
+        if not (self.J.free_symbols or self.M_inverse.free_symbols):
+            # numbers: in their own field (the rationals, or with sqrt(3) adjoined), where
+            # the product of sparse rows is exact and fast at hundreds of contacts
+            J, Minv = self.J.to_DM(extension=True), self.M_inverse.to_DM(extension=True)
+            J, Minv = J.unify(Minv)
+            return (J * Minv * J.transpose()).to_Matrix()
         return (self.J * self.M_inverse * self.J.T).applyfunc(sp.nsimplify)
 
     @cached_property
@@ -355,7 +363,7 @@ class Collision:
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
-        impulses = self._complementarity(v, target)
+        impulses = self._lcp(v, target)
         if poisson:
             impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
         u = self._kick(self.u_before, impulses)
@@ -555,6 +563,24 @@ class Collision:
                 for k, i in enumerate(active):
                     impulses[i] = tidy(solved[k])
                 yield active, impulses, v + self.W * impulses
+
+    def _lcp(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+        """The complementarity problem by Lemke's method (:mod:`rigidimpact.solve.lcp`)
+        when its numbers are rational and W is invertible (the solution is then unique,
+        so it is the one enumeration finds); otherwise by enumerating the acting sets."""
+        numbers = list(self.W) + list(v) + list(target)
+        if all(isinstance(x, sp.Rational) for x in numbers):
+            W = self.W.to_DM()
+            if W.rank() == W.shape[0]:
+                q = [Fraction(int(x.p), int(x.q)) for x in v - target]
+                M = [[Fraction(int(x.p), int(x.q)) for x in self.W.row(i)]
+                     for i in range(len(v))]
+                try:
+                    z = lemke(M, q)
+                except NoSolution:  # cannot happen for a positive definite W; be safe
+                    return self._complementarity(v, target)
+                return sp.Matrix([sp.Rational(x.numerator, x.denominator) for x in z])
+        return self._complementarity(v, target)
 
     def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
         """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
