@@ -352,8 +352,10 @@ class Collision:
         Newton's law: every acting contact leaves at ``-e`` times its closing velocity
         before, every released one at least that fast. Poisson's law: the compression
         impulses solve the same problem with target zero, and each is scaled by 1 + e.
-        Active sets are tried from the largest down; for a positive-definite W exactly
-        one fits.
+        With rational numbers and an invertible W (then exactly one answer fits) the
+        problem is solved by Lemke's method in exact arithmetic, a number of pivots
+        that grows with the contacts (a 16-contact fan in 0.07 s here); otherwise the
+        acting sets are tried from the largest down (2^n of them).
         """
         self._numbers_only("simultaneous")
         if self.frictional:
