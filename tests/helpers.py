@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 from rigidimpact.cli import main
 from rigidimpact.laws.contact import Contact
 
@@ -13,6 +15,12 @@ def refused(capsys, argv, needle=""):
     assert err.count("\n") == 1 and err.startswith("rigidimpact: error: "), err
     assert needle in err, err
     return err
+
+
+def evaluated(capsys, argv) -> dict:
+    """main(argv + --json) succeeds; its JSON."""
+    assert main([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
 
 
 def scene_file(tmp_path, text: str, name: str = "scene.toml") -> str:

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from helpers import touching
+from helpers import evaluated, refused, scene_file, touching
 from rigidimpact.errors import InputError
 from rigidimpact.model.bodies import Body
 from rigidimpact.scenes.scene import load_scene, parse_scene
@@ -435,3 +435,58 @@ def test_a_new_rule_is_one_class():
     assert ours.results() == theirs.results()
     # backwards, the resting balls see nothing until c0 acts; then the pulse runs on
     assert [ours.results()[f"ball{k}.vx"] for k in range(4)] == [0, 0, 0, 1]
+
+
+def _fan(orders_line: str) -> str:
+    # a striker meeting three balls of different masses at once: the order matters
+    text = """
+[[bodies]]
+name = "s"
+shape = "rigid"
+mass = "1"
+inertia = "1"
+position = ["0", "0"]
+velocity = ["1", "1/3"]
+"""
+    for k, (x, y, mass) in enumerate((("1", "0", "2"), ("3/5", "4/5", "1/2"),
+                                       ("4/5", "-3/5", "3"))):
+        text += f"""
+[[bodies]]
+name = "b{k}"
+shape = "rigid"
+mass = "{mass}"
+inertia = "1"
+position = ["2*{x}", "2*{y}"]
+[[contacts]]
+name = "c{k}"
+bodies = ["s", "b{k}"]
+point = ["{x}", "{y}"]
+normal = ["{x}", "{y}"]
+restitution = "1/2"
+"""
+    return text + '[impact]\nrule = "sequential"\n' + orders_line
+
+
+def test_a_seeded_sample_of_orders_reports_its_spread(tmp_path, capsys):
+    every = evaluated(capsys, ["evaluate", scene_file(tmp_path, _fan(""), "every.toml")])
+    sample = evaluated(capsys, ["evaluate", scene_file(tmp_path, _fan("orders = 200\nseed = 4\n"),
+                                                       "sample.toml")])
+    again = evaluated(capsys, ["evaluate", scene_file(tmp_path, _fan("orders = 200\nseed = 4\n"),
+                                                      "again.toml")])
+    assert sample["sample"] == {"orders": 200, "seed": 4, "distinct": 6}
+    assert sample["spread"] == again["spread"]  # the seed makes it reproducible
+    # 200 draws met all six orders: the sample's spread is every order's
+    for key in ("s.vx", "b0.vx", "c1.normal_impulse"):
+        values = [row["results"][key] for row in every["orders"]]
+        assert sample["spread"][key] == [min(values), max(values)]
+        assert min(values) < max(values)  # the order does matter here
+
+
+@pytest.mark.parametrize(("line", "needle"), [
+    ("orders = 0\n", "impact.orders: must lie in [1, 10000]"),
+    ("orders = 2.5\n", "impact.orders: must be a whole number"),
+    ("seed = 3\n", "impact.seed: goes with orders"),
+    ('orders = 5\norder = ["c0", "c1", "c2"]\n', "impact.orders: a sample of orders"),
+])
+def test_a_bad_sample_is_one_line(tmp_path, capsys, line, needle):
+    refused(capsys, ["evaluate", scene_file(tmp_path, _fan(line))], needle)

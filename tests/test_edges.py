@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helpers import refused, scene_file
+from helpers import evaluated, refused, scene_file
 from rigidimpact.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -59,11 +59,6 @@ law = "{law}"
 tangential = "coulomb"
 friction = "0.3"
 """
-
-
-def evaluated(capsys, argv) -> dict:
-    assert main([*argv, "--json"]) == 0
-    return json.loads(capsys.readouterr().out)
 
 
 @pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])

@@ -269,6 +269,14 @@ def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None
         extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
                             "results": {k: float(v) for k, v in o.results().items()}}
                            for o in outcomes]
+    if scene.sample is not None and scene.order is None and scene.rule == "sequential":
+        count, seed = scene.sample
+        rows = [row["results"] for row in extra["orders"]] if len(outcomes) > 1 else [
+            {k: float(v) for k, v in outcomes[0].results().items()}]
+        extra["sample"] = {"orders": count, "seed": seed,
+                           "distinct": len({tuple(o.order) for o in outcomes})}
+        extra["spread"] = {k: [min(r[k] for r in rows), max(r[k] for r in rows)]
+                           for k in rows[0]}
     warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule",
                                 outcomes[0].energy_tolerance)
     warnings = (*warnings, *outcomes[0].notes)
@@ -308,6 +316,13 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
                   f"{', '.join(result.extra['acted']) or 'none'}")
             if "courses" in result.extra:
                 print(f"courses: {'; '.join(result.extra['courses'])}")
+            if "sample" in result.extra:
+                sample = result.extra["sample"]
+                print(f"a sample of {sample['orders']} orders (seed {sample['seed']}, "
+                      f"{sample['distinct']} distinct), not every order; spread:")
+                for key, (low, high) in result.extra["spread"].items():
+                    print(f"  {key}: {low:.10g} .. {high:.10g}")
+                return 0
             for row in result.extra.get("orders", ()):
                 shown = ", ".join(f"{k} = {v:.10g}" for k, v in row["results"].items()
                                   if not k.endswith("tangential_impulse"))

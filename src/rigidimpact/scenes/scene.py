@@ -37,6 +37,7 @@ from rigidimpact.model.bodies import Body
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.model.shapes import SHAPES, Fields
 from rigidimpact.solve.collision import (
+    MAX_SAMPLED_ORDERS,
     Collision,
     Compliant,
     Outcome,
@@ -109,6 +110,7 @@ class Scene:
     rule: str = "simultaneous"
     order: tuple[str, ...] | None = None
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
+    sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
 
     @property
     def several(self) -> bool:
@@ -201,6 +203,8 @@ class Scene:
             stiffness, hertz = self.compliance
             return Compliant(stiffness, hertz)
         if self.rule == "sequential":
+            if self.sample is not None:
+                return Sequential(None, *self.sample)
             return Sequential(self.order)
         return Simultaneous()
 
@@ -484,12 +488,13 @@ def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
         contacts.append(replace(contact, bodies=(first, second), point=point))
     impact_table = _table(data, "impact", "settings")
     rule, order = _impact_table(impact_table, [c.name for c in contacts])
+    sample = _sample(impact_table)
     compliance = _compliance(impact_table, len(contacts))
     bodies = []
     for index, table in by_name.values():
         bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
     scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
-                  contacts=tuple(contacts), rule=rule, order=order,
+                  contacts=tuple(contacts), rule=rule, order=order, sample=sample,
                   compliance=compliance)
     # the roles hold the geometry too (a contact on each body's outline): checked now
     # with what the file says, again whenever values arrive
@@ -539,13 +544,17 @@ def _impact_table(table: Mapping[str, Any],
 
     With one contact every rule gives the same answer."""
     for key in table:
-        if key not in ("rule", "order", "stiffness", "model"):
+        if key not in ("rule", "order", "orders", "seed", "stiffness", "model"):
             raise InputError(f"impact.{key}", "unknown field; expected rule, order, "
-                             "stiffness, model")
+                             "orders, seed, stiffness, model")
     rule = table.get("rule", "simultaneous")
     if rule not in IMPACT_RULES:
         raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
                          f"{rule!r}")
+    if "orders" in table or "seed" in table:
+        if rule != "sequential" or "order" in table:
+            raise InputError("impact.orders", "a sample of orders (orders, seed) goes with "
+                             "rule = \"sequential\" and no order")
     if "order" not in table:
         return rule, None
     order = table["order"]
@@ -633,3 +642,18 @@ def load_scene(path: str | Path) -> Scene:
         raise InputError(str(path), f"cannot read the scene file: "
                          f"{getattr(exc, 'strerror', None) or exc}") from None
     return parse_scene(text, path.stem)
+
+
+def _sample(table: Mapping[str, Any]) -> tuple[int, int] | None:
+    """``[impact] orders = N, seed = S``: a seeded sample of N orders (None: not asked)."""
+    if "orders" not in table:
+        if "seed" in table:
+            raise InputError("impact.seed", "goes with orders = N (a sample of orders)")
+        return None
+    count, seed = table["orders"], table.get("seed", 0)
+    for key, value in (("orders", count), ("seed", seed)):
+        if not isinstance(value, int) or isinstance(value, bool) or value < 0:
+            raise InputError(f"impact.{key}", f"must be a whole number >= 0, got {value!r}")
+    if not 1 <= count <= MAX_SAMPLED_ORDERS:
+        raise InputError("impact.orders", f"must lie in [1, {MAX_SAMPLED_ORDERS}], got {count}")
+    return count, seed

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import random
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -71,6 +72,7 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 # collapse); it is cut where every closing speed left is this small next to the first
 SETTLED = sp.Rational(1, 10**40)
 MAX_ORDERS = 720  # every order of up to six contacts
+MAX_SAMPLED_ORDERS = 10000
 # the simultaneous rule with symbols: a case (signs before x acting contacts) that can
 # hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
 # past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
@@ -854,10 +856,27 @@ class Collision:
         count = math.factorial(len(names))  # counted before any order is made
         if count > MAX_ORDERS:
             raise InputError("impact.order", f"{len(names)} contacts have {count} orders "
-                             f"(at most {MAX_ORDERS} are run): give one")
+                             f"(at most {MAX_ORDERS} are run): give one, or ask for a "
+                             "seeded sample (orders = N, seed = S)")
         orders = list(itertools.permutations(names))
         if self.symbols:
             return tuple(self.sequential_pass(order) for order in orders)
+        return tuple(self.sequential(order) for order in orders)
+
+    def sampled_orders(self, count: int, seed: int) -> tuple[Outcome, ...]:
+        """The sequential rule in `count` orders drawn at random (``random.Random(seed)``,
+        each a uniform shuffle; repeats possible when the orders are few): a sample of
+        the outcomes' spread, not every order."""
+        self._numbers_only("sequential")
+        if not 1 <= count <= MAX_SAMPLED_ORDERS:
+            raise InputError("impact.orders", f"must lie in [1, {MAX_SAMPLED_ORDERS}], got "
+                             f"{count}")
+        draw, names = random.Random(seed), [t.name for t in self.contacts]
+        orders = []
+        for _ in range(count):
+            order = names[:]
+            draw.shuffle(order)
+            orders.append(tuple(order))
         return tuple(self.sequential(order) for order in orders)
 
     def solve(self, rule: Rule) -> tuple[Outcome, ...]:
@@ -1153,7 +1172,8 @@ class Simultaneous(Rule):
 
 @dataclass(frozen=True)
 class Sequential(Rule):
-    """One contact at a time in `order`; every order when `order` is None.
+    """One contact at a time in `order`; every order when `order` is None, or a seeded
+    sample of `sample` orders.
 
     Examples
     --------
@@ -1162,9 +1182,13 @@ class Sequential(Rule):
     """
 
     order: tuple[str, ...] | None = None
+    sample: int | None = None  # with no order: this many orders drawn with `seed`
+    seed: int = 0
     name: ClassVar[str] = "sequential"
 
     def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+        if self.order is None and self.sample is not None:
+            return collision.sampled_orders(self.sample, self.seed)
         if self.order is None:
             return collision.every_order()
         if collision.symbols:
