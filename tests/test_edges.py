@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helpers import evaluated, refused, scene_file
+from helpers import evaluated, hinged_rod_struck_twice, refused, scene_file
 from rigidimpact.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -781,40 +781,7 @@ def test_a_pivoted_body_struck_at_two_contacts_reports_its_reaction(tmp_path, ca
     from rigidimpact.model.bodies import Body
     from rigidimpact.solve.impact import Impact
 
-    text = """
-[[bodies]]
-name = "low"
-shape = "particle"
-mass = "2"
-position = ["0", "0"]
-velocity = ["5", "0"]
-[[bodies]]
-name = "high"
-shape = "particle"
-mass = "1"
-position = ["0", "3/10"]
-velocity = ["3", "0"]
-[[bodies]]
-name = "rod"
-shape = "rigid"
-mass = "8"
-inertia = "24/25"
-position = ["0", "3/5"]
-pivot = ["0", "6/5"]
-[[contacts]]
-name = "a"
-bodies = ["low", "rod"]
-point = ["0", "0"]
-restitution = "4/5"
-[[contacts]]
-name = "b"
-bodies = ["high", "rod"]
-point = ["0", "3/10"]
-restitution = "1/2"
-[impact]
-rule = "sequential"
-order = ["a", "b"]
-"""
+    text = hinged_rod_struck_twice(impact='[impact]\nrule = "sequential"\norder = ["a", "b"]\n')
     out = evaluated(capsys, ["evaluate", scene_file(tmp_path, text)])
     R = sp.Rational
     total = sp.zeros(2, 1)

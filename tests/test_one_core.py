@@ -154,42 +154,10 @@ def test_the_simultaneous_rule_prints_each_contacts_own_law(law):
 def test_a_pivoted_rod_struck_at_two_contacts_prints_its_equations(tmp_path, capsys):
     import json
 
-    from helpers import scene_file
+    from helpers import hinged_rod_struck_twice, scene_file
     from rigidimpact.cli import main
 
-    text = """
-[[bodies]]
-name = "low"
-shape = "particle"
-mass = "2"
-position = ["0", "0"]
-velocity = ["5", "0"]
-[[bodies]]
-name = "high"
-shape = "particle"
-mass = "1"
-position = ["0", "3/10"]
-velocity = ["3", "0"]
-[[bodies]]
-name = "rod"
-shape = "rigid"
-mass = "8"
-inertia = "24/25"
-position = ["0", "3/5"]
-pivot = ["0", "6/5"]
-[[contacts]]
-name = "a"
-bodies = ["low", "rod"]
-point = ["0", "0"]
-restitution = "4/5"
-law = "poisson"
-[[contacts]]
-name = "b"
-bodies = ["high", "rod"]
-point = ["0", "3/10"]
-restitution = "1/2"
-law = "poisson"
-"""
+    text = hinged_rod_struck_twice("poisson")
     assert main(["derive", scene_file(tmp_path, text), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     labels = [eq["label"] for eq in out["equations"]]
