@@ -151,7 +151,7 @@ def main(argv=None) -> int:
     found = gait(solution, kane)
     slope = float(VALUES[gamma])
     state = found.state - np.array([slope, slope, 0, 0])  # from the true vertical
-    out = {"impact_map": str(H.tolist()),
+    out = {"impact_map": str(H),
            "fixed_point": [float(x) for x in state],
            "eigenvalues": [[float(z.real), float(z.imag)] for z in found.eigenvalues],
            "stable": found.stable,

@@ -47,7 +47,7 @@ def main(argv=None) -> int:
     kane, _, solution = heel_strike()
     H = limit_map(solution, kane)
     found = gait(solution, kane, VALUES, guess=(0.2, -0.2, -0.2, -0.04))
-    out = {"heel_strike": str(H.tolist()),
+    out = {"heel_strike": str(H),
            "fixed_point": [float(found.state[0]), float(found.state[2])],
            "swing_rate": float(found.state[3]),
            "eigenvalues": [[float(z.real), float(z.imag)] for z in found.eigenvalues],
