@@ -91,3 +91,19 @@ def test_the_simultaneous_rule_gives_enumerations_answer(seed):
     e = sp.Matrix([c.restitution for c in contacts])
     target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
     assert collision._lcp(v, target) == collision._complementarity(v, target)
+
+
+def test_a_long_enumeration_stops_in_one_line(monkeypatch):
+    # irrational normals (no Lemke): the acting sets are tried within a time budget
+    import rigidimpact.solve.collision as collision
+
+    monkeypatch.setattr(collision, "MAX_SYMBOLIC_SECONDS", 0.0)
+    r3 = sp.sqrt(3)
+    bodies = (Body.rigid(1, 1, (0, 0), (1, 0), name="s"),
+              Body.rigid(1, 1, (r3, 1), (0, 0), name="u"),
+              Body.rigid(1, 1, (r3, -1), (0, 0), name="d"))
+    contacts = (Contact((r3, 1), 1, name="a", bodies=("s", "u"), point=(r3 / 2, sp.S.Half)),
+                Contact((r3, -1), 1, name="b", bodies=("s", "d"),
+                        point=(r3 / 2, -sp.S.Half)))
+    with pytest.raises(InputError, match="contacts: 2 contacts: 4 sets of acting contacts"):
+        Collision(bodies, contacts).simultaneous()

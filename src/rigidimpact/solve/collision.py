@@ -587,8 +587,17 @@ class Collision:
         return self._complementarity(v, target)
 
     def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
-        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0."""
+        """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
+        acting sets (largest first) for at most MAX_SYMBOLIC_SECONDS: past that, one line
+        says how large the problem is instead of a run of minutes."""
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         for active, impulses, after in self._active_sets(v, target):
+            if time.perf_counter() > deadline:
+                raise InputError("contacts", f"{len(v)} contacts: {2 ** len(v)} sets of "
+                                 "acting contacts, more than can be tried in "
+                                 f"{MAX_SYMBOLIC_SECONDS:.0f} s (Lemke's method needs "
+                                 "rational numbers and an invertible W; give rational "
+                                 "normals and data)")
             if all(impulses[i] >= 0 for i in active) and all(
                     after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
                 return impulses
