@@ -47,6 +47,8 @@ import sympy as sp
 
 from rigidimpact.analyses import restrike
 from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
 from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.numeric import fused, has_numba, kernels
 from rigidimpact.outputs.plots import accuracy_vs_time
@@ -55,6 +57,7 @@ from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
+from rigidimpact.solve.collision import Collision, chain
 from rigidimpact.symbolic.notation import symbol
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
@@ -62,7 +65,7 @@ __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladde
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
-            "restrike-sweep", "restrike-fixed-step", "pymunk", "ladder")
+            "restrike-sweep", "restrike-fixed-step", "pymunk", "ladder", "contacts")
 KEYS = ("v_fx", "V_x", "omega_z")
 VALUES = {"m": 1, "M": 2, "L": sp.Rational(1, 2), "theta": sp.pi / 6, "e": sp.Rational(1, 2),
           "v_ix": 1}
@@ -646,6 +649,64 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
             "ratio": times["ours"] / times["plain"]}
 
 
+def _fan(k: int):
+    """A striker meeting k touching discs at once, each at a rational direction on its rim
+    (Pythagorean triples): W invertible and every number rational."""
+    directions: list[tuple[sp.Rational, sp.Rational]] = []
+    outer = 2
+    while len(directions) < k:
+        for inner in range(1, outer):
+            if len(directions) < k and (outer - inner) % 2 and math.gcd(outer, inner) == 1:
+                a, b, c = outer**2 - inner**2, 2 * outer * inner, outer**2 + inner**2
+                directions.append((sp.Rational(a, c), sp.Rational(b, c)))
+        outer += 1
+    bodies = [Body.rigid(1, 1, (0, 0), (1, sp.Rational(1, 3)), name="s")]
+    contacts = []
+    for i, (x, y) in enumerate(directions):
+        bodies.append(Body.rigid(1, 1, (2 * x, 2 * y), (0, 0), name=f"b{i}"))
+        contacts.append(Contact((x, y), sp.Rational(1, 2), name=f"c{i}", bodies=("s", f"b{i}"),
+                                point=(x, y)))
+    return Collision(tuple(bodies), tuple(contacts))
+
+
+def contacts_family(quick: bool = False, limit: float = 60.0) -> dict[str, Any]:
+    """The simultaneous rule against the number of contacts: a cradle (chain) and a fan
+    around a striker, by Lemke's method and, side by side while it finishes within
+    `limit` seconds, by trying every set of acting contacts (the method before). Each
+    row (one run each): the case, n, seconds, the baseline's seconds or None; and the
+    exponent of a power law fitted to each curve."""
+    sizes = {"cradle": (8, 16, 32) if quick else (8, 16, 32, 64, 128, 256),
+             "fan": (4, 8, 12) if quick else (4, 8, 12, 16, 24, 32)}
+    rows: list[dict[str, Any]] = []
+    stopped: set[str] = set()
+    for case, ns in sizes.items():
+        for n in ns:
+            problem = chain(n + 1) if case == "cradle" else _fan(n)
+            begin = time.perf_counter()
+            problem.simultaneous()
+            ours = time.perf_counter() - begin
+            baseline = None
+            if case not in stopped:
+                fresh = chain(n + 1) if case == "cradle" else _fan(n)
+                v = fresh.velocity_before
+                e = [c.restitution for c in fresh.contacts]
+                target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
+                begin = time.perf_counter()
+                fresh._complementarity(v, target)
+                baseline = time.perf_counter() - begin
+                if baseline > limit / 10:  # the next size would pass the limit
+                    stopped.add(case)
+            rows.append({"case": case, "n": n, "seconds": ours, "enumeration_s": baseline})
+    exponents = {}
+    for case in sizes:
+        points = [(float(r["n"]), float(r["seconds"])) for r in rows if r["case"] == case]
+        if len(points) >= 2:
+            x = np.log(np.array([p[0] for p in points]))
+            y = np.log(np.array([p[1] for p in points]))
+            exponents[case] = float(np.polyfit(x, y, 1)[0])
+    return {"rows": rows, "exponents": exponents}
+
+
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
               progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
     """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
@@ -703,6 +764,8 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
                                            10.0 if quick else 30.0,
                                            ("smooth",) if quick else ("smooth", "stick"))
         report["verify_vs_plain"] = verify_against_plain(1 if quick else 3)
+    if "contacts" in families:
+        report["contacts"] = contacts_family(quick)
     return report
 
 
@@ -762,6 +825,16 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
         lines += ["", f"`rigidimpact verify` end to end {vp['verify_s']:.2f} s against a plain "
                       f"SymPy barbell script {vp['plain_barbell_s']:.2f} s: ratio "
                       f"{vp['ratio']:.2f}."]
+    if "contacts" in report:
+        family = report["contacts"]
+        lines += ["", "Several contacts, the simultaneous rule (exact): Lemke's method against "
+                      "trying every set of acting contacts, one run each:", "",
+                  "| case | contacts | Lemke (s) | every set (s) |", "|---|---|---|---|"]
+        lines += [f"| {r['case']} | {r['n']} | {r['seconds']:.3f} | "
+                  + (f"{r['enumeration_s']:.3f}" if r["enumeration_s"] is not None
+                     else "not run (past its limit)") + " |" for r in family["rows"]]
+        lines += ["", "Fitted exponents (seconds ~ n^k): " + ", ".join(
+            f"{case} {k:.2f}" for case, k in family["exponents"].items()) + "."]
     if report.get("failed"):
         lines += ["", "Settings the simulation refused (not timed):"]
         lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]
