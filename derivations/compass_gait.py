@@ -129,13 +129,11 @@ def plain_recipe():
     u = sp.Matrix(kane.u)
     partials = me.partial_velocity([swing.vel(N)], list(kane.u), N)[0]
     J = sp.Matrix([[p.dot(N.y) for p in partials], [p.dot(N.x) for p in partials]])
-    after, P = sp.Matrix(sp.symbols("x0:4")), sp.Matrix(sp.symbols("p0:2"))
-    # M (u+ - u-) = J^T P, and the heel at rest after (e = 0, stick): J u+ = 0
+    # unknowns (u+, P): M (u+ - u-) = J^T P, and the heel at rest after (e = 0, stick):
+    # J u+ = 0
     A = sp.Matrix.vstack(sp.Matrix.hstack(M, -J.T), sp.Matrix.hstack(J, sp.zeros(2, 2)))
     rhs = sp.Matrix.vstack(M * u, sp.zeros(2, 1))
-    solved = A.solve(rhs)
-    del after, P
-    return sp.Matrix(solved[:4])
+    return sp.Matrix(A.solve(rhs)[:4])
 
 
 def main(argv=None) -> int:

@@ -41,7 +41,7 @@ __all__ = ["Hybrid", "Walk", "flow_of", "FixedPoint"]
 State = np.ndarray
 
 
-def flow_of(system: Any, constants: dict, extra: Sequence[Any] = ()) -> Callable:
+def flow_of(system: Any, constants: dict) -> Callable:
     """``f(t, x)`` for ``x = [q, u]`` from a ``KanesMethod`` (after ``kanes_equations``) or
     ``System`` (after ``form_eoms``), with numbers for its constants: the full mass
     matrix and forcing, generated once as numeric code.
@@ -55,7 +55,7 @@ def flow_of(system: Any, constants: dict, extra: Sequence[Any] = ()) -> Callable
     M = sp.Matrix(system.mass_matrix_full).xreplace(constants)
     F = sp.Matrix(system.forcing_full).xreplace(constants)
     time = {s for s in (M.free_symbols | F.free_symbols) if s.name == "t"}
-    left = (M.free_symbols | F.free_symbols) - time - set(extra)
+    left = (M.free_symbols | F.free_symbols) - time
     if left:
         raise InputError("constants", "simulation needs numbers for "
                          f"{', '.join(sorted(map(str, left)))}")

@@ -156,14 +156,22 @@ class SystemImpact:
     M: sp.ImmutableMatrix
     contacts: tuple[PointContact, ...]
     before: tuple[Any, ...] | None = None  # the speeds' values before (None: u itself)
+    # rows (normal, tangent) of every contact in turn, v = J u; formed from the points'
+    # partial velocities when not given (at() gives it with numbers put in)
+    J: Any = None
 
     @property
     def u_before(self) -> sp.Matrix:
         return sp.Matrix(self.before if self.before is not None else self.u)
 
     def __post_init__(self) -> None:
-        for c in self.contacts:
-            if all(x == 0 for x in self._rows(c)[0]) and all(x == 0 for x in self._rows(c)[1]):
+        if self.J is None:
+            rows: list[list[sp.Expr]] = []
+            for c in self.contacts:
+                rows += list(self._rows(c))
+            object.__setattr__(self, "J", sp.ImmutableMatrix(rows))
+        for i, c in enumerate(self.contacts):
+            if all(x == 0 for x in self.J[2 * i:2 * i + 2, :]):
                 raise InputError(f"{c.name}.point", "its velocity does not depend on the "
                                  "system's speeds: nothing there can be struck")
 
@@ -194,14 +202,6 @@ class SystemImpact:
                 [sp.trigsimp(p.dot(t)) for p in partials])
 
     @cached_property
-    def J(self) -> sp.ImmutableMatrix:
-        """Rows (normal, tangent) of every contact in turn: ``v = J u``."""
-        rows = []
-        for c in self.contacts:
-            rows += list(self._rows(c))
-        return sp.ImmutableMatrix(rows)
-
-    @cached_property
     def _stand_ins(self) -> dict[sp.Basic, sp.Dummy]:
         """A symbol for every sin and cos of a coordinate (and every coordinate and speed)
         in M and J: the solve is then rational arithmetic, exact and fast, and the
@@ -220,22 +220,15 @@ class SystemImpact:
         return sp.Matrix(matrix).xreplace(back)
 
     @cached_property
-    def _field(self) -> tuple[Any, Any, Any]:
-        """The rational functions of the stand-ins and constants, and M^-1 J^T and W in
-        it (each entry one reduced fraction)."""
+    def _solved(self) -> tuple[sp.Matrix, sp.Matrix]:
+        """``M^-1 J^T`` and ``W`` in the stand-ins, solved in the field of rational
+        functions of the stand-ins and constants (each entry one reduced fraction)."""
         M, J = self._in(self.M), self._in(self.J)
-        speeds = self._in(sp.Matrix(self.u)).free_symbols
-        gens = sorted(M.free_symbols | J.free_symbols | speeds, key=sp.default_sort_key)
+        gens = sorted(M.free_symbols | J.free_symbols, key=sp.default_sort_key)
         domain = sp.QQ.frac_field(*gens) if gens else sp.QQ
         dm, dj = (DomainMatrix.from_Matrix(x).convert_to(domain) for x in (M, J))
         x = dm.lu_solve(dj.transpose())
-        return domain, x, dj * x
-
-    @cached_property
-    def _solved(self) -> tuple[sp.Matrix, sp.Matrix]:
-        """``M^-1 J^T`` and ``W`` in the stand-ins."""
-        _, x, w = self._field
-        return x.to_Matrix(), w.to_Matrix()
+        return x.to_Matrix(), (dj * x).to_Matrix()
 
     @property
     def _numbers(self) -> bool:
@@ -263,6 +256,12 @@ class SystemImpact:
         stick with its restitution), the impulses from one linear system; with numbers a
         normal impulse that would pull is said in a warning.
         """
+        v = self.J * self.u_before
+        normals = [v[2 * i] for i in range(len(self.contacts))]
+        if all(x.is_number and x >= 0 for x in normals):
+            raise InputError("contacts", "no contact is approaching (normal velocities "
+                             f"{', '.join(f'{float(x):.6g}' for x in normals)} >= 0): "
+                             "there is no impact")
         laws = [c.laws.laws for c in self.contacts]
         if all(not tangential.solved_by_regimes for _, tangential in laws):
             return self._linear()
@@ -307,8 +306,7 @@ class SystemImpact:
         du = DomainMatrix.from_Matrix(u).convert_to(field)
         dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
         twice = (du.transpose() * dM * du - dx.transpose() * dM * dx)[0, 0].element
-        courses = {c.name: t.name for c, (_, t) in zip(self.contacts, (
-            c.laws.laws for c in self.contacts), strict=True)}
+        courses = {c.name: c.laws.laws[1].name for c in self.contacts}
         return self._map(u_after, impulse, courses, field.to_sympy(twice) / 2)
 
     def _by_regimes(self) -> ImpactMap:
@@ -318,9 +316,6 @@ class SystemImpact:
         restitution, tangential = c.laws.laws
         u = self.u_before
         W, v = self.W, (self.J * u)
-        if v[0].is_number and v[0] >= 0:
-            raise InputError(f"{c.name}.point", f"not approaching (normal velocity "
-                             f"{float(v[0]):.6g} >= 0): there is no impact")
         if not (all(x.is_number for x in W) and all(x.is_number for x in v)):
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
                              "depends on the numbers: give numbers for q, the speeds and "
@@ -366,10 +361,8 @@ class SystemImpact:
                        zip(self.u, self.u_before, strict=True))
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
                          for c in self.contacts)
-        done = SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts,
-                            speeds)
-        object.__setattr__(done, "J", self.J.xreplace(put))
-        return done
+        return SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts,
+                            speeds, self.J.xreplace(put))
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
                    impulses: dict[str, tuple[sp.Expr, sp.Expr]]

@@ -598,6 +598,7 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     contact_table, place = _contact_table(data)
     contact, origin = _read_contact(contact_table, place, symbols)
     _impact_table(_table(data, "impact", "settings"), [contact.name])
+    _sample(_table(data, "impact", "settings"))  # checked; one contact has one order
     unit = contact.frame.row(0).T
     if len(by_name) != 2:
         raise InputError("bodies", "exactly two [[bodies]] entries are required with one "

@@ -970,7 +970,8 @@ class Collision:
                 how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
                                      "impact)",
                        "compliant": f"{t.name}'s spring impulse, integrated",
-                       "simultaneous": f"{t.name} alone by its own law (Routh's method)"}
+                       "simultaneous": f"{t.name} alone by its own {tangential.name} law "
+                                       "(Routh's or Walton's regimes)"}
                 found.append(Equation(how[outcome.rule], "", P_n[k], normal,
                                       law="rule"))
                 if self.frictional:
