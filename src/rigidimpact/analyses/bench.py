@@ -47,8 +47,6 @@ import sympy as sp
 
 from rigidimpact.analyses import restrike
 from rigidimpact.errors import InputError
-from rigidimpact.laws.contact import Contact
-from rigidimpact.model.bodies import Body
 from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.numeric import fused, has_numba, kernels
 from rigidimpact.outputs.plots import accuracy_vs_time
@@ -57,7 +55,7 @@ from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
-from rigidimpact.solve.collision import Collision, chain
+from rigidimpact.solve.collision import chain
 from rigidimpact.symbolic.notation import symbol
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
@@ -649,26 +647,6 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
             "ratio": times["ours"] / times["plain"]}
 
 
-def _fan(k: int):
-    """A striker meeting k touching discs at once, each at a rational direction on its rim
-    (Pythagorean triples): W invertible and every number rational."""
-    directions: list[tuple[sp.Rational, sp.Rational]] = []
-    outer = 2
-    while len(directions) < k:
-        for inner in range(1, outer):
-            if len(directions) < k and (outer - inner) % 2 and math.gcd(outer, inner) == 1:
-                a, b, c = outer**2 - inner**2, 2 * outer * inner, outer**2 + inner**2
-                directions.append((sp.Rational(a, c), sp.Rational(b, c)))
-        outer += 1
-    bodies = [Body.rigid(1, 1, (0, 0), (1, sp.Rational(1, 3)), name="s")]
-    contacts = []
-    for i, (x, y) in enumerate(directions):
-        bodies.append(Body.rigid(1, 1, (2 * x, 2 * y), (0, 0), name=f"b{i}"))
-        contacts.append(Contact((x, y), sp.Rational(1, 2), name=f"c{i}", bodies=("s", f"b{i}"),
-                                point=(x, y)))
-    return Collision(tuple(bodies), tuple(contacts))
-
-
 def contacts_family(quick: bool = False, limit: float = 60.0) -> dict[str, Any]:
     """The simultaneous rule against the number of contacts: a cradle (chain) and a fan
     around a striker, by Lemke's method and, side by side while it finishes within
@@ -681,13 +659,13 @@ def contacts_family(quick: bool = False, limit: float = 60.0) -> dict[str, Any]:
     stopped: set[str] = set()
     for case, ns in sizes.items():
         for n in ns:
-            problem = chain(n + 1) if case == "cradle" else _fan(n)
+            problem = chain(n + 1) if case == "cradle" else fan(n)
             begin = time.perf_counter()
             problem.simultaneous()
             ours = time.perf_counter() - begin
             baseline = None
             if case not in stopped:
-                fresh = chain(n + 1) if case == "cradle" else _fan(n)
+                fresh = chain(n + 1) if case == "cradle" else fan(n)
                 v = fresh.velocity_before
                 e = [c.restitution for c in fresh.contacts]
                 target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])

@@ -1310,6 +1310,32 @@ def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     return Collision(bodies, touches)
 
 
+def fan(k: int) -> Collision:
+    """A striker meeting k touching discs at once, each at a rational direction on its rim
+    (Pythagorean triples): W invertible and every number rational.
+
+    Examples
+    --------
+    >>> [t.normal for t in fan(2).contacts]
+    [(3/5, 4/5), (5/13, 12/13)]
+    """
+    directions: list[tuple[sp.Rational, sp.Rational]] = []
+    outer = 2
+    while len(directions) < k:
+        for inner in range(1, outer):
+            if len(directions) < k and (outer - inner) % 2 and math.gcd(outer, inner) == 1:
+                a, b, c = outer**2 - inner**2, 2 * outer * inner, outer**2 + inner**2
+                directions.append((sp.Rational(a, c), sp.Rational(b, c)))
+        outer += 1
+    bodies = [Body.rigid(1, 1, (0, 0), (1, sp.Rational(1, 3)), name="s")]
+    contacts = []
+    for i, (x, y) in enumerate(directions):
+        bodies.append(Body.rigid(1, 1, (2 * x, 2 * y), (0, 0), name=f"b{i}"))
+        contacts.append(Contact((x, y), sp.Rational(1, 2), name=f"c{i}", bodies=("s", f"b{i}"),
+                                point=(x, y)))
+    return Collision(tuple(bodies), tuple(contacts))
+
+
 def cluster(rows: int, columns: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     """A striker hitting a hexagonal cluster of equal discs (mass 1, radius 1/2), `rows`
     rows of `columns` each, every touching pair a contact; the striker, moving along x
