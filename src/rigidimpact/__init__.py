@@ -36,6 +36,8 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.solve.collision import Sequential as Sequential
     from rigidimpact.solve.collision import Simultaneous as Simultaneous
     from rigidimpact.solve.collision import chain as chain
+    from rigidimpact.solve.collision import cluster as cluster
+    from rigidimpact.solve.collision import fan as fan
     from rigidimpact.solve.derivation import Derivation as Derivation
     from rigidimpact.solve.impact import Impact as Impact
     from rigidimpact.solve.solution import Solution as Solution
@@ -55,7 +57,8 @@ _PUBLIC = {
     # several contacts: the collision, its rules and what they give
     "Collision": "solve.collision", "Simultaneous": "solve.collision",
     "Sequential": "solve.collision", "Compliant": "solve.collision",
-    "Outcome": "solve.collision", "chain": "solve.collision",
+    "Outcome": "solve.collision", "chain": "solve.collision", "cluster": "solve.collision",
+    "fan": "solve.collision",
     # scenes and checks
     "Scene": "scenes.scene", "load_scene": "scenes.scene", "parse_scene": "scenes.scene",
     "run_checks": "verify",

@@ -55,7 +55,7 @@ from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
-from rigidimpact.solve.collision import chain
+from rigidimpact.solve.collision import Collision, chain, cluster
 from rigidimpact.symbolic.notation import symbol
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
@@ -647,45 +647,153 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
             "ratio": times["ours"] / times["plain"]}
 
 
-def contacts_family(quick: bool = False, limit: float = 60.0) -> dict[str, Any]:
-    """The simultaneous rule against the number of contacts: a cradle (chain) and a fan
-    around a striker, by Lemke's method and, side by side while it finishes within
-    `limit` seconds, by trying every set of acting contacts (the method before). Each
-    row (one run each): the case, n, seconds, the baseline's seconds or None; and the
-    exponent of a power law fitted to each curve."""
-    sizes = {"cradle": (8, 16, 32) if quick else (8, 16, 32, 64, 128, 256),
-             "fan": (4, 8, 12) if quick else (4, 8, 12, 16, 24, 32)}
+CLUSTER_SIDES = (2, 3, 4, 6, 8, 12, 16, 19)  # a side x side cluster: 6 ... 1028 contacts
+
+
+def _cluster_contacts(side: int) -> Collision:
+    return cluster(side, side)
+
+
+def _dense_chain_seconds(n: int) -> float:
+    """The plain way for a chain of n Hertz balls (stiffness 1, unit masses, striker at
+    1): scipy's solve_ivp (LSODA) on the dense state, every ball's x velocity, every
+    contact's depth, rhs by dense matrix products, over the time the wave takes to cross
+    the chain (0.84 balls per unit time here, and a third more)."""
+    from scipy.integrate import solve_ivp
+
+    k = n - 1
+    J = np.zeros((k, n))
+    J[np.arange(k), np.arange(k)], J[np.arange(k), np.arange(k) + 1] = -1.0, 1.0
+
+    def rhs(_, y):
+        u, depth = y[:n], y[n:]
+        f = np.where(depth > 0, np.maximum(depth, 0.0) ** 1.5, 0.0)
+        return np.concatenate([J.T @ f, -(J @ u)])
+
+    y0 = np.zeros(n + k)
+    y0[0] = 1.0
+    begin = time.perf_counter()
+    solve_ivp(rhs, (0.0, 1.33 * n / 0.84), y0, method="LSODA", rtol=1e-10, atol=1e-10)
+    return time.perf_counter() - begin
+
+
+def _pymunk_cluster_seconds(side: int) -> float | None:
+    """The same hexagonal cluster in pymunk (elastic circles, no friction), stepped for
+    the time a wave takes to cross it; None when pymunk is not installed."""
+    try:
+        import pymunk
+    except ImportError:
+        return None
+    begin = time.perf_counter()
+    space = pymunk.Space()
+    space.iterations = 50
+    for i in range(side):
+        for j in range(side):
+            body = pymunk.Body(1.0, pymunk.moment_for_circle(1.0, 0, 0.5))
+            body.position = (j + 0.5 * (i % 2), i * math.sqrt(3) / 2)
+            shape = pymunk.Circle(body, 0.5)
+            shape.elasticity, shape.friction = 1.0, 0.0
+            space.add(body, shape)
+    striker = pymunk.Body(1.0, pymunk.moment_for_circle(1.0, 0, 0.5))
+    middle = (side - 1) // 2
+    striker.position = (0.5 * (middle % 2) - 1 - 1e-9, middle * math.sqrt(3) / 2)
+    striker.velocity = (1.0, 0.0)
+    shape = pymunk.Circle(striker, 0.5)
+    shape.elasticity, shape.friction = 1.0, 0.0
+    space.add(striker, shape)
+    for _ in range(100 * side):
+        space.step(0.01)
+    return time.perf_counter() - begin
+
+
+def _measure(solve: Callable[[], Any], memory: bool) -> tuple[float, float | None]:
+    """Seconds of one run, and with `memory` the peak of Python allocations (MiB) in a
+    second run under tracemalloc (which slows it, so it is not the timed one)."""
+    import tracemalloc
+
+    begin = time.perf_counter()
+    solve()
+    seconds = time.perf_counter() - begin
+    if not memory:
+        return seconds, None
+    tracemalloc.start()
+    try:
+        solve()
+        peak = tracemalloc.get_traced_memory()[1] / 2**20
+    finally:
+        tracemalloc.stop()
+    return seconds, peak
+
+
+def _rules(case: str, size: int, make: Callable[[], Collision],
+           baseline: Callable[[str, Callable[[], float | None]], float | None],
+           enumeration: Callable[[Collision], float]) -> list[tuple[str, Callable[[], Any],
+                                                                    dict[str, Any]]]:
+    """The rules timed on one problem, each with its baselines' seconds."""
+    order = tuple(t.name for t in make().contacts)
+    rules: list[tuple[str, Callable[[], Any], dict[str, Any]]] = [
+        ("simultaneous", lambda: make().simultaneous(), {
+            "enumeration_s": baseline(f"{case} enumeration", lambda: enumeration(make()))}),
+        ("sequential", lambda: make().sequential(order), {})]
+    if case == "cradle":
+        rules.append(("compliant (Hertz)", lambda: make().compliant(1.0, hertz=True), {
+            "dense_solve_ivp_s": baseline("dense", lambda: _dense_chain_seconds(size + 1))}))
+    else:
+        rules.append(("compliant", lambda: make().compliant(1.0), {
+            "pymunk_s": baseline("pymunk", lambda: _pymunk_cluster_seconds(size))}))
+    return rules
+
+
+def contacts_family(quick: bool = False, limit: float = 60.0,
+                    memory: bool = True) -> dict[str, Any]:
+    """Each rule against the number of contacts, on a cradle (a chain of n + 1 balls)
+    and a hexagonal cluster of discs struck by one ball, with side by side baselines:
+    trying every set of acting contacts (the simultaneous rule's method before Lemke's,
+    while it finishes within `limit` seconds), a plain dense solve_ivp of the same Hertz
+    chain (the compliant rule's baseline, likewise), and pymunk on the same cluster (if
+    installed). One run each. Rows: case, rule, n, seconds, peak MiB, the baselines'
+    seconds (None: not run, past the limit or not installed); and the exponent of a
+    power law fitted to each curve."""
+    chains: tuple[int, ...] = (8, 32, 128) if quick else (2, 4, 8, 16, 32, 64, 128, 256,
+                                                          512, 1024)
+    sides: tuple[int, ...] = (2, 4, 8) if quick else CLUSTER_SIDES
     rows: list[dict[str, Any]] = []
     stopped: set[str] = set()
-    for case, ns in sizes.items():
-        for n in ns:
-            problem = chain(n + 1) if case == "cradle" else fan(n)
-            begin = time.perf_counter()
-            problem.simultaneous()
-            ours = time.perf_counter() - begin
-            baseline = None
-            if case not in stopped:
-                fresh = chain(n + 1) if case == "cradle" else fan(n)
-                v = fresh.velocity_before
-                e = [c.restitution for c in fresh.contacts]
-                target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
-                begin = time.perf_counter()
-                try:
-                    fresh._complementarity(v, target)
-                    baseline = time.perf_counter() - begin
-                except InputError:  # past the enumeration's own time budget
-                    stopped.add(case)
-                if baseline is not None and baseline > limit / 10:  # the next would pass
-                    stopped.add(case)
-            rows.append({"case": case, "n": n, "seconds": ours, "enumeration_s": baseline})
+
+    def baseline(key: str, run: Callable[[], float | None]) -> float | None:
+        if key in stopped:
+            return None
+        try:
+            seconds = run()
+        except InputError:  # past the enumeration's own time budget
+            seconds = None
+        if seconds is None or seconds > limit / 10:  # the next size would pass the limit
+            stopped.add(key)
+        return seconds
+
+    def enumeration(problem: Collision) -> float:
+        v = problem.velocity_before
+        e = [c.restitution for c in problem.contacts]
+        target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
+        begin = time.perf_counter()
+        problem._complementarity(v, target)
+        return time.perf_counter() - begin
+
+    cases = [("cradle", n, lambda n=n: chain(n + 1)) for n in chains]
+    cases += [("cluster", side, lambda side=side: _cluster_contacts(side)) for side in sides]
+    for case, size, make in cases:
+        for rule, solve, baselines in _rules(case, size, make, baseline, enumeration):
+            seconds, peak = _measure(solve, memory)
+            rows.append({"case": case, "rule": rule, "n": len(make().contacts),
+                         "seconds": seconds, "peak_mib": peak, **baselines})
     exponents = {}
-    for case in sizes:
-        points = [(float(r["n"]), float(r["seconds"])) for r in rows if r["case"] == case]
+    for case, rule in {(r["case"], r["rule"]) for r in rows}:
+        points = [(r["n"], r["seconds"]) for r in rows
+                  if r["case"] == case and r["rule"] == rule and r["n"] >= 16]
         if len(points) >= 2:
-            x = np.log(np.array([p[0] for p in points]))
-            y = np.log(np.array([p[1] for p in points]))
-            exponents[case] = float(np.polyfit(x, y, 1)[0])
-    return {"rows": rows, "exponents": exponents}
+            x, y = np.log([p[0] for p in points]), np.log([p[1] for p in points])
+            exponents[f"{case} {rule}"] = float(np.polyfit(x, y, 1)[0])
+    return {"rows": rows, "exponents": dict(sorted(exponents.items()))}
 
 
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
@@ -808,15 +916,22 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                       f"{vp['ratio']:.2f}."]
     if "contacts" in report:
         family = report["contacts"]
-        lines += ["", "Several contacts, the simultaneous rule (exact): Lemke's method against "
-                      "trying every set of acting contacts, one run each:", "",
-                  "| case | contacts | Lemke (s) | every set (s) |", "|---|---|---|---|"]
-        lines += [f"| {r['case']} | {r['n']} | {r['seconds']:.3f} | "
-                  + (f"{r['enumeration_s']:.3f}" if r["enumeration_s"] is not None
-                     else "not finished (past its time budget)") + " |"
-                  for r in family["rows"]]
-        lines += ["", "Fitted exponents (seconds ~ n^k): " + ", ".join(
-            f"{case} {k:.2f}" for case, k in family["exponents"].items()) + "."]
+        lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
+                      "Python allocations in a second run), with the baselines side by side: "
+                      "trying every set of acting contacts, a plain dense solve_ivp of the same "
+                      "Hertz chain, pymunk on the same cluster (blank: not run, past its limit "
+                      "or not installed):", "",
+                  "| case | rule | contacts | seconds | peak MiB | baseline | baseline (s) |",
+                  "|---|---|---|---|---|---|---|"]
+        for r in family["rows"]:
+            key = next((k for k in ("enumeration_s", "dense_solve_ivp_s", "pymunk_s")
+                        if k in r), None)
+            shown = "" if key is None or r[key] is None else f"{r[key]:.3f}"
+            peak = "" if r["peak_mib"] is None else f"{r['peak_mib']:.1f}"
+            lines.append(f"| {r['case']} | {r['rule']} | {r['n']} | {r['seconds']:.3f} | "
+                         f"{peak} | {(key or '')[:-2]} | {shown} |")
+        lines += ["", "Fitted exponents (seconds ~ n^k, n >= 16): " + ", ".join(
+            f"{name} {k:.2f}" for name, k in family["exponents"].items()) + "."]
     if report.get("failed"):
         lines += ["", "Settings the simulation refused (not timed):"]
         lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]

@@ -609,8 +609,14 @@ class Collision:
         ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
         and zero elsewhere (the conditions that pick a set are the caller's)."""
         n = len(v)
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         for size in range(n, 0, -1):
             for active in itertools.combinations(range(n), size):
+                if time.perf_counter() > deadline:  # checked for singular blocks too
+                    raise InputError("contacts", f"{n} contacts: {2 ** n} sets of acting "
+                                     "contacts, more than can be tried in "
+                                     f"{MAX_SYMBOLIC_SECONDS:.0f} s (give numbers for the "
+                                     "symbols: the rule then needs no such search)")
                 block = self.W.extract(list(active), list(active))
                 if tidy(block.det()) == 0:
                     continue
@@ -710,14 +716,7 @@ class Collision:
         """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
         acting sets (largest first) for at most MAX_SYMBOLIC_SECONDS: past that, one line
         says how large the problem is instead of a run of minutes."""
-        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         for active, impulses, after in self._active_sets(v, target):
-            if time.perf_counter() > deadline:
-                raise InputError("contacts", f"{len(v)} contacts: {2 ** len(v)} sets of "
-                                 "acting contacts, more than can be tried in "
-                                 f"{MAX_SYMBOLIC_SECONDS:.0f} s (Lemke's method needs "
-                                 "rational numbers and an invertible W; give rational "
-                                 "normals and data)")
             if all(impulses[i] >= 0 for i in active) and all(
                     after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
                 return impulses
