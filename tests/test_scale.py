@@ -86,7 +86,7 @@ def test_the_path_at_scale_moves_bodies_as_enumeration_says(problem):
 
 @pytest.mark.parametrize("e", [1, HALF])
 def test_a_large_cluster_obeys_the_laws_of_the_rule(e):
-    # 8 x 8 discs, 193 contacts: no impulse pulls, no contact closes after, every acting
+    # 8 x 8 discs, 162 contacts: no impulse pulls, no contact closes after, every acting
     # contact meets Newton's law, momentum is kept and no energy is created
     problem = cluster(8, 8, restitution=e)
     outcome = problem.simultaneous()

@@ -375,16 +375,19 @@ class Collision:
                           for row in self._sparse(rows)])
 
     def _sparse(self, rows: sp.Matrix) -> list[list[tuple[int, sp.Expr]]]:
-        cached = self._sparse_rows.get(id(rows))
-        if cached is None:
-            cached = [[] for _ in range(rows.rows)]
-            for i, j, value in rows.row_list():
-                cached[i].append((j, value))
-            self._sparse_rows[id(rows)] = cached
-        return cached
+        """Each row's nonzero (column, value) pairs; kept for J and J_t."""
+        key = "J" if rows is self.J else "J_t" if rows is self.J_t else None
+        if key in self._sparse_rows:
+            return self._sparse_rows[key]
+        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in range(rows.rows)]
+        for i, j, value in rows.row_list():
+            found[i].append((j, value))
+        if key is not None:
+            self._sparse_rows[key] = found
+        return found
 
     @cached_property
-    def _sparse_rows(self) -> dict[int, list[list[tuple[int, sp.Expr]]]]:
+    def _sparse_rows(self) -> dict[str | None, list[list[tuple[int, sp.Expr]]]]:
         return {}
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
@@ -722,13 +725,13 @@ class Collision:
                 return impulses
         return sp.zeros(len(v), 1)
 
-    def _smooth_step(self, k: int, u: sp.Matrix, closing: sp.Expr) -> tuple[sp.Expr,
-                                                                              sp.Matrix]:
-        """Contact k alone, smooth, with Newton's e: its impulse and the motion after."""
+    def _smooth_step(self, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
+        """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
+        (only the two bodies' coordinates the contact moves)."""
         impulse = tidy(-(1 + self.contacts[k].restitution) * closing / self.W[k, k])
-        kick = sp.zeros(len(self.contacts), 1)
-        kick[k] = impulse
-        return impulse, self._kick(u, kick)
+        for j, value in self._sparse(self.J)[k]:
+            u[j] = tidy(u[j] + value * impulse / self.coordinates[j].inertia)
+        return impulse
 
     def sequential(self, order: Sequence[str]) -> Outcome:
         """One contact at a time in `order`, passes repeated until none approaches.
@@ -739,7 +742,8 @@ class Collision:
         """
         self._numbers_only("sequential")
         index = self._order_index(order)
-        u, total = self.u_before, sp.zeros(len(index), 1)
+        u, total = list(self.u_before), sp.zeros(len(index), 1)
+        rows = self._sparse(self.J)
         tangential, courses = sp.zeros(len(index), 1), []
         scale = max(abs(v) for v in self.velocity_before)
         passes, acted_now = 0, True
@@ -750,19 +754,20 @@ class Collision:
             passes, acted_now = passes + 1, False
             for name in order:
                 k = index[name]
-                closing = tidy((self.J[k, :] * u)[0])
+                closing = tidy(sp.Add(*(value * u[j] for j, value in rows[k])))
                 if closing >= 0 or -closing <= SETTLED * scale:
                     continue
                 touch = self.contacts[k]
                 if touch.laws[1].grips:  # one contact's own impact (Routh's for Coulomb)
-                    impulse, along, course, u = self._routh_step(k, u)
+                    impulse, along, course, after = self._routh_step(k, sp.Matrix(u))
+                    u = list(after)
                     tangential[k] += along
                     courses.append(f"{name}: {course}")
                 else:
-                    impulse, u = self._smooth_step(k, u, closing)
+                    impulse = self._smooth_step(k, u, closing)
                 total[k] += impulse
                 acted_now = True
-        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+        return Outcome("sequential", tuple(order), self.bodies, self._after(sp.Matrix(u)),
                        self._named(total.applyfunc(tidy)),
                        tuple(t.name for t, p in zip(self.contacts, total, strict=True) if p > 0),
                        passes - 1, tangential=self._named(tangential.applyfunc(tidy))
@@ -1015,16 +1020,16 @@ class Collision:
         """
         self._smooth_only("with symbols")
         index = self._order_index(order)
-        u = self.u_before
+        u = list(self.u_before)
         total = sp.zeros(len(index), 1)
         conditions = []
         for name in order:
             k = index[name]
-            closing = tidy((self.J[k, :] * u)[0])
+            closing = tidy(sp.Add(*(value * u[j] for j, value in self._sparse(self.J)[k])))
             conditions.append(sp.Lt(closing, 0))
-            total[k], u = self._smooth_step(k, u, closing)
-        conditions += [sp.Ge(tidy((self.J[k, :] * u)[0]), 0) for k in range(len(index))]
-        return Outcome("sequential", tuple(order), self.bodies, self._after(u),
+            total[k] = self._smooth_step(k, u, closing)
+        conditions += [sp.Ge(x, 0) for x in self._times(self.J, sp.Matrix(u))]
+        return Outcome("sequential", tuple(order), self.bodies, self._after(sp.Matrix(u)),
                        self._named(total.applyfunc(tidy)), tuple(order),
                        conditions=_conditions(conditions))
 
