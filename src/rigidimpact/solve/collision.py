@@ -1320,7 +1320,7 @@ def fan(k: int) -> Collision:
 
     Examples
     --------
-    >>> [t.normal for t in fan(2).contacts]
+    >>> [tuple(t.normal) for t in fan(2).contacts]
     [(3/5, 4/5), (5/13, 12/13)]
     """
     directions: list[tuple[sp.Rational, sp.Rational]] = []
