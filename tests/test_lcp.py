@@ -90,7 +90,7 @@ def test_the_simultaneous_rule_gives_enumerations_answer(seed):
     v = collision.velocity_before
     e = sp.Matrix([c.restitution for c in contacts])
     target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
-    assert collision._lcp(v, target) == (collision._complementarity(v, target), ())
+    assert collision._lcp(v, target) == (collision._complementarity(v, target), (), "")
 
 
 def test_a_long_enumeration_stops_in_one_line(monkeypatch):

@@ -152,6 +152,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             print(f"\n{outcome.label} (contacts that acted: {', '.join(outcome.acted)}):")
             if outcome.courses:
                 print("  courses: " + "; ".join(outcome.courses))
+            if outcome.method and outcome.method not in outcome.notes:
+                print(f"  solved: {outcome.method}")
             for note in outcome.notes:
                 print(f"  note: {note}")
             if outcome.conditions:
@@ -280,6 +282,8 @@ def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None
     warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule",
                                 outcomes[0].energy_tolerance)
     warnings = (*warnings, *outcomes[0].notes)
+    if outcomes[0].method:
+        extra["method"] = outcomes[0].method
     return Evaluation(numbers, warnings, None, extra)
 
 

@@ -142,6 +142,8 @@ class Outcome:
     tangential: dict[str, sp.Expr] = field(default_factory=dict)
     courses: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
+    # how the rule's problem was solved when that is worth saying (many contacts)
+    method: str = ""
     # the relative energy error the rule's numbers carry (an integration's), else None
     energy_tolerance: float | None = field(default=None, repr=False)
     # each pivoted body's reaction impulse (scene frame), filled by Collision.solve
@@ -422,13 +424,13 @@ class Collision:
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
-        impulses, how = self._lcp(v, target)
+        impulses, how, method = self._lcp(v, target)
         if poisson:
             impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
         u = self._kick(self.u_before, impulses)
         return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
-                             if p > 0), notes=how + self._still_closing(u))
+                             if p > 0), notes=how + self._still_closing(u), method=method)
 
     def _still_closing(self, u: sp.Matrix) -> tuple[str, ...]:
         """A warning for every contact that still approaches after the impact (the bodies
@@ -629,13 +631,15 @@ class Collision:
                     impulses[i] = tidy(solved[k])
                 yield active, impulses, v + self.W * impulses
 
-    def _lcp(self, v: sp.Matrix, target: sp.Matrix) -> tuple[sp.Matrix, tuple[str, ...]]:
+    def _lcp(self, v: sp.Matrix,
+             target: sp.Matrix) -> tuple[sp.Matrix, tuple[str, ...], str]:
         """The complementarity problem: exactly by Lemke's method (:mod:`rigidimpact.solve.lcp`)
         when its numbers are rational, W invertible (then exactly one answer fits, the one
         enumeration finds) and the contacts at most :data:`MAX_LEMKE`; at more contacts,
         or with irrational numbers past :data:`MAX_ENUMERATED`, in floating point with an
         exact check (:meth:`_lcp_at_scale`); otherwise by enumerating the acting sets.
-        Returns the impulses and a note on how they were found when it is not exact."""
+        Returns the impulses, the notes a reader must see (an answer in floating point,
+        with its residual) and how the problem was solved (at scale)."""
         numbers = list(self.W) if len(v) <= MAX_LEMKE else []
         rational = all(isinstance(x, sp.Rational) for x in
                        numbers + list(v) + list(target)) and self._rational_W
@@ -650,11 +654,12 @@ class Collision:
                 try:
                     z = lemke(M, q)
                 except NoSolution:  # cannot happen for a positive definite W; be safe
-                    return self._complementarity(v, target), ()
-                return sp.Matrix([sp.Rational(x.numerator, x.denominator) for x in z]), ()
+                    return self._complementarity(v, target), (), ""
+                return sp.Matrix([sp.Rational(x.numerator, x.denominator) for x in z]), (), \
+                    ""
             if len(v) > MAX_ENUMERATED:  # singular W: many impulses, one motion after
                 return self._lcp_at_scale(v, target, rational)
-        return self._complementarity(v, target), ()
+        return self._complementarity(v, target), (), ""
 
     @cached_property
     def _rational_W(self) -> bool:
@@ -667,7 +672,7 @@ class Collision:
             [(i, j, W[i, j]) for i in range(W.rows) for j in range(W.cols) if W[i, j] != 0]
 
     def _lcp_at_scale(self, v: sp.Matrix, target: sp.Matrix,
-                      rational: bool) -> tuple[sp.Matrix, tuple[str, ...]]:
+                      rational: bool) -> tuple[sp.Matrix, tuple[str, ...], str]:
         """Many contacts: the acting set by block principal pivoting in floating point
         (sparse W), then, with rational numbers, that set solved and checked exactly.
         The notes say which it is, with the floating-point answer's certified residual
@@ -703,17 +708,17 @@ class Collision:
                                 [i for i in range(n) if z[i] > 0])
                 if exact is not None:
                     return sp.Matrix([sp.Rational(x.numerator, x.denominator)
-                                      for x in exact]), (
+                                      for x in exact]), (), (
                         f"{n} contacts: the acting set found in floating point ({method}) "
-                        "and confirmed in exact arithmetic",)
+                        "and confirmed in exact arithmetic")
         error = residual(W, q, z)
         how = ("W is singular (more contacts than the bodies' freedoms): the motion after "
                "is unique, the impulses are not (those reported stay close to the "
                "least-norm ones); " if singular else "")
-        return sp.Matrix([sp.Float(float(x), 17) for x in z]), (
-            f"{n} contacts solved in floating point ({method}): {how}complementarity "
-            f"residual {error:.1e} of the largest closing speed"
-            + ("" if error < 1e-9 else " (LARGE: do not trust these numbers)"),)
+        note = (f"{n} contacts solved in floating point ({method}): {how}complementarity "
+                f"residual {error:.1e} of the largest closing speed"
+                + ("" if error < 1e-9 else " (LARGE: do not trust these numbers)"))
+        return sp.Matrix([sp.Float(float(x), 17) for x in z]), (note,), note
 
     def _complementarity(self, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
         """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
