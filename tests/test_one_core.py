@@ -9,7 +9,9 @@ import pytest
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws import law as law_module
 from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import NewtonRestitution
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision, Sequential, Simultaneous
 from rigidimpact.solve.impact import Impact
@@ -170,3 +172,69 @@ def test_a_pivoted_rod_struck_at_two_contacts_prints_its_equations(tmp_path, cap
     printed = capsys.readouterr().out
     assert "poisson restitution 4/5, smooth" in printed
     assert "Equations solved:" in printed
+
+
+# ---- a new restitution law is one class -----------------------------------------------
+
+THRESHOLD = sp.Rational(1, 2)
+
+
+class Threshold(NewtonRestitution):
+    """Newton's e above a closing speed of 1/2, plastic below it: a threshold that
+    granular codes use to stop slow contacts chattering. One class: how it prints and
+    imposes itself for one contact (`equations`) and what it asks of a contact acting
+    among several (`leaving`)."""
+
+    name = "threshold"
+
+    def _e(self, closing):
+        return self.e if -closing > THRESHOLD else sp.Integer(0)
+
+    def equations(self, before, after):
+        closing = before[1].contact_velocity[0] - before[0].contact_velocity[0]
+        return (law_module.restitution(before[0], after[0], before[1], after[1],
+                                       self._e(closing)),)
+
+    def leaving(self, closing):
+        return -self._e(closing) * closing
+
+
+def _balls(speeds, law):
+    bodies = tuple(Body.rigid(1, sp.Rational(1, 10), (k, 0), (v, 0), name=f"b{k}")
+                   for k, v in enumerate(speeds))
+    contacts = tuple(Contact(restitution=HALF, law=law, name=f"c{k}",
+                             bodies=(f"b{k}", f"b{k + 1}"), point=(k + HALF, 0))
+                     for k in range(len(speeds) - 1))
+    return Collision(bodies, contacts)
+
+
+def test_a_new_restitution_law_is_one_class(monkeypatch):
+    monkeypatch.setitem(law_module.RESTITUTION_LAWS, "threshold", Threshold)
+    # one contact, every path: fast (closing 1): e = 1/2 acts, the balls leave at 1/4
+    # and 3/4; slow (closing 1/4): plastic, both leave at 1/8 (hand derivation)
+    for speed, expected in ((1, (sp.Rational(1, 4), sp.Rational(3, 4))),
+                            (sp.Rational(1, 4), (sp.Rational(1, 8), sp.Rational(1, 8)))):
+        pair = _balls((speed, 0), "threshold")
+        single = Impact(pair.bodies[0], pair.bodies[1],
+                        Contact(restitution=HALF, law="threshold")).solve().results()
+        assert (single["b0.vx"], single["b1.vx"]) == expected
+        for rule in (Simultaneous(), Sequential(("c0",))):
+            (outcome,) = pair.solve(rule)
+            assert (outcome.results()["b0.vx"], outcome.results()["b1.vx"]) == expected
+    # three balls one at a time: c0 (closing 1) leaves 1/4, 3/4; c1 (closing 3/4) leaves
+    # 3/16, 9/16; c0 again closes at 1/16, below the threshold, so it ends plastic at
+    # 7/32 each; Newton's law alone would bounce it again
+    (outcome,) = _balls((1, 0, 0), "threshold").solve(Sequential(("c0", "c1")))
+    r = outcome.results()
+    assert [r[f"b{k}.vx"] for k in range(3)] == [sp.Rational(7, 32), sp.Rational(7, 32),
+                                                 sp.Rational(9, 16)]
+    (newton,) = _balls((1, 0, 0), "newton").solve(Sequential(("c0", "c1")))
+    assert newton.results()["b0.vx"] != r["b0.vx"]
+    # the printed equation is the law's own
+    (fast,) = _balls((1, 0), "threshold").solve(Simultaneous())
+    printed = [eq for eq in _balls((1, 0), "threshold").equations(fast)
+               if eq.law == "restitution"]
+    assert [eq.rhs for eq in printed] == [sp.Rational(1, 2)]
+    # the compliant rule has no form for it, and says so
+    with pytest.raises(InputError, match="threshold law has no spring-dashpot form"):
+        _balls((1, 0), "threshold").compliant()

@@ -325,18 +325,20 @@ class ContactLaw:
         return self._linear_alone(W, v_before, restitution)
 
     def linear_conditions(self, v_before: sp.MatrixBase, v_after: sp.MatrixBase,
-                          impulse: sp.MatrixBase, e: sp.Expr) -> list[sp.Expr]:
+                          impulse: sp.MatrixBase, leaving: sp.Expr) -> list[sp.Expr]:
         """The two residuals, linear in the velocities after and the impulse (contact
-        space), that a law imposed as linear conditions asks to vanish: Newton's e across
-        (every restitution law reads so on a straight impulse path) and the tangential
+        space), that a law imposed as linear conditions asks to vanish: the normal
+        velocity after the restitution law asks (`leaving`, its
+        :meth:`NewtonRestitution.leaving` of ``v_before[0]``) and the tangential
         condition. Any solver of W P = v+ - v- may impose them."""
-        return [v_after[0] + e * v_before[0], impulse[1]]
+        return [v_after[0] - leaving, impulse[1]]
 
     def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
         P = sp.Matrix(sp.symbols("p_n p_t"))
         after = sp.Matrix(v_before) + sp.Matrix(W) * P
         matrix, rhs = sp.linear_eq_to_matrix(
-            self.linear_conditions(v_before, after, P, restitution.e), list(P))
+            self.linear_conditions(v_before, after, P, restitution.leaving(v_before[0])),
+            list(P))
         solved = matrix.LUsolve(rhs)
         return solved[0], solved[1], self.name
 
@@ -365,6 +367,13 @@ class NewtonRestitution(ContactLaw):
 
     def equations(self, before, after):
         return (restitution(before[0], after[0], before[1], after[1], self.e),)
+
+    def leaving(self, closing: sp.Expr) -> sp.Expr:
+        """The normal velocity after (second minus first) this law asks of a contact
+        closing at `closing` (negative) on a straight impulse path: ``-e closing``. The
+        rules for several contacts and the linear solves ask this, so a law that reads
+        differently there overrides it with :meth:`equations`."""
+        return -self.e * closing
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
@@ -415,8 +424,8 @@ class Stick(ContactLaw):
     def equations(self, before, after):
         return (no_slip(after[0], after[1]),)
 
-    def linear_conditions(self, v_before, v_after, impulse, e) -> list[sp.Expr]:
-        return [v_after[0] + e * v_before[0], v_after[1]]  # Newton's e across, no slip
+    def linear_conditions(self, v_before, v_after, impulse, leaving) -> list[sp.Expr]:
+        return [v_after[0] - leaving, v_after[1]]  # the restitution law across, no slip
 
 
 @dataclass(frozen=True, repr=False)

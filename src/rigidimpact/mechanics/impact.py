@@ -287,8 +287,9 @@ class SystemImpact:
         for i, c in enumerate(self.contacts):
             restitution, tangential = c.laws.laws
             pair = slice(2 * i, 2 * i + 2)
+            closing = (J[i * 2, :] * u)[0]
             rows += tangential.linear_conditions(J[pair, :] * u, J[pair, :] * after,
-                                                 P[pair, 0], restitution.e)
+                                                 P[pair, 0], restitution.leaving(closing))
         A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
         ring = sp.QQ[tuple(gens)] if gens else sp.QQ

@@ -54,7 +54,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.contact import Contact
-from rigidimpact.laws.law import Equation
+from rigidimpact.laws.law import Equation, NewtonRestitution
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impulse import Coordinate, coordinates_of, moving
 from rigidimpact.solve.lcp import NoSolution, confirm, lemke, pivoting, proximal, residual
@@ -423,7 +423,7 @@ class Collision:
         e = sp.Matrix([t.restitution for t in self.contacts])
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
-            sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
+            sp.Matrix([self._leaving(i, min(v[i], 0)) for i in range(len(v))])
         impulses, how, method = self._lcp(v, target)
         if poisson:
             impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
@@ -431,6 +431,12 @@ class Collision:
         return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), notes=how + self._still_closing(u), method=method)
+
+    def _leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
+        """The normal velocity after that contact k's restitution law asks on a straight
+        impulse path, from its closing velocity before (the law's own, so a new law is
+        one class)."""
+        return tidy(self.contacts[k].laws[0].leaving(closing))
 
     def _still_closing(self, u: sp.Matrix) -> tuple[str, ...]:
         """A warning for every contact that still approaches after the impact (the bodies
@@ -476,9 +482,8 @@ class Collision:
                              "sequential rule (each contact's own impact)")
         n = len(self.contacts)
         v_n, v_t = self.velocity_before, (self.J_t * self.u_before).applyfunc(tidy)
-        e = [t.restitution for t in self.contacts]
         mu = [law.cone() for law in tangential]
-        target = [-e[i] * min(v_n[i], 0) for i in range(n)]
+        target = [self._leaving(i, min(v_n[i], 0)) for i in range(n)]
         rows = sp.Matrix.vstack(self.J, self.J_t)
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
         states = [("off",) + law.velocity_states for law in tangential]
@@ -733,7 +738,7 @@ class Collision:
     def _smooth_step(self, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
         """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
         (only the two bodies' coordinates the contact moves)."""
-        impulse = tidy(-(1 + self.contacts[k].restitution) * closing / self.W[k, k])
+        impulse = tidy((self._leaving(k, closing) - closing) / self.W[k, k])
         for j, value in self._sparse(self.J)[k]:
             u[j] = tidy(u[j] + value * impulse / self.coordinates[j].inertia)
         return impulse
@@ -830,6 +835,11 @@ class Collision:
 
         self._numbers_only("compliant")
         self._smooth_only("under the compliant rule")
+        for t in self.contacts:  # the springs' damping is chosen to give Newton's e
+            if type(t.laws[0]).leaving is not NewtonRestitution.leaving:
+                raise InputError(f"{t.name}.law", f"the {t.laws[0].name} law has no "
+                                 "spring-dashpot form: use the simultaneous or sequential "
+                                 "rule")
         k = len(self.contacts)
         stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
         if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
@@ -974,7 +984,7 @@ class Collision:
             if poisson or tidy(v[i]).is_zero:
                 options.append([(sp.true, sp.Integer(0), v[i].is_negative is True)])
                 continue
-            options.append([(sp.Le(v[i], 0), -e[i] * v[i], True),
+            options.append([(sp.Le(v[i], 0), self._leaving(i, v[i]), True),
                             (sp.Ge(v[i], 0), sp.Integer(0), False)])
         count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
         if count > MAX_SYMBOLIC_CASES:
@@ -1173,7 +1183,7 @@ class Collision:
                 closed = before.is_negative
                 found.append(Equation(f"restitution at {t.name} (Newton's law" + (
                     ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
-                    -t.restitution * before if closed else 0, law="restitution"))
+                    self._leaving(k, before) if closed else 0, law="restitution"))
             if not self.frictional:
                 continue
             after_slip = tidy((self.J_t[k, :] * u)[0])
