@@ -143,7 +143,7 @@ class Outcome:
     courses: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
     # how the rule's problem was solved when that is worth saying (many contacts)
-    method: str = ""
+    method: str = field(default="", repr=False)
     # the relative energy error the rule's numbers carry (an integration's), else None
     energy_tolerance: float | None = field(default=None, repr=False)
     # each pivoted body's reaction impulse (scene frame), filled by Collision.solve
@@ -906,8 +906,8 @@ class Collision:
         atol = tolerance * max(speed, 1.0) * period
         for rounds in range(MAX_WINDOWS):  # until every contact has let go, none closing
             run = solve_ivp(ordered, (0.0, window), y[order], method="LSODA",
-                            rtol=tolerance, atol=atol,
-                            lband=band, uband=band)
+                            rtol=tolerance, atol=atol, lband=band, uband=band,
+                            t_eval=None if record else [window])  # else only the end
             run.y = run.y[place]
             y = run.y[:, -1]
             if record:
