@@ -482,6 +482,24 @@ def test_a_seeded_sample_of_orders_reports_its_spread(tmp_path, capsys):
         assert min(values) < max(values)  # the order does matter here
 
 
+def test_a_sample_of_orders_is_drawn_as_histograms(tmp_path, capsys):
+    from PIL import Image
+
+    from rigidimpact.cli import main
+
+    scene = scene_file(tmp_path, _fan("orders = 50\nseed = 2\n"), "sample.toml")
+    picture = tmp_path / "spread.png"
+    assert main(["evaluate", scene, "--plot", str(picture)]) == 0
+    assert "a sample of 50 orders" in capsys.readouterr().out
+    with Image.open(picture) as image:  # a real PNG at the fixed size
+        assert image.size == (800, 400)
+    # without a sample there is no spread to draw: one line, no file
+    every = scene_file(tmp_path, _fan(""), "every.toml")
+    refused(capsys, ["evaluate", every, "--plot", str(tmp_path / "no.png")],
+            "--plot: evaluate draws the spread of a sample of orders")
+    assert not (tmp_path / "no.png").exists()
+
+
 @pytest.mark.parametrize(("line", "needle"), [
     ("orders = 0\n", "impact.orders: must lie in [1, 10000]"),
     ("orders = 2.5\n", "impact.orders: must be a whole number"),

@@ -292,7 +292,22 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
 
     if args.dps is not None and not 5 <= args.dps <= 10000:
         raise InputError("--dps", f"must lie between 5 and 10000, got {args.dps}")
+    if args.plot:
+        _check_plot_path(Path(args.plot))
     result = _evaluation(args.target, args.set, args.dps)
+    if args.plot:
+        if "sample" not in result.extra:
+            raise InputError("--plot", "evaluate draws the spread of a sample of orders: "
+                             "give the scene rule = \"sequential\", orders = N, seed = S")
+        from rigidimpact.outputs.atomic import write_file
+        _files_only()
+        from rigidimpact.outputs.plots import order_spread
+
+        rows = [row["results"] for row in result.extra["orders"]]
+        figure = order_spread(rows, result.extra["sample"])
+        write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
+                   "--plot")
+        _close(figure)
 
     def literal(x: Any) -> str:  # a float's repr, or an mpmath number beyond float64
         if isinstance(x, float):
@@ -725,6 +740,8 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="a value for a symbol (repeat); a scene's [values] are defaults")
     p.add_argument("--dps", type=int, help="mpmath with this many significant digits")
     p.add_argument("--json", action="store_true")
+    p.add_argument("--plot", metavar="PNG", help="with a sample of orders: a histogram of "
+                   "each output that varies over it")
     p.set_defaults(run=_cmd_evaluate)
 
     p = sub.add_parser("routh", help="Routh's diagram of a scene's frictional contact")

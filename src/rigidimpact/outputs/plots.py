@@ -664,3 +664,38 @@ def _picture_size(bodies: Sequence, contacts: Sequence[tuple]) -> float:
 def _xy(vector) -> np.ndarray:
     """A 2-vector (a SymPy column of numbers, a tuple) as floats."""
     return np.array([float(c) for c in vector])
+
+
+def order_spread(rows: Sequence[dict[str, float]], sample: dict) -> Figure:
+    """A histogram of each output that varies over a sample of sequential orders (at
+    most six, those that vary most), with its min and max: the spread of a sample, not
+    of every order.
+
+    Examples
+    --------
+    >>> fig = order_spread([{"a.vx": 0.0}, {"a.vx": 1.0}],
+    ...                    {"orders": 2, "seed": 0, "distinct": 2})
+    >>> len(fig.axes)
+    1
+    """
+    keys = sorted(rows[0], key=lambda k: -(max(r[k] for r in rows) - min(r[k] for r in rows)))
+    varying = [k for k in keys if max(r[k] for r in rows) > min(r[k] for r in rows)][:6]
+    fig = plt.figure(figsize=FIGSIZE, dpi=DPI)
+    if not varying:
+        ax = fig.add_subplot()
+        ax.text(0.5, 0.5, "every output is the same in every order drawn",
+                ha="center", va="center")
+        ax.set_axis_off()
+        return fig
+    columns = min(3, len(varying))
+    lines = -(-len(varying) // columns)
+    for i, key in enumerate(varying):
+        ax = fig.add_subplot(lines, columns, i + 1)
+        values = [r[key] for r in rows]
+        ax.hist(values, bins=min(30, max(5, len(values) // 5)), color="C0")
+        ax.set_title(f"{key}\n[{min(values):.4g}, {max(values):.4g}]", fontsize="small")
+        ax.tick_params(labelsize="small")
+    fig.suptitle(f"a sample of {sample['orders']} orders (seed {sample['seed']}, "
+                 f"{sample['distinct']} distinct)", fontsize="medium")
+    fig.tight_layout()
+    return fig
