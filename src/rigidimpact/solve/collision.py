@@ -672,9 +672,7 @@ class Collision:
 
     @cached_property
     def _W_entries(self) -> list[tuple[int, int, sp.Expr]]:
-        W = self.W
-        return W.row_list() if isinstance(W, sp.SparseMatrix) else \
-            [(i, j, W[i, j]) for i in range(W.rows) for j in range(W.cols) if W[i, j] != 0]
+        return [(i, j, x) for (i, j), x in sorted(self.W.todok().items()) if x != 0]
 
     def _lcp_at_scale(self, v: sp.Matrix, target: sp.Matrix,
                       rational: bool) -> tuple[sp.Matrix, tuple[str, ...], str]:
