@@ -650,10 +650,6 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
 CLUSTER_SIDES = (2, 3, 4, 6, 8, 12, 16, 19)  # a side x side cluster: 6 ... 1028 contacts
 
 
-def _cluster_contacts(side: int) -> Collision:
-    return cluster(side, side)
-
-
 def _dense_chain_seconds(n: int) -> float:
     """The plain way for a chain of n Hertz balls (stiffness 1, unit masses, striker at
     1): scipy's solve_ivp (LSODA) on the dense state, every ball's x velocity, every
@@ -780,7 +776,7 @@ def contacts_family(quick: bool = False, limit: float = 60.0,
         return time.perf_counter() - begin
 
     cases = [("cradle", n, lambda n=n: chain(n + 1)) for n in chains]
-    cases += [("cluster", side, lambda side=side: _cluster_contacts(side)) for side in sides]
+    cases += [("cluster", side, lambda side=side: cluster(side, side)) for side in sides]
     for case, size, make in cases:
         for rule, solve, baselines in _rules(case, size, make, baseline, enumeration):
             seconds, peak = _measure(solve, memory)

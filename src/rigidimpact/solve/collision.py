@@ -85,14 +85,14 @@ MAX_SYMBOLIC_SECONDS = 20.0
 # the simultaneous rule: Lemke's exact dense tableau up to this many contacts; past it
 # (or past MAX_ENUMERATED with irrational numbers) floating point with an exact check
 MAX_LEMKE = 64
-MAX_WINDOWS = 2000
+MAX_ENUMERATED = 12
+MAX_WINDOWS = 2000  # the compliant rule's integration windows before it gives up
 # the compliant rule ends once no contact is pressed deeper than this many times the
 # integrator's absolute tolerance and none closes faster than this many times its
 # relative tolerance of the fastest closing speed before: less is the integration's
 # own error (a long Hertz chain leaves such traces behind its wave, which would
 # otherwise be followed for a thousand times as long)
 NOISE = 1000
-MAX_ENUMERATED = 12
 RULE_LAWS = {
     "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
                     "restitution law at each contact that acts and no contact pulling "
@@ -348,8 +348,8 @@ class Collision:
     @cached_property
     def M_inverse(self) -> sp.Matrix:
         n = len(self.coordinates)
-        return sp.SparseMatrix(n, n, {(j, j): 1 / c.inertia
-                                      for j, c in enumerate(self.coordinates)})
+        return sp.SparseMatrix(n, n, dict(((j, j), x)
+                                          for j, x in enumerate(self._inverse_inertia)))
 
     @cached_property
     def W(self) -> sp.Matrix:
@@ -369,39 +369,40 @@ class Collision:
     @cached_property
     def velocity_before(self) -> sp.Matrix:
         """Normal closing velocity of every contact before (negative: approaching)."""
-        return self._times(self.J, self.u_before)
+        return self._times(self.u_before)
 
-    def _times(self, rows: sp.Matrix, u: sp.Matrix) -> sp.Matrix:
-        """``rows * u`` one sparse row at a time, each entry tidied."""
-        return sp.Matrix([tidy(sp.Add(*(value * u[j] for j, value in row)))
-                          for row in self._sparse(rows)])
+    def _closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
+        """Contact k's normal closing velocity at the generalized velocities u (its row
+        of J, two bodies' coordinates), tidied."""
+        return tidy(sp.Add(*(value * u[j] for j, value in self._J_rows[k])))
 
-    def _sparse(self, rows: sp.Matrix) -> list[list[tuple[int, sp.Expr]]]:
-        """Each row's nonzero (column, value) pairs; kept for J and J_t."""
-        key = "J" if rows is self.J else "J_t" if rows is self.J_t else None
-        if key in self._sparse_rows:
-            return self._sparse_rows[key]
-        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in range(rows.rows)]
-        for i, j, value in rows.row_list():
+    def _times(self, u: Sequence[sp.Expr]) -> sp.Matrix:
+        """``J u``: every contact's normal closing velocity, one sparse row at a time."""
+        return sp.Matrix([self._closing(k, u) for k in range(len(self.contacts))])
+
+    @cached_property
+    def _J_rows(self) -> list[list[tuple[int, sp.Expr]]]:
+        """Each row of J as its nonzero (column, value) pairs."""
+        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
+        for i, j, value in self.J.row_list():
             found[i].append((j, value))
-        if key is not None:
-            self._sparse_rows[key] = found
         return found
 
     @cached_property
-    def _sparse_rows(self) -> dict[str | None, list[list[tuple[int, sp.Expr]]]]:
-        return {}
+    def _inverse_inertia(self) -> list[sp.Expr]:
+        """The diagonal of M^-1, one entry per coordinate."""
+        return [1 / c.inertia for c in self.coordinates]
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
         return moving(self.bodies, self.coordinates, list(u))
 
     def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
         change: dict[int, sp.Expr] = {}
-        for i, row in enumerate(self._sparse(self.J)):
+        for i, row in enumerate(self._J_rows):
             if impulses[i] != 0:
                 for j, value in row:
                     change[j] = change.get(j, 0) + value * impulses[i]
-        inverse = [1 / c.inertia for c in self.coordinates]
+        inverse = self._inverse_inertia
         return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
                           else u[j] for j in range(len(u))])
 
@@ -411,10 +412,11 @@ class Collision:
         Newton's law: every acting contact leaves at ``-e`` times its closing velocity
         before, every released one at least that fast. Poisson's law: the compression
         impulses solve the same problem with target zero, and each is scaled by 1 + e.
-        With rational numbers and an invertible W (then exactly one answer fits) the
-        problem is solved by Lemke's method in exact arithmetic, a number of pivots
-        that grows with the contacts (a 16-contact fan in 0.07 s here); otherwise the
-        acting sets are tried from the largest down (2^n of them).
+        How the problem is solved depends on its size and numbers (see :meth:`_lcp`):
+        Lemke's method in exact arithmetic (a 16-contact fan in 0.025 s here), trying
+        the acting sets from the largest down, or past those sizes floating point with
+        an exact check (a 1001-ball cradle in about 1 s); the outcome's `method` and
+        notes say which when it is not the first.
         """
         self._numbers_only("simultaneous")
         if self.frictional:
@@ -442,7 +444,7 @@ class Collision:
         """A warning for every contact that still approaches after the impact (the bodies
         would pass into each other): Poisson's law scales each compression impulse by
         its own 1 + e, which need not leave every contact opening."""
-        after = self._times(self.J, u)
+        after = self._times(u)
         scale = max(abs(x) for x in self.velocity_before)
         closing = [(t.name, after[i]) for i, t in enumerate(self.contacts)
                    if after[i] < -sp.Rational(1, 10**12) * scale]
@@ -544,7 +546,7 @@ class Collision:
         for one contact under every rule), if that leaves every other contact opening
         at least as fast as its law asks; otherwise one line saying so."""
         normal, along, course, u = self._routh_step(k, self.u_before)
-        after = self._times(self.J, u)
+        after = self._times(u)
         blocked = [t.name for i, t in enumerate(self.contacts)
                    if i != k and after[i] < target[i]]
         name = self.contacts[k].name
@@ -645,9 +647,8 @@ class Collision:
         exact check (:meth:`_lcp_at_scale`); otherwise by enumerating the acting sets.
         Returns the impulses, the notes a reader must see (an answer in floating point,
         with its residual) and how the problem was solved (at scale)."""
-        numbers = list(self.W) if len(v) <= MAX_LEMKE else []
-        rational = all(isinstance(x, sp.Rational) for x in
-                       numbers + list(v) + list(target)) and self._rational_W
+        rational = self._rational_W and all(isinstance(x, sp.Rational)
+                                            for x in list(v) + list(target))
         if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED):
             return self._lcp_at_scale(v, target, rational)
         if rational:
@@ -737,8 +738,8 @@ class Collision:
         """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
         (only the two bodies' coordinates the contact moves)."""
         impulse = tidy((self._leaving(k, closing) - closing) / self.W[k, k])
-        for j, value in self._sparse(self.J)[k]:
-            u[j] = tidy(u[j] + value * impulse / self.coordinates[j].inertia)
+        for j, value in self._J_rows[k]:
+            u[j] = tidy(u[j] + value * impulse * self._inverse_inertia[j])
         return impulse
 
     def sequential(self, order: Sequence[str]) -> Outcome:
@@ -751,7 +752,6 @@ class Collision:
         self._numbers_only("sequential")
         index = self._order_index(order)
         u, total = list(self.u_before), sp.zeros(len(index), 1)
-        rows = self._sparse(self.J)
         tangential, courses = sp.zeros(len(index), 1), []
         scale = max(abs(v) for v in self.velocity_before)
         passes, acted_now = 0, True
@@ -762,7 +762,7 @@ class Collision:
             passes, acted_now = passes + 1, False
             for name in order:
                 k = index[name]
-                closing = tidy(sp.Add(*(value * u[j] for j, value in rows[k])))
+                closing = self._closing(k, u)
                 if closing >= 0 or -closing <= SETTLED * scale:
                     continue
                 touch = self.contacts[k]
@@ -852,7 +852,7 @@ class Collision:
                             ([i for i, _, _ in entries], [column[j] for _, j, _ in entries])),
                            shape=(k, n))
         JT = J.T.tocsr()
-        m_inv = np.array([float(1 / self.coordinates[j].inertia) for j in moved])
+        m_inv = np.array([float(self._inverse_inertia[j]) for j in moved])
         w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
         e = np.array([float(t.restitution) for t in self.contacts])
         if hertz and np.any(e < 1):
@@ -1038,10 +1038,10 @@ class Collision:
         conditions = []
         for name in order:
             k = index[name]
-            closing = tidy(sp.Add(*(value * u[j] for j, value in self._sparse(self.J)[k])))
+            closing = self._closing(k, u)
             conditions.append(sp.Lt(closing, 0))
             total[k] = self._smooth_step(k, u, closing)
-        conditions += [sp.Ge(x, 0) for x in self._times(self.J, sp.Matrix(u))]
+        conditions += [sp.Ge(x, 0) for x in self._times(u)]
         return Outcome("sequential", tuple(order), self.bodies, self._after(sp.Matrix(u)),
                        self._named(total.applyfunc(tidy)), tuple(order),
                        conditions=_conditions(conditions))
