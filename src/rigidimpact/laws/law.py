@@ -450,6 +450,17 @@ class PoissonRestitution(NewtonRestitution):
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
 
+    def from_compression(self, compression: sp.Expr) -> sp.Expr:
+        """The whole normal impulse from the impulse of compression: ``(1 + e) P_c``.
+        Contacts acting together under this law (``together = "impulse"``) solve for
+        their compression impulses, then each takes this."""
+        return (1 + self.e) * compression
+
+    def compression(self, total: sp.Expr) -> sp.Expr:
+        """The impulse of compression within a whole normal impulse (the inverse of
+        :meth:`from_compression`)."""
+        return total / (1 + self.e)
+
     def equations(self, before, after):
         (equation,) = super().equations(before, after)
         return (replace(equation, label=f"{equation.label} (Poisson's law on a straight "

@@ -422,13 +422,13 @@ class Collision:
         if self.frictional:
             return self._frictional_simultaneous()
         v = self.velocity_before
-        e = sp.Matrix([t.restitution for t in self.contacts])
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([self._leaving(i, min(v[i], 0)) for i in range(len(v))])
         impulses, how, method = self._lcp(v, target)
-        if poisson:
-            impulses = sp.Matrix([(1 + e[i]) * impulses[i] for i in range(len(v))])
+        if poisson:  # each law makes its whole impulse from its compression impulse
+            impulses = sp.Matrix([self.contacts[i].laws[0].from_compression(impulses[i])
+                                  for i in range(len(v))])
         u = self._kick(self.u_before, impulses)
         return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
@@ -972,7 +972,6 @@ class Collision:
         """
         self._smooth_only("with symbols")
         v = self.velocity_before
-        e = sp.Matrix([t.restitution for t in self.contacts])
         poisson = self._poisson()
         n = len(v)
         # Newton's target -e min(v, 0) depends on each contact's sign before: one
@@ -1004,8 +1003,9 @@ class Collision:
                                       for i in range(n) if i not in active])
                 if held == (sp.false,):
                     continue
-                impulses = sp.Matrix([compression[i] * ((1 + e[i]) if poisson else 1)
-                                      for i in range(n)]).applyfunc(tidy)
+                impulses = sp.Matrix([self.contacts[i].laws[0].from_compression(
+                    compression[i]) if poisson else compression[i]
+                    for i in range(n)]).applyfunc(tidy)
                 u = self._kick(self.u_before, impulses)
                 cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
                                      self._named(impulses),
@@ -1170,7 +1170,7 @@ class Collision:
                                       law="released"))
             elif restitution.together == "impulse" and n > 1:
                 compression = (self.velocity_before[k] + sum(
-                    (self.W[k, j] * P_n[j] / (1 + self.contacts[j].restitution)
+                    (self.W[k, j] * self.contacts[j].laws[0].compression(P_n[j])
                      for j in range(n)), sp.Integer(0)))
                 found.append(Equation(f"{t.name} at rest at the end of compression "
                                       "(Poisson's law: each impulse is 1 + e times its "
