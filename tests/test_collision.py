@@ -174,7 +174,10 @@ def test_every_order_is_reported(capsys):
 
 
 @pytest.mark.parametrize("change, needle", [
-    (('point = ["1", "0"]', 'point = ["1", "1"]'), "right.point: middle is round"),
+    # the last ball is placed from its first contact, right: moved off its rim
+    (('point = ["1", "0"]', 'point = ["1", "1"]'),
+     r"bodies\[2\].position: the centre must lie at the radius 1/2 from the point of "
+     "contact right"),
     (('name = "right"', 'name = "left"'), "two contacts are named"),
     (('rule = "sequential"', 'rule = "compliant"\nstiffness = -1'), "impact.stiffness"),
     (('order = ["left", "right"]', 'order = ["left"]'), "impact.order"),

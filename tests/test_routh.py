@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
+from rigidimpact.errors import InputError
 from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import RESTITUTION_LAWS
@@ -266,3 +267,69 @@ def test_printed_laws_hold_for_friction(law):
     for eq in impact.equations():
         assert sp.simplify(eq.residual.subs(solution.values)) == 0, eq.label
     assert any(eq.law == "restitution" for eq in impact.equations()) == (law == "newton")
+
+
+# ---- friction where the touching points have one degree of freedom ----------------------
+
+def _pendulum_on_floor(law: str, mu):
+    # a uniform rod (mass 1, length 2) hinged at its upper end (-1, sqrt 3) swings down
+    # at spin -1 and its lower end meets a floor at O (normal (0, -1), rod to floor)
+    rod = Body.rod(1, 2, -sp.pi / 3, -1, (-sp.sqrt(3) / 2, -sp.Rational(1, 2)), -1, "rod",
+                   pivot=(-1, sp.sqrt(3)))
+    contact = Contact((0, -1), sp.Rational(1, 2), "coulomb", law, friction=mu)
+    return Impact(rod, Body.fixed("floor"), contact).solve()
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_a_hinged_rod_slides_on_a_rough_floor_by_routh(law):
+    # by hand: the end moves along (sqrt 3, 1) omega, so across the floor at v_n = omega
+    # and along it at sqrt(3) omega; about the hinge (inertia 4/3) the rod turns by
+    # I d(omega) = P_n - sqrt(3) P_t. Slip (positive) and approach stop together:
+    # compression along P_t = -mu P_n ends at P_c = (4/3)/(1 + sqrt(3) mu); restitution
+    # along P_t = +mu P_n turns the rod back at (1 - sqrt(3) mu)/(4/3) per unit P_n
+    mu, e, r3 = sp.Rational(1, 10), sp.Rational(1, 2), sp.sqrt(3)
+    P_c = sp.Rational(4, 3) / (1 + r3 * mu)
+    back = (1 - r3 * mu) * sp.Rational(3, 4)
+    solution = _pendulum_on_floor(law, mu)
+    P_n, P_t = solution.contact_impulse
+    omega = solution.after[0].spin
+    P_r = P_n - P_c
+    assert solution.regime == "slip-reversal"
+    assert sp.simplify(P_t - (-mu * P_c + mu * P_r)) == 0
+    assert sp.simplify(omega - back * P_r) == 0
+    expected_r = {"newton": e / back,  # it leaves at -e times its approach: omega = e
+                  "poisson": e * P_c,
+                  "energetic": sp.sqrt(e**2 * P_c / back)}  # work P_r w/2 = e^2 P_c 1/2
+    assert sp.simplify(P_r - expected_r[law]) == 0
+    assert solution.energy_lost >= 0
+
+
+def test_a_hinged_rod_locks_on_a_floor_too_rough_to_leave():
+    # mu sqrt(3) > 1: the restitution impulse along the cone's other edge would drive the
+    # end into the floor, so the rod stops dead at the end of compression
+    solution = _pendulum_on_floor("poisson", 1)
+    assert solution.regime == "slip-lock"
+    assert solution.after[0].spin == 0
+    assert sp.simplify(solution.contact_impulse[0] - sp.Rational(4, 3) / (1 + sp.sqrt(3))) == 0
+    assert sp.simplify(solution.energy_loss_fraction - 1) == 0  # all of it
+
+
+def test_one_freedom_friction_with_symbols_is_piecewise():
+    mu = sp.Symbol("mu", positive=True)
+    solution = _pendulum_on_floor("poisson", mu)
+    assert [name for name, _, _ in solution.regimes] == ["slip-reversal", "slip-lock"]
+    assert solution.regime_at({mu: sp.Rational(1, 10)}) == "slip-reversal"
+    assert solution.regime_at({mu: 1}) == "slip-lock"
+
+
+def test_stick_and_straight_across_motion_with_one_freedom_are_refused_in_one_line():
+    rod = Body.rod(1, 2, -sp.pi / 3, -1, (-sp.sqrt(3) / 2, -sp.Rational(1, 2)), -1, "rod",
+                   pivot=(-1, sp.sqrt(3)))
+    with pytest.raises(InputError, match="one degree of freedom .* tangential = \"coulomb\""):
+        Impact(rod, Body.fixed("floor"), Contact((0, -1), sp.Rational(1, 2), "stick")).solve()
+    # a rod hanging straight down from its hinge moves across a wall only: friction does
+    # no work and its impulse is not fixed
+    hanging = Body.rod(1, 2, -sp.pi / 2, -1, (1, 0), 1, "rod", pivot=(0, 2))
+    with pytest.raises(InputError, match="friction does no work"):
+        Impact(hanging, Body.fixed("wall"), Contact((1, 0), sp.Rational(1, 2), "coulomb",
+                                                    friction=sp.Rational(1, 2))).solve()

@@ -33,6 +33,7 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.solve.collision import Collision as Collision
     from rigidimpact.solve.collision import Compliant as Compliant
     from rigidimpact.solve.collision import Outcome as Outcome
+    from rigidimpact.solve.collision import Rule as Rule
     from rigidimpact.solve.collision import Sequential as Sequential
     from rigidimpact.solve.collision import Simultaneous as Simultaneous
     from rigidimpact.solve.collision import chain as chain
@@ -57,7 +58,8 @@ _PUBLIC = {
     # several contacts: the collision, its rules and what they give
     "Collision": "solve.collision", "Simultaneous": "solve.collision",
     "Sequential": "solve.collision", "Compliant": "solve.collision",
-    "Outcome": "solve.collision", "chain": "solve.collision", "cluster": "solve.collision",
+    "Outcome": "solve.collision", "Rule": "solve.collision", "chain": "solve.collision",
+    "cluster": "solve.collision",
     "fan": "solve.collision",
     # scenes and checks
     "Scene": "scenes.scene", "load_scene": "scenes.scene", "parse_scene": "scenes.scene",

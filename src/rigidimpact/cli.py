@@ -246,45 +246,10 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None):
     if target in PROBLEMS:
         derivation = _derivation(target)
         values, sources = _settings({}, settings)
-    else:
-        scene = load_scene(target)
-        values, sources = _settings(scene.values, settings)
-    if target not in PROBLEMS and scene.several:
-        return _several_evaluation(scene, values, sources, dps)
-    if target not in PROBLEMS:
-        derivation = scene.derivation()
-    return derivation.evaluate(values, dps, sources)
-
-
-def _several_evaluation(scene: Any, values: dict, sources: dict, dps: int | None):
-    """Several contacts are solved with numbers: check them, solve, report each rule."""
-    from rigidimpact.solve.derivation import Evaluation, physics_warnings, read_values
-
-    exact = read_values(values, sources, scene.data_symbols, scene.roles, scene.name)
-    derivation = scene.derivation_at(exact)
-    numbers = derivation.evaluate({}, dps).numbers
-    outcomes = derivation.outcomes
-    extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}
-    if outcomes[0].courses:
-        extra["courses"] = list(outcomes[0].courses)
-    if len(outcomes) > 1:
-        extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
-                            "results": {k: float(v) for k, v in o.results().items()}}
-                           for o in outcomes]
-    if scene.sample is not None and scene.order is None and scene.rule == "sequential":
-        count, seed = scene.sample
-        rows = [row["results"] for row in extra["orders"]] if len(outcomes) > 1 else [
-            {k: float(v) for k, v in outcomes[0].results().items()}]
-        extra["sample"] = {"orders": count, "seed": seed,
-                           "distinct": len({tuple(o.order) for o in outcomes})}
-        extra["spread"] = {k: [min(r[k] for r in rows), max(r[k] for r in rows)]
-                           for k in rows[0]}
-    warnings = physics_warnings(numbers, dps, f"the {scene.rule} rule",
-                                outcomes[0].energy_tolerance)
-    warnings = (*warnings, *outcomes[0].notes)
-    if outcomes[0].method:
-        extra["method"] = outcomes[0].method
-    return Evaluation(numbers, warnings, None, extra)
+        return derivation.evaluate(values, dps, sources)
+    scene = load_scene(target)
+    values, sources = _settings(scene.values, settings)
+    return scene.evaluate(values, sources, dps)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
@@ -568,11 +533,11 @@ def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
     track = outcome.trajectory
     velocity = None
     if hasattr(track, "contact_velocity"):
-        name = scene.bodies[1].name
+        name = scene.contact.second
         velocity = (f"{name} at O", track.contact_velocity(name))
     bodies, contacts, _ = impact_view(scene, outcome)
     figure = trajectories(track.t, track.points(), scene.title, velocity,
-                          (bodies, contacts) if scene.several else None)
+                          (bodies, contacts) if len(scene.contacts) > 1 else None)
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
     finally:
@@ -600,7 +565,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         derivation = _derivation(args.target)
     else:
         scene = load_scene(args.target)
-        if scene.several:
+        if len(scene.contacts) > 1:
             raise InputError("sweep", "a scene with several contacts is solved with "
                              "numbers; evaluate it point by point")
         derivation, defaults = scene.derivation(), scene.values

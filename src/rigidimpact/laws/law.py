@@ -375,6 +375,16 @@ class NewtonRestitution(ContactLaw):
         differently there overrides it with :meth:`equations`."""
         return -self.e * closing
 
+    def from_compression(self, compression: sp.Expr) -> sp.Expr:
+        """The whole normal impulse from the impulse of compression, for a law whose
+        contacts act together by impulse (``together = "impulse"``)."""
+        raise NotImplementedError(f"{type(self).__name__} acts together by velocity")
+
+    def compression(self, total: sp.Expr) -> sp.Expr:
+        """The impulse of compression within a whole normal impulse (the inverse of
+        :meth:`from_compression`)."""
+        raise NotImplementedError(f"{type(self).__name__} acts together by velocity")
+
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
         """The normal impulse at the end of an impact whose slip stopped at

@@ -133,13 +133,10 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
     ['slip-stick, in compression']
     """
     W = sp.Matrix(W).applyfunc(sp.cancel)
-    if sp.cancel(W.det()).is_zero:
-        raise InputError("contact.friction", "friction needs the touching points free to "
-                         "move both along and across the contact; here they have one "
-                         "degree of freedom (a body that can only turn, against a fixed "
-                         "one)")
     v_n, v_t = (sp.cancel(c) for c in v_before)
     mu, e = sp.sympify(mu), sp.sympify(law.e)
+    if sp.cancel(W.det()).is_zero:
+        return _one_freedom(W, v_n, v_t, mu, e, law)
     if v_t.is_zero:
         return _from_rest(W, v_n, mu, e, law)
     signs = [1] if v_t.is_positive else [-1] if v_t.is_negative else [1, -1]
@@ -152,6 +149,54 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
         raise InputError("contact", "no course of the impact fits these values: the "
                          "contact jams (the normal velocity would fall while slipping)")
     return tuple(decided)
+
+
+def _one_freedom(W, v_n, v_t, mu, e, law) -> tuple[Regime, ...]:
+    """Friction where the touching points have one degree of freedom (W singular: a body
+    that can only turn, against a fixed one). Their velocity keeps one direction, so the
+    normal velocity and the slip vanish together: slip runs throughout compression, then
+    either reverses with the normal velocity (the restitution impulse along the other
+    edge of the friction cone still separates the points) or the contact locks at rest
+    (that edge would drive them together: the impact ends with compression).
+
+    Examples
+    --------
+    A pendulum's bob on a rod of length 1 from a hinge at (-1/2, sqrt(3)/2) meets a floor
+    (normal (0, -1) in scene terms; here the contact frame): W = a a^T / I with
+    a = (1/2, sqrt(3)/2), I = 1.
+
+    >>> from rigidimpact.laws.law import NewtonRestitution
+    >>> a = sp.Matrix([sp.Rational(1, 2), sp.sqrt(3) / 2])
+    >>> (r,) = regimes(a * a.T, -a, sp.Rational(1, 10), NewtonRestitution(1))
+    >>> r.name
+    'slip-reversal'
+    """
+    if sp.cancel(W[0, 0]).is_zero:
+        raise InputError("contact", "the touching points cannot move along the normal "
+                         "here: no impulse can change their approach")
+    if v_t.is_zero:
+        raise InputError("contact.friction", "the touching points can only move straight "
+                         "across the contact here (a body that can only turn, against a "
+                         "fixed one), so friction does no work and its impulse is not fixed "
+                         "by the laws: the motion after is the smooth contact's; state "
+                         "tangential = \"smooth\" for it")
+    signs = [1] if v_t.is_positive else [-1] if v_t.is_negative else [1, -1]
+    found: list[Regime] = []
+    for s in signs:
+        side = () if len(signs) == 1 else (sp.Gt(s * v_t, 0),)
+        compression = _Piece(sp.Integer(0), -mu * s, _rates(W, -mu * s))
+        p_c = sp.cancel(-v_n / compression.rate[0])  # the normal velocity and slip stop
+        restitution = _Piece(p_c, mu * s, _rates(W, mu * s))
+        separates = sp.Gt(restitution.rate[0], 0)
+        reversal = _finish((compression, restitution), v_n, e, law, REVERSAL,
+                           (*side, separates))
+        locked = tuple(c for c in map(_simplified, (*side, sp.Not(separates)))
+                       if c is not sp.true)
+        end = (_tidy_number(p_c), _tidy_number(-mu * s * p_c))
+        found += [r for r in (reversal, Regime("slip-lock", locked, end,
+                                                ((sp.Integer(0), sp.Integer(0)), end)))
+                  if r is not None and r.holds() is not False]
+    return tuple(found)
 
 
 def _rates(W: sp.Matrix, slope: sp.Expr) -> sp.Matrix:

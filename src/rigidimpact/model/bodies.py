@@ -72,6 +72,18 @@ def as_vector(value: Any, where: str) -> sp.ImmutableMatrix:
     return sp.ImmutableMatrix([_expr(c, f"{where}[{i}]") for i, c in enumerate(items)])
 
 
+def _difference(v: sp.Expr, w: sp.Expr) -> sp.Expr:
+    """``v - w`` tidied; over the cases of a ``Piecewise`` (a frictional impact's
+    courses), case by case."""
+    difference = sp.piecewise_fold(v - w) if v.has(sp.Piecewise) or w.has(sp.Piecewise) \
+        else v - w
+    if isinstance(difference, sp.Piecewise):
+        if all(tidy(piece).is_zero for piece, _ in difference.args):
+            return sp.Integer(0)
+        return difference
+    return tidy(difference)
+
+
 def _negligible(difference: sp.Expr, *scale: sp.Expr) -> bool:
     """Zero, or (in 50-digit numeric mode) a rounding's worth of the values compared."""
     if difference == 0:
@@ -196,7 +208,7 @@ class Body:
             object.__setattr__(self, "spin", spin)
         expected = spin_cross(self.spin, offset)
         for axis, (v, w) in enumerate(zip(self.velocity, expected, strict=True)):
-            if v != w and not _negligible(tidy(v - w), v, w):  # shown consistent
+            if v != w and not _negligible(_difference(v, w), v, w):  # shown consistent
                 raise InputError(f"{self.name}.velocity", f"a pivoted body moves only by "
                                  f"turning about its pivot: with spin {_short(self.spin)} "
                                  f"its centre's velocity must be ({_short(expected[0])}, "
@@ -399,6 +411,23 @@ class Body:
         Matrix([[2, 0]])
         """
         return replace(self, velocity=velocity, spin=spin)
+
+    def shifted(self, offset: Any) -> Body:
+        """The same body seen from another origin: every point it holds (its centre, its
+        parts, its pivot) moved by `offset`. Velocities and spin do not change.
+
+        Examples
+        --------
+        >>> Body.barbell(1, 2, 0).shifted((1, 0)).position.T
+        Matrix([[3, 0]])
+        """
+        d = as_vector(offset, f"{self.name}.position")
+        if self.shape == "fixed" or all(x == 0 for x in d):
+            return self
+        parts = tuple(replace(p, position=sp.ImmutableMatrix(p.position + d))
+                      for p in self.parts)
+        return replace(self, position=self.position + d, parts=parts,
+                       pivot=None if self.pivot is None else self.pivot + d)
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> Body:
         """The same body with numbers (or expressions) put in for its symbols.

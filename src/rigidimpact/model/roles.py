@@ -69,6 +69,14 @@ class Role:
             return bool(abs(sp.N(value, 60)) < sp.Float("1e-40", 60))
         if value.is_real is False:
             return False
+        try:
+            return self._holds(value)
+        except TypeError:  # SymPy cannot order it (sines that sum to zero, say): at 60
+            digits = sp.N(value, 60)  # digits, a zero to 40 of them on the boundary
+            return self._holds(sp.Integer(0) if abs(digits) < sp.Float("1e-40", 60)
+                               else digits)
+
+    def _holds(self, value: sp.Expr) -> bool:
         low_ok = (self.low is None or (value > self.low if self.open_low
                                        else value >= self.low))
         high_ok = self.high is None or value <= self.high

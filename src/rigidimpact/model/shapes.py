@@ -22,7 +22,9 @@ from typing import Any, ClassVar
 
 import sympy as sp
 
+from rigidimpact.errors import InputError
 from rigidimpact.model.bodies import Body
+from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Shape", "Fields", "SHAPES", "is_round", "is_segment"]
 
@@ -42,9 +44,9 @@ class Fields:
     outward : 2-vector
         The unit vector from O toward where a round body's centre goes when the table
         gives no position (along the normal, to the body's own side).
-    world : bool
-        With several contacts, positions are from the world origin and are not tied to
-        one contact point: a round body must then give its `position`.
+
+    O is the point of the first contact that names the body: the scene reader gives
+    every position from there and moves the body back to the scene's origin after.
     """
 
     table: Mapping[str, Any]
@@ -54,7 +56,7 @@ class Fields:
     velocity: tuple
     spin: sp.Expr
     outward: sp.MatrixBase
-    world: bool = False
+    contact: str = "contact"  # the name of the first contact that names the body
 
 
 class Shape:
@@ -81,7 +83,7 @@ class Particle(Shape):
     @classmethod
     def build(cls, given: Fields) -> Body:
         body = Body.particle(given.expr("mass"), given.velocity, given.name)
-        if "position" not in given.table:  # at O (with several contacts, the origin)
+        if "position" not in given.table:  # at O, its contact point
             return body
         return replace(body, position=given.vector("position"))
 
@@ -133,13 +135,15 @@ class _Round(Shape):
     @classmethod
     def build(cls, given: Fields) -> Body:
         radius = given.expr("radius")
-        if given.world:  # from the world origin: the contacts check the radius
-            mass = given.expr("mass")
-            return Body(given.name, mass, cls.factor * mass * radius**2,
-                        given.vector("position"), given.velocity, given.spin, cls.name,
-                        (("radius", radius),))
-        position = (given.vector("position") if "position" in given.table
-                    else tuple(radius * given.outward))
+        if "position" in given.table:
+            position = given.vector("position")
+            off = tidy(position[0] ** 2 + position[1] ** 2 - radius**2)
+            if off.is_zero is False:
+                raise InputError("position", f"the centre must lie at the radius {radius} "
+                                 f"from the point of contact {given.contact}, but it is at "
+                                 f"({position[0]}, {position[1]}) from that point")
+        else:
+            position = tuple(radius * given.outward)
         maker = getattr(Body, cls.name)
         return maker(given.expr("mass"), radius, position, 1, given.velocity, given.spin,
                      given.name)

@@ -40,13 +40,19 @@ from rigidimpact.solve.collision import (
     MAX_SAMPLED_ORDERS,
     Collision,
     Compliant,
-    Outcome,
     Rule,
     Sequential,
     Simultaneous,
 )
-from rigidimpact.solve.derivation import Derivation, model_warnings, read_values
+from rigidimpact.solve.derivation import (
+    Derivation,
+    Evaluation,
+    model_warnings,
+    physics_warnings,
+    read_values,
+)
 from rigidimpact.solve.impact import Impact
+from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
 from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
@@ -91,8 +97,10 @@ class Scene:
     values : mapping of Symbol to number
         Numbers for evaluate and simulate.
     bodies : tuple of Body
-        In the order of ``contact.bodies`` (first on the -x side of O).
+        In the order of the file, placed from the scene's origin O (see
+        :func:`_placed`: one frame rule for one contact and for several).
     contact : Contact
+        The first contact (the only one of a one-contact scene).
     simulate : mapping
         The ``[simulate]`` table as read (checked by the simulation planner).
     name : str
@@ -113,22 +121,25 @@ class Scene:
     sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
 
     @property
-    def several(self) -> bool:
-        """Whether the scene has several contacts (solved by :mod:`rigidimpact.solve.collision`)."""
-        return len(self.contacts) > 1
-
-    @property
     def roles(self) -> tuple[Role, ...]:
         """What bounds the scene's data by role (see :mod:`rigidimpact.model.roles`)."""
-        return roles_of(self.bodies, self.contacts or (self.contact,),
-                        self.contacts if self.several else None)
+        return roles_of(self.bodies, self.contacts, self.contacts)
+
+    @property
+    def pair(self) -> tuple[Body, Body]:
+        """The first contact's two bodies, first then second, seen from its point (the
+        frame of the two-body core and of the one-contact simulators)."""
+        c = self.contact
+        by_name = {b.name: b for b in self.bodies}
+        point = -sp.ImmutableMatrix(c.point)
+        return by_name[c.first].shifted(point), by_name[c.second].shifted(point)
 
     def impact(self) -> Impact:
         """The scene's impact (one contact)."""
-        if self.several:
+        if len(self.contacts) > 1:
             raise InputError("contacts", "this scene has several contacts: derive and "
                              "evaluate solve it; this command follows one contact")
-        return Impact(self.bodies[0], self.bodies[1], self.contact)
+        return Impact(*self.pair, self.contact)
 
     @property
     def data_symbols(self) -> dict[str, sp.Symbol]:
@@ -182,19 +193,20 @@ class Scene:
         every.update(sources)
         exact = read_values(values, every, self.data_symbols, self.roles, self.name)
         scene = replace(self, values=exact)
-        if not self.several:
-            _check_scene(scene)
+        _check_scene(scene)
         return scene
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
-        """The scene's several contacts with numbers for its symbols."""
-        return Collision.from_values(self.bodies, self.contacts,
-                                     dict(self.values if values is None else values))
+        """The scene's bodies and contacts (with numbers for its symbols when given)."""
+        if values is None:
+            return Collision(self.bodies, self.contacts)
+        return Collision.from_values(self.bodies, self.contacts, dict(values))
 
-    def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Outcome, ...]:
-        """What the scene's rule makes of its several contacts (every order when a
-        sequential rule has none)."""
-        return self.collision(values).solve(self.impact_rule)
+    def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Solution, ...]:
+        """What the scene's rule makes of its contacts at `values` (the scene's
+        ``[values]`` by default; every order when a sequential rule has none)."""
+        return self.collision(dict(self.values if values is None else values)).solve(
+            self.impact_rule)
 
     @property
     def impact_rule(self) -> Rule:
@@ -208,8 +220,15 @@ class Scene:
             return Sequential(self.order)
         return Simultaneous()
 
-    def derivation(self) -> Derivation:
-        """Solve the scene's impact symbolically.
+    def derivation(self, values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
+        """Solve the scene's impact: symbolically, or at `values` when given (several
+        contacts at the scene's ``[values]`` unless other values are given; with none
+        they are solved over their symbols where the rule has closed forms).
+
+        One path for one contact and for several: the scene's collision and its rule
+        give :class:`~rigidimpact.solve.solution.Solution` values (one contact: its own
+        exact answer by the two-body core, whatever the rule), and the equations printed
+        are the ones solved.
 
         Examples
         --------
@@ -231,54 +250,78 @@ class Scene:
         v_ix*(e + 1)/2
         """
         start = time.perf_counter()
-        if self.several:
-            return self._several_derivation(start)
-        impact = self.impact()
-        solution = impact.solve()
-        first, second = self.bodies
-        setup = tuple(_described(b) for b in (first, second))
-        c = self.contact
-        friction = "" if c.friction is None else f", friction {c.friction}"
-        if c.tangential_restitution is not None:
-            friction += f", tangential restitution {c.tangential_restitution}"
-        setup += (f"contact: {c.tangential}{friction}, normal ({c.normal[0]}, {c.normal[1]}), "
-                  f"{c.law} restitution {c.restitution}",)
-        return Derivation(self.name, self.title, setup, impact.equations(), impact.unknowns,
-                          solution.results(), solution=solution,
-                          seconds=time.perf_counter() - start,
-                          warnings=model_warnings(self.contact))
-
-
-    def _several_derivation(self, start: float,
-                            values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
+        several = len(self.contacts) > 1
+        if values is None and several:  # several contacts: at the scene's [values]
+            values = self.values
         collision = self.collision(values)
         outcomes = collision.solve(self.impact_rule)
+        first = outcomes[0]
         # the momentum balance holds under every rule; a contact's own law only where
         # one outcome is reported (each case or order imposes its own)
-        equations = collision.equations(outcomes[0])
+        equations = first.equations or collision.equations(first)
         if len(outcomes) > 1:
             equations = tuple(eq for eq in equations if eq.law == "momentum")
         setup = tuple(_described(b) for b in self.bodies)
-        setup += tuple(f"contact {t.name}: {t.first} -> {t.second} at ({t.point[0]}, "
-                       f"{t.point[1]}), normal ({t.normal[0]}, {t.normal[1]}), {t.law} "
-                       f"restitution {t.restitution}, " + _tangential_words(t)
-                       for t in self.contacts)
-        setup += (f"rule: {self.rule}" + ("" if self.order is None
-                                          else f", order {', '.join(self.order)}"),)
-        results = outcomes[0].results()
-        if self.rule == "simultaneous" and len(outcomes) > 1:  # one case holds at a time
+        setup += tuple(_contact_line(c) for c in self.contacts)
+        if several:
+            setup += (f"rule: {self.rule}" + ("" if self.order is None
+                                              else f", order {', '.join(self.order)}"),)
+        results = first.results()
+        if len(outcomes) > 1 and outcomes[0].rule == "simultaneous":  # one case at a time
             cases = [sp.And(*o.conditions) for o in outcomes]
             results = {key: _cases([o.results()[key] for o in outcomes], cases)
                        for key in results}
-        return Derivation(self.name, self.title, setup, equations, collision.unknowns(),
-                          results, seconds=time.perf_counter() - start, outcomes=outcomes)
+        warnings = tuple(dict.fromkeys(w for c in self.contacts for w in model_warnings(c)))
+        return Derivation(self.name, self.title, setup, equations,
+                          first.unknowns or collision.unknowns(), results,
+                          solution=None if several else first,
+                          seconds=time.perf_counter() - start, warnings=warnings,
+                          outcomes=outcomes if several else ())
+
+    def evaluate(self, settings: Mapping[str, Any], sources: Mapping[str, str],
+                 dps: int | None = None) -> Evaluation:
+        """Every result in numbers at `settings` (names to values, each checked through
+        the same door as ``[values]``; `sources` says where each came from).
+
+        One contact: its closed forms, evaluated by the fused kernel (or with `dps`
+        digits). Several contacts: solved at the numbers by the scene's rule, and the
+        extra keys say which rule, which contacts acted, and (for every order or a
+        sample of orders) each order's results and the spread.
+        """
+        if len(self.contacts) == 1:
+            return self.derivation().evaluate(settings, dps, sources)
+        exact = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
+        derivation = self.derivation(exact)
+        numbers = derivation.evaluate({}, dps).numbers
+        outcomes = derivation.outcomes
+        extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}
+        if outcomes[0].courses:
+            extra["courses"] = list(outcomes[0].courses)
+        if len(outcomes) > 1:
+            extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
+                                "results": {k: float(v) for k, v in o.results().items()}}
+                               for o in outcomes]
+        if self.sample is not None and self.order is None and self.rule == "sequential":
+            count, seed = self.sample
+            rows = [row["results"] for row in extra["orders"]] if len(outcomes) > 1 else [
+                {k: float(v) for k, v in outcomes[0].results().items()}]
+            extra["sample"] = {"orders": count, "seed": seed,
+                               "distinct": len({tuple(o.order) for o in outcomes})}
+            extra["spread"] = {k: [min(r[k] for r in rows), max(r[k] for r in rows)]
+                               for k in rows[0]}
+        warnings = physics_warnings(numbers, dps, f"the {self.rule} rule",
+                                    outcomes[0].energy_tolerance)
+        warnings = (*warnings, *outcomes[0].notes)
+        if outcomes[0].method:
+            extra["method"] = outcomes[0].method
+        return Evaluation(numbers, warnings, None, extra)
 
     def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
         """With several contacts, the derivation at these numbers (they are solved with
         numbers); with one contact, the symbolic derivation."""
-        if not self.several:
+        if len(self.contacts) == 1:
             return self.derivation()
-        return self._several_derivation(time.perf_counter(), values)
+        return self.derivation(values)
 
 
 def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
@@ -286,6 +329,13 @@ def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
     if all(p == parts[0] for p in parts):
         return parts[0]
     return sp.Piecewise(*zip(parts, conditions, strict=True))
+
+
+def _contact_line(c: Contact) -> str:
+    """One line of the givens for a contact: where, between which bodies, its laws."""
+    return (f"contact {c.name}: {c.first} -> {c.second} at ({c.point[0]}, {c.point[1]}), "
+            f"normal ({c.normal[0]}, {c.normal[1]}), {c.law} restitution {c.restitution}, "
+            + _tangential_words(c))
 
 
 def _tangential_words(c: Contact) -> str:
@@ -351,9 +401,9 @@ def _values_table(table: Mapping[str, Any],
 
 def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
           symbols: Mapping[str, sp.Symbol], origin: tuple = (0, 0),
-          world: bool = False) -> Body:
-    """One body from its table; positions and the pivot, given from the origin of the
-    scene, are moved to the contact point at `origin`."""
+          contact: str = "contact") -> Body:
+    """One body from its table, seen from the contact point at `origin`: positions and
+    the pivot, given from the scene's origin, are moved there."""
     where = f"bodies[{index}]"
     if not isinstance(table, dict):
         raise InputError(where, "each [[bodies]] entry must be a table")
@@ -382,7 +432,7 @@ def _body(table: Any, index: int, side: int, normal: sp.MatrixBase,
     spin = parse_expression(table["spin"], f"{where}.spin", symbols) if "spin" in table else 0
     given = Fields(table, lambda key: parse_expression(table[key], f"{where}.{key}", symbols),
                    lambda key: _from_contact(table, key, where, symbols, origin), name,
-                   velocity, spin, side * normal, world)
+                   velocity, spin, side * normal, contact)
     try:
         body = kind.build(given)
         if "pivot" in table:
@@ -468,40 +518,6 @@ def _read_contact(table: Mapping[str, Any], place: str,
     return contact, origin
 
 
-def _several(data, title, symbols, values, by_name, simulate, name) -> Scene:
-    """A scene with several contacts: bodies from the world origin, one rule for all."""
-    entries = data["contacts"]
-    contacts: list[Contact] = []
-    for k, table in enumerate(entries):
-        place = f"contacts[{k}]"
-        if not isinstance(table, dict):
-            raise InputError(place, "each [[contacts]] entry must be a table")
-        if "name" not in table:
-            raise InputError(f"{place}.name", "required with several contacts")
-        contact, point = _read_contact(table, place, symbols)
-        if contact.name in (c.name for c in contacts):
-            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
-        first, second = _pair(table, place, [])
-        for body_name in (first, second):
-            if body_name not in by_name:
-                raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
-        contacts.append(replace(contact, bodies=(first, second), point=point))
-    impact_table = _table(data, "impact", "settings")
-    rule, order = _impact_table(impact_table, [c.name for c in contacts])
-    sample = _sample(impact_table)
-    compliance = _compliance(impact_table, len(contacts))
-    bodies = []
-    for index, table in by_name.values():
-        bodies.append(_body(table, index, 1, sp.ImmutableMatrix([1, 0]), symbols, world=True))
-    scene = Scene(title, symbols, values, tuple(bodies), contacts[0], simulate, name,
-                  contacts=tuple(contacts), rule=rule, order=order, sample=sample,
-                  compliance=compliance)
-    # the roles hold the geometry too (a contact on each body's outline): checked now
-    # with what the file says, again whenever values arrive
-    check_roles(scene.roles, values, {s: f"values.{s.name}" for s in values})
-    return scene
-
-
 def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...], bool]:
     """``[impact]`` stiffness (one number, or one per contact in their order) and model."""
     raw = table.get("stiffness", 1e6)
@@ -517,8 +533,8 @@ def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...]
     return tuple(float(v) for v in values), model == "hertz"
 
 
-def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
-    """The one contact, from ``[contact]`` or a single ``[[contacts]]`` entry, and the
+def _contact_tables(data: Mapping[str, Any]) -> list[tuple[dict[str, Any], str]]:
+    """The contacts, from ``[contact]`` or the ``[[contacts]]`` entries, each with the
     place to name in messages."""
     if "contact" in data and "contacts" in data:
         raise InputError("contacts", "give either [contact] or [[contacts]], not both")
@@ -526,16 +542,56 @@ def _contact_table(data: Mapping[str, Any]) -> tuple[dict[str, Any], str]:
         entries = data["contacts"]
         if not isinstance(entries, list) or not entries:
             raise InputError("contacts", "[[contacts]] must hold at least one table")
-        if len(entries) > 1:
-            raise InputError("contacts", f"{len(entries)} contacts given: this version solves "
-                             "one contact per scene")
-        if not isinstance(entries[0], dict):
-            raise InputError("contacts[0]", "each [[contacts]] entry must be a table")
-        return entries[0], "contacts[0]"
+        for k, entry in enumerate(entries):
+            if not isinstance(entry, dict):
+                raise InputError(f"contacts[{k}]", "each [[contacts]] entry must be a table")
+        return [(entry, f"contacts[{k}]") for k, entry in enumerate(entries)]
     table = data.get("contact")
     if not isinstance(table, dict):
-        raise InputError("contact", "a [contact] table (or one [[contacts]] entry) is required")
-    return table, "contact"
+        raise InputError("contact", "a [contact] table (or [[contacts]] entries) is required")
+    return [(table, "contact")]
+
+
+def _contacts(tables: list[tuple[dict[str, Any], str]], by_name: Mapping[str, Any],
+              symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, ...]:
+    """Every contact with its two bodies named and its point (from the origin O)."""
+    several = len(tables) > 1
+    if not several and len(by_name) != 2:
+        raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
+                         "contact")
+    contacts: list[Contact] = []
+    for table, place in tables:
+        if several and "name" not in table:
+            raise InputError(f"{place}.name", "required with several contacts")
+        contact, point = _read_contact(table, place, symbols)
+        if contact.name in (c.name for c in contacts):
+            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
+        first, second = _pair(table, place, [] if several else list(by_name))
+        for body_name in (first, second):
+            if body_name not in by_name:
+                raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
+        contacts.append(replace(contact, bodies=(first, second), point=point))
+    return tuple(contacts)
+
+
+def _placed(table: dict[str, Any], index: int, contacts: tuple[Contact, ...],
+            symbols: Mapping[str, sp.Symbol]) -> Body:
+    """A body from its table, in the scene frame (from O). The one frame rule: every
+    position, pivot and point is given from O; a shape that places itself (a particle or
+    a round body without `position`, a barbell's struck end, a rod's `struck_at`) is
+    placed from the point of the first contact that names it, on its own side of that
+    contact's normal."""
+    name = table["name"]
+    touching = next((c for c in contacts if name in (c.first, c.second)), None)
+    if touching is None:
+        origin, side, unit = sp.ImmutableMatrix([0, 0]), 1, sp.ImmutableMatrix([1, 0])
+        contact = "O"
+    else:
+        origin = sp.ImmutableMatrix(touching.point)
+        side = -1 if touching.first == name else 1
+        unit, contact = touching.frame.row(0).T, touching.name
+    body = _body(table, index, side, unit, symbols, tuple(origin), contact)
+    return body.shifted(origin)
 
 
 def _impact_table(table: Mapping[str, Any],
@@ -591,27 +647,15 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
 
     by_name = _body_tables(data)
     simulate = _table(data, "simulate", "settings")
-    if "contact" in data and "contacts" in data:
-        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
-    if isinstance(data.get("contacts"), list) and len(data["contacts"]) > 1:
-        return _several(data, title, symbols, values, by_name, simulate, name)
-    contact_table, place = _contact_table(data)
-    contact, origin = _read_contact(contact_table, place, symbols)
-    _impact_table(_table(data, "impact", "settings"), [contact.name])
-    _sample(_table(data, "impact", "settings"))  # checked; one contact has one order
-    unit = contact.frame.row(0).T
-    if len(by_name) != 2:
-        raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
-                         "contact")
-    order = _pair(contact_table, place, list(by_name))
-    bodies = []
-    for side, body_name in zip((-1, 1), order, strict=True):
-        if body_name not in by_name:
-            raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
-        index, table = by_name[body_name]
-        bodies.append(_body(table, index, side, unit, symbols, origin))
-
-    scene = Scene(title, symbols, values, (bodies[0], bodies[1]), contact, simulate, name)
+    contacts = _contacts(_contact_tables(data), by_name, symbols)
+    impact_table = _table(data, "impact", "settings")
+    rule, order = _impact_table(impact_table, [c.name for c in contacts])
+    sample = _sample(impact_table)
+    compliance = _compliance(impact_table, len(contacts))
+    bodies = tuple(_placed(table, index, contacts, symbols) for index, table in by_name.values())
+    scene = Scene(title, symbols, values, bodies, contacts[0], simulate, name,
+                  contacts=contacts, rule=rule, order=order, sample=sample,
+                  compliance=compliance)
     _check_scene(scene)
     return scene
 
@@ -620,6 +664,8 @@ def _check_scene(scene: Scene) -> None:
     """Checks that need the whole scene: roles and approach with the given values."""
     # geometry first (a normal pointing the wrong way also makes the bodies recede)
     check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
+    if len(scene.contacts) > 1:  # the collision refuses contacts none of which approach
+        return
     impact = scene.impact()  # refuses bodies known not to approach
     if scene.values:
         approach = impact.approach_speed.xreplace(dict(scene.values))

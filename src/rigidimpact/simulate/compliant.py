@@ -319,7 +319,7 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     if scene.contact.tangential != "smooth":
         raise InputError("contact.tangential", "the compliant models have a smooth contact")
     parts, state, slot = [], [], 0
-    for body in scene.bodies:
+    for body in scene.pair:  # seen from the contact point
         part, initial = _build(body, slot, values, plan)
         parts.append(part)
         state += initial

@@ -43,8 +43,7 @@ def explain(scene: Scene) -> str:
     """  # noqa: E501
     plan = make_plan(scene.simulate)
     lines = [plan.explain()]
-    if scene.several:
-
+    if len(scene.contacts) > 1:
         frictional = any(t.laws[1].grips for t in scene.contacts)
         lines.append(f"impact rule: {scene.rule}: {rule_laws(scene.rule, frictional)}")
         if "gravity" not in plan.effects and any(b.support == "fixed" for b in scene.bodies):
@@ -95,7 +94,7 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
-    if scene.several:
+    if len(scene.contacts) > 1:
         return run_several(scene)
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
@@ -152,12 +151,8 @@ def impact_view(scene: Scene, outcome: Outcome) -> tuple[list, list, dict]:
     contact as (point, normal, first, second), and each body's (vx, vy, omega) after."""
     values = dict(scene.values)
     bodies = [b if b.support == "fixed" else b.at(values) for b in scene.bodies]
-    if scene.several:
-        contacts = [(t.point.xreplace(values), t.unit_normal.xreplace(values), t.first, t.second)
-                    for t in scene.contacts]
-    else:
-        contacts = [((0, 0), scene.contact.normal.xreplace(values), scene.bodies[0].name,
-                     scene.bodies[1].name)]
+    contacts = [(t.point.xreplace(values), t.unit_normal.xreplace(values), t.first, t.second)
+                for t in scene.contacts]
     after = {b.name: tuple(outcome.final[f"{b.name}.{k}"] for k in ("vx", "vy", "omega"))
              for b in bodies if b.support != "fixed"}
     return bodies, contacts, after

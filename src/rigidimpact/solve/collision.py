@@ -44,7 +44,7 @@ import math
 import random
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from functools import cached_property
 from typing import Any, ClassVar
@@ -56,10 +56,11 @@ from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation, NewtonRestitution
 from rigidimpact.model.bodies import Body
+from rigidimpact.solve.impact import Impact
 from rigidimpact.solve.impulse import Coordinate, coordinates_of, moving
 from rigidimpact.solve.lcp import NoSolution, confirm, lemke, pivoting, proximal, residual
+from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.geometry import cross
-from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
@@ -122,85 +123,7 @@ def rule_laws(rule: str, frictional: bool = False) -> str:
     return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
 
 
-@dataclass(frozen=True)
-class Outcome:
-    """What one rule made of the collision: the bodies after, every contact's impulse,
-    which contacts acted, the energies."""
-
-    rule: str
-    order: tuple[str, ...]
-    before: tuple[Body, ...]
-    after: tuple[Body, ...]
-    impulses: dict[str, sp.Expr]
-    acted: tuple[str, ...]
-    passes: int = 1  # sequential: passes in which a contact acted
-    # compliant, when asked: (times, generalized velocities at those times) of the run
-    history: Any = field(default=None, repr=False, compare=False)
-    # with symbols: when this outcome is the rule's (each a relation; (True,) always)
-    conditions: tuple[Any, ...] = ()
-    # with friction: each contact's tangential impulse, and what each step did
-    tangential: dict[str, sp.Expr] = field(default_factory=dict)
-    courses: tuple[str, ...] = ()
-    notes: tuple[str, ...] = ()  # what the rule could not settle (several solutions)
-    # how the rule's problem was solved when that is worth saying (many contacts)
-    method: str = field(default="", repr=False)
-    # the relative energy error the rule's numbers carry (an integration's), else None
-    energy_tolerance: float | None = field(default=None, repr=False)
-    # each pivoted body's reaction impulse (scene frame), filled by Collision.solve
-    pivot_reactions: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
-                                                                  repr=False)
-
-    @property
-    def kinetic_energy_before(self) -> sp.Expr:
-        return sum((b.kinetic_energy for b in self.before), sp.Integer(0))
-
-    @property
-    def energy_loss_fraction(self) -> sp.Expr:
-        """``(K_i - K_f) / K_i``; negative when the rule created energy."""
-        after = sum((b.kinetic_energy for b in self.after), sp.Integer(0))
-        return tidy(1 - after / self.kinetic_energy_before)
-
-    @property
-    def frictional(self) -> bool:
-        """Whether the rule ran with friction (its tangential impulses are kept)."""
-        return bool(self.tangential)
-
-    @property
-    def label(self) -> str:
-        """``simultaneous`` or ``sequential left, right``."""
-        return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
-
-    def _repr_latex_(self) -> str:
-        r"""The rule's results, typeset (Jupyter).
-
-        Examples
-        --------
-        >>> print(chain(2).simultaneous()._repr_latex_()[:45])
-        $$\begin{aligned} V_x^{(\mathrm{ball0})} &= 0
-        """
-
-        return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
-
-    def results(self) -> dict[str, sp.Expr]:
-        """Results under the scene keys: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``,
-        ``CONTACT.normal_impulse``, ``CONTACT.tangential_impulse``, ``impulse`` (the
-        first contact's) and ``energy_loss_fraction``."""
-        results: dict[str, sp.Expr] = {}
-        for body in self.after:
-            if body.support == "fixed":
-                continue
-            results[f"{body.name}.vx"] = tidy(body.velocity[0])
-            results[f"{body.name}.vy"] = tidy(body.velocity[1])
-            results[f"{body.name}.omega"] = tidy(sp.sympify(body.spin))
-        first = next(iter(self.impulses))
-        results["impulse"] = self.impulses[first]
-        results["energy_loss_fraction"] = self.energy_loss_fraction
-        for name, impulse in self.impulses.items():
-            results[f"{name}.normal_impulse"] = impulse
-            results[f"{name}.tangential_impulse"] = self.tangential.get(name, sp.Integer(0))
-        for name, (x, y) in self.pivot_reactions.items():
-            results[f"{name}.pivot_impulse_x"], results[f"{name}.pivot_impulse_y"] = x, y
-        return results
+Outcome = Solution  # the one result type (the name several-contact code used first)
 
 
 @dataclass(frozen=True)
@@ -240,14 +163,16 @@ class Collision:
                         any(not c.is_zero for c in body.position - touch.point):
                     raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
                                      "contact must be where it is")
-        if not self.symbols and all(v >= 0 for v in self.velocity_before):
+        # in numbers (a closing speed may hold a sine: compared at 30 digits)
+        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self.velocity_before):
             raise InputError("bodies", "no contact is approaching: there is no impact")
 
     @cached_property
     def symbols(self) -> frozenset[sp.Symbol]:
         """The symbols left in the collision (none: every rule runs; some: the
         simultaneous and one-pass sequential formulas, each with its conditions)."""
-        return frozenset(self.W.free_symbols | self.velocity_before.free_symbols
+        return frozenset(self.J.free_symbols | self.M_inverse.free_symbols
+                         | self.u_before.free_symbols
                          | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
                                                   t.tangential_restitution or 0).free_symbols
                                          for t in self.contacts)))
@@ -394,7 +319,17 @@ class Collision:
         return [1 / c.inertia for c in self.coordinates]
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
-        return moving(self.bodies, self.coordinates, list(u))
+        return tuple(b if b.support == "fixed" else b.with_motion(
+            b.velocity.applyfunc(tidy), tidy(sp.sympify(b.spin)))
+            for b in moving(self.bodies, self.coordinates, list(u)))
+
+    def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                 impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                 **more: Any) -> Solution:
+        """The one :class:`Solution` a rule gives: the bodies moving with `u` after."""
+        return Solution(before=self.bodies, after=self._after(u), impulses=impulses,
+                        contacts=self.contacts, rule=rule, order=tuple(order),
+                        acted=tuple(acted), passes=passes, **more)
 
     def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
         change: dict[int, sp.Expr] = {}
@@ -406,7 +341,7 @@ class Collision:
         return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
                           else u[j] for j in range(len(u))])
 
-    def simultaneous(self) -> Outcome:
+    def simultaneous(self) -> Solution:
         """All contacts at once, no contact pulling (a complementarity problem).
 
         Newton's law: every acting contact leaves at ``-e`` times its closing velocity
@@ -430,7 +365,7 @@ class Collision:
             impulses = sp.Matrix([self.contacts[i].laws[0].from_compression(impulses[i])
                                   for i in range(len(v))])
         u = self._kick(self.u_before, impulses)
-        return Outcome("simultaneous", (), self.bodies, self._after(u), self._named(impulses),
+        return self._outcome("simultaneous", (), u, self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), notes=how + self._still_closing(u), method=method)
 
@@ -453,7 +388,7 @@ class Collision:
                      f"simultaneous rule with Poisson's law cannot honour the physics here "
                      f"(the sequential rule can)" for name, speed in closing)
 
-    def _frictional_simultaneous(self) -> Outcome:
+    def _frictional_simultaneous(self) -> Solution:
         """All contacts at once with Coulomb friction, at the velocity level.
 
         Each contact is released (no impulse, separating at least as fast as Newton's
@@ -532,7 +467,7 @@ class Collision:
                          _STATE[s] for s in pattern) + "; others: " + "; ".join(
                          ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
         normal = impulses[:n, 0]
-        return Outcome("simultaneous", (), self.bodies, self._after(u),
+        return self._outcome("simultaneous", (), u,
                        self._named(normal), tuple(t.name for t, p in
                                                   zip(self.contacts, normal, strict=True)
                                                   if p > 0),
@@ -541,7 +476,7 @@ class Collision:
                                      zip(self.contacts, pattern, strict=True)),
                        notes=notes)
 
-    def _one_acting(self, k: int, target: list[sp.Expr]) -> Outcome:
+    def _one_acting(self, k: int, target: list[sp.Expr]) -> Solution:
         """Only contact k acts: its frictional impact alone by Routh's method (the answer
         for one contact under every rule), if that leaves every other contact opening
         at least as fast as its law asks; otherwise one line saying so."""
@@ -558,7 +493,7 @@ class Collision:
         zeros = sp.zeros(len(self.contacts), 1)
         normals, tangentials = zeros.copy(), zeros.copy()
         normals[k], tangentials[k] = normal, along
-        return Outcome("simultaneous", (), self.bodies, self._after(u),
+        return self._outcome("simultaneous", (), u,
                        self._named(normals), (name,),
                        tangential=self._named(tangentials) if self.frictional else {},
                        courses=tuple(f"{t.name}: {course}" if i == k else
@@ -742,7 +677,7 @@ class Collision:
             u[j] = tidy(u[j] + value * impulse * self._inverse_inertia[j])
         return impulse
 
-    def sequential(self, order: Sequence[str]) -> Outcome:
+    def sequential(self, order: Sequence[str]) -> Solution:
         """One contact at a time in `order`, passes repeated until none approaches.
 
         With e < 1 the passes can go on forever while the closing speeds shrink
@@ -775,7 +710,7 @@ class Collision:
                     impulse = self._smooth_step(k, u, closing)
                 total[k] += impulse
                 acted_now = True
-        return Outcome("sequential", tuple(order), self.bodies, self._after(sp.Matrix(u)),
+        return self._outcome("sequential", tuple(order), sp.Matrix(u),
                        self._named(total.applyfunc(tidy)),
                        tuple(t.name for t, p in zip(self.contacts, total, strict=True) if p > 0),
                        passes - 1, tangential=self._named(tangential.applyfunc(tidy))
@@ -800,7 +735,7 @@ class Collision:
         return normal, along, course, u_after
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
-                  tolerance: float = 1e-10, record: bool = False) -> Outcome:
+                  tolerance: float = 1e-10, record: bool = False) -> Solution:
         """Every contact a push-only spring-dashpot, integrated until all have let go.
 
         The contact's compression grows at its closing speed, ``d' = -(J u)``, and it
@@ -936,7 +871,7 @@ class Collision:
         u_after = sp.Matrix([sp.Float(x, 17) for x in y[:n]])
         impulses = sp.Matrix([sp.Float(x, 17) for x in y[n + k:]])
         history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
-        return Outcome("compliant", (), self.bodies, self._after(u_after),
+        return self._outcome("compliant", (), u_after,
                        self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), history=history,
@@ -950,7 +885,7 @@ class Collision:
                              f"{', '.join(index)}")
         return index
 
-    def simultaneous_cases(self) -> tuple[Outcome, ...]:
+    def simultaneous_cases(self) -> tuple[Solution, ...]:
         """The simultaneous rule with symbols: one outcome per set of acting contacts,
         each with the conditions under which it is the one (its impulses >= 0, every
         released contact separating at least as fast as its law asks, every contact
@@ -1007,13 +942,13 @@ class Collision:
                     compression[i]) if poisson else compression[i]
                     for i in range(n)]).applyfunc(tidy)
                 u = self._kick(self.u_before, impulses)
-                cases.append(Outcome("simultaneous", (), self.bodies, self._after(u),
+                cases.append(self._outcome("simultaneous", (), u,
                                      self._named(impulses),
                                      tuple(self.contacts[i].name for i in active),
                                      conditions=held))
         return tuple(cases)
 
-    def sequential_pass(self, order: Sequence[str]) -> Outcome:
+    def sequential_pass(self, order: Sequence[str]) -> Solution:
         """The sequential rule with symbols: one pass in `order`, every contact acting
         once, with the conditions that make it so (each contact closing at its turn) and
         that end the rule there (no contact closing after the pass).
@@ -1042,11 +977,11 @@ class Collision:
             conditions.append(sp.Lt(closing, 0))
             total[k] = self._smooth_step(k, u, closing)
         conditions += [sp.Ge(x, 0) for x in self._times(u)]
-        return Outcome("sequential", tuple(order), self.bodies, self._after(sp.Matrix(u)),
+        return self._outcome("sequential", tuple(order), sp.Matrix(u),
                        self._named(total.applyfunc(tidy)), tuple(order),
                        conditions=_conditions(conditions))
 
-    def every_order(self) -> tuple[Outcome, ...]:
+    def every_order(self) -> tuple[Solution, ...]:
         """The sequential rule in every order of the contacts."""
         names = [t.name for t in self.contacts]
         count = math.factorial(len(names))  # counted before any order is made
@@ -1059,7 +994,7 @@ class Collision:
             return tuple(self.sequential_pass(order) for order in orders)
         return tuple(self.sequential(order) for order in orders)
 
-    def sampled_orders(self, count: int, seed: int) -> tuple[Outcome, ...]:
+    def sampled_orders(self, count: int, seed: int) -> tuple[Solution, ...]:
         """The sequential rule in `count` orders drawn at random (``random.Random(seed)``,
         each a uniform shuffle; repeats possible when the orders are few): a sample of
         the outcomes' spread, not every order."""
@@ -1075,7 +1010,7 @@ class Collision:
             orders.append(tuple(order))
         return tuple(self.sequential(order) for order in orders)
 
-    def solve(self, rule: Rule) -> tuple[Outcome, ...]:
+    def solve(self, rule: Rule) -> tuple[Solution, ...]:
         """What `rule` makes of the collision (see :class:`Rule`): the model is built once
         and the rule is an argument, as sympy's ``System.form_eoms`` takes its method.
 
@@ -1084,10 +1019,43 @@ class Collision:
         >>> chain(3).solve(Sequential(("c0", "c1")))[0].results()["ball2.vx"]
         1
         """
+        if len(self.contacts) == 1:  # every rule gives the one contact's own answer
+            return (self.alone(),)
         return tuple(replace(o, pivot_reactions=self._pivot_reactions(o))
                      for o in rule.outcomes(self))
 
-    def _pivot_reactions(self, outcome: Outcome) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+    def alone(self) -> Solution:
+        """The one contact's impact, exactly, by the two-body core
+        (:class:`~rigidimpact.solve.impact.Impact`): its printed laws with the paper's
+        unknown names, Routh's and Walton's regimes as ``Piecewise`` with symbols, the
+        per-contact frame that keeps a symbolic tilt fast. The core works from the
+        contact point; the solution is given back in this collision's frame, with every
+        body that the contact does not touch as it was.
+
+        Examples
+        --------
+        >>> ball = Body.particle(1, (2, 0), "ball")
+        >>> hit = Collision((ball.shifted((5, 0)), Body.fixed("wall")), (Contact(
+        ...     restitution=sp.Symbol("e"), bodies=("ball", "wall"), point=(5, 0)),))
+        >>> hit.alone().results()["ball.vx"]
+        -2*e
+        """
+        if len(self.contacts) != 1:
+            raise ValueError("alone() solves a collision of one contact")
+        (c,) = self.contacts
+        point = sp.ImmutableMatrix(c.point)
+        first, second = (self._body(n).shifted(-point) for n in (c.first, c.second))
+        solution = Impact(first, second, c).solve()
+
+        def world(s: Solution) -> Solution:
+            after = {b.name: b.shifted(point) for b in s.after}
+            return replace(s, before=self.bodies,
+                           after=tuple(after.get(b.name, b) for b in self.bodies))
+
+        return replace(world(solution), regimes=tuple(
+            (name, conditions, world(r)) for name, conditions, r in solution.regimes))
+
+    def _pivot_reactions(self, outcome: Solution) -> dict[str, tuple[sp.Expr, sp.Expr]]:
         """What each pivot gives its body: the body's change of linear momentum less the
         contact impulses it received (each along its contact's unit normal and tangent;
         the second body of a contact receives +P, the first -P)."""
@@ -1118,7 +1086,7 @@ class Collision:
             pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
         return tuple(speeds + pushes)
 
-    def equations(self, outcome: Outcome) -> tuple[Equation, ...]:
+    def equations(self, outcome: Solution) -> tuple[Equation, ...]:
         """The labelled equations `outcome` solves, over :meth:`unknowns`: the momentum
         balance of every generalized velocity (``M (u+ - u-) = J^T P``, the same for
         every rule), then what the rule imposed at each contact. Substituting the
@@ -1198,7 +1166,7 @@ class Collision:
                                       * P_n[k], law="tangential"))
         return tuple(found)
 
-    def _u_of(self, outcome: Outcome) -> sp.Matrix:
+    def _u_of(self, outcome: Solution) -> sp.Matrix:
         """The generalized velocities of `outcome`'s bodies after."""
         after = {b.name: b for b in outcome.after}
         values = []
@@ -1208,7 +1176,7 @@ class Collision:
                           body.velocity[0 if c.kind == "vx" else 1])
         return sp.Matrix(values)
 
-    def solved_values(self, outcome: Outcome) -> dict[sp.Symbol, sp.Expr]:
+    def solved_values(self, outcome: Solution) -> dict[sp.Symbol, sp.Expr]:
         """:meth:`unknowns` -> their values in `outcome` (to check the equations)."""
         n, size = len(self.contacts), len(self.coordinates)
         symbols = self.unknowns()
@@ -1397,13 +1365,14 @@ class Rule:
 
     A rule is one small class: :meth:`outcomes` says what it makes of a collision (one
     outcome, or one per case or order), built from the collision's own solvers, so every
-    rule returns the same :class:`Outcome`. :data:`RULE_TYPES` lists the built-in ones
-    for the scene reader; a new rule needs no entry there to be used from Python.
+    rule returns the same :class:`~rigidimpact.solve.solution.Solution`. :data:`RULE_TYPES`
+    lists the built-in ones for the scene reader; a new rule needs no entry there to be
+    used from Python.
     """
 
     name: ClassVar[str] = ""
 
-    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+    def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         raise NotImplementedError
 
     def laws(self, frictional: bool = False) -> str:
@@ -1424,7 +1393,7 @@ class Simultaneous(Rule):
 
     name: ClassVar[str] = "simultaneous"
 
-    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+    def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         if collision.symbols:
             return collision.simultaneous_cases()
         return (collision.simultaneous(),)
@@ -1446,7 +1415,7 @@ class Sequential(Rule):
     seed: int = 0
     name: ClassVar[str] = "sequential"
 
-    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+    def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         if self.order is None and self.sample is not None:
             return collision.sampled_orders(self.sample, self.seed)
         if self.order is None:
@@ -1465,7 +1434,7 @@ class Compliant(Rule):
     hertz: bool = False
     name: ClassVar[str] = "compliant"
 
-    def outcomes(self, collision: Collision) -> tuple[Outcome, ...]:
+    def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         return (collision.compliant(self.stiffness, self.hertz),)
 
 

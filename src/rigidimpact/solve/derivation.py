@@ -25,6 +25,7 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.outputs.numeric import evaluate
+from rigidimpact.solve.collision import Collision
 from rigidimpact.solve.impact import NUMERIC_DIGITS, Impact
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.expr import parse_expression
@@ -129,7 +130,11 @@ class Derivation:
         """What bounds the data by role (restitution in [0, 1], masses positive, ...)."""
         if self.solution is None:
             return ()
-        return roles_of(self.solution.before, (self.solution.contact,))
+        contacts = self.solution.contacts
+        # a contact that names its bodies and point places them; the paper's problems'
+        # contact is at O between the two bodies as given
+        return roles_of(self.solution.before, contacts,
+                        contacts if self.solution.contact.bodies else None)
 
     def checked(self, values: Mapping[str, Any],
                 sources: Mapping[str, str] | None = None) -> dict[str, sp.Expr]:
@@ -165,7 +170,7 @@ class Derivation:
         missing = sorted(set(self.symbols) - {s.name for s in exact})
         if missing:
             raise InputError("--set", f"{self.problem} needs values for: {', '.join(missing)}")
-        if self.solution is not None:
+        if self.solution is not None and self.solution.approach_speed is not None:
             approach = self.solution.approach_speed.xreplace(exact)
             if approach.is_number and approach <= 0:
                 raise InputError(", ".join(sources[n] for n in sorted(sources)) or "values",
@@ -199,8 +204,11 @@ class Derivation:
             # numbers first, then the case analysis: one course, exact (or 50-digit)
             # arithmetic, and no formula over every course evaluated where most of its
             # branches are undefined (a friction coefficient of 0, say)
-            first, second = (b.at(at) for b in self.solution.before)
-            solved = Impact(first, second, contact.at(at)).solve()
+            if contact.bodies:  # a scene's: placed from the scene's origin
+                solved = Collision.from_values(self.solution.before, (contact,), at).alone()
+            else:
+                first, second = (b.at(at) for b in self.solution.before)
+                solved = Impact(first, second, contact.at(at)).solve()
             numbers = evaluate(solved.results(), {}, dps)
             regime = solved.regime
         else:

@@ -346,6 +346,12 @@ class Impact:
                       for c in law.conditions(before, kicked, impulse)]
         matrix, rhs = sp.linear_eq_to_matrix(conditions, impulses)
         if matrix.det().is_zero:
+            if self.contact.laws[1].grips and sp.cancel(core.W.det()).is_zero:
+                raise InputError("contact.tangential", f"{self.contact.tangential}: the "
+                                 "touching points have one degree of freedom here (a body "
+                                 "that can only turn, against a fixed one), so they cannot "
+                                 "both stop slipping and leave by the restitution law; "
+                                 "tangential = \"coulomb\" follows them (Routh's method)")
             raise InputError("bodies", "the impact equations are singular for these bodies: "
                              "the contact laws do not fix the impulse")
         normal, tangential = (tidy(x) for x in matrix.LUsolve(rhs))
@@ -439,15 +445,16 @@ class Impact:
         lost = lost.xreplace(stand_ins)
         # with a tilt the two are large and share little: their quotient is left as it is
         fraction = lost / energy_before if stand_ins else tidy(lost / energy_before)
+        normal, along = (x.xreplace(stand_ins) for x in local_impulse)
+        name = self.contact.name
         return Solution(
             before=(self.first, self.second), after=(finals[0], finals[1]),
-            contact=self.contact, frame=self.frame, equations=self.equations(),
+            impulses={name: normal}, tangential={name: along}, contacts=(self.contact,),
+            acted=(name,), frame=self.frame, equations=self.equations(),
             unknowns=self.unknowns,
             values={u: x.xreplace(stand_ins) for u, x in values.items()},
-            contact_impulse=(local_impulse[0].xreplace(stand_ins),
-                             local_impulse[1].xreplace(stand_ins)),
-            kinetic_energy_before=energy_before, energy_lost=lost,
-            energy_loss_fraction=fraction, approach_speed=self.approach_speed, **extra)
+            energies=(energy_before, lost, fraction), approach_speed=self.approach_speed,
+            **extra)
 
 
 def _piecewise(solutions: list[Solution], conditions: tuple[tuple, ...]) -> Solution:
@@ -469,13 +476,14 @@ def _piecewise(solutions: list[Solution], conditions: tuple[tuple, ...]) -> Solu
             continue
         velocity = [pw(lambda s, k=k, i=i: s.after[k].velocity[i]) for i in (0, 1)]
         after.append(replace(body, velocity=velocity, spin=pw(lambda s, k=k: s.after[k].spin)))
+    name = first.contact.name
     return replace(
         first, after=(after[0], after[1]),
         values={u: pw(lambda s, u=u: s.values[u]) for u in first.values},
-        contact_impulse=(pw(lambda s: s.contact_impulse[0]),
-                         pw(lambda s: s.contact_impulse[1])),
-        energy_lost=pw(lambda s: s.energy_lost),
-        energy_loss_fraction=pw(lambda s: s.energy_loss_fraction),
+        impulses={name: pw(lambda s: s.contact_impulse[0])},
+        tangential={name: pw(lambda s: s.contact_impulse[1])},
+        energies=(first.kinetic_energy_before, pw(lambda s: s.energy_lost),
+                  pw(lambda s: s.energy_loss_fraction)),
         regime=None, path=(),
         regimes=tuple((s.regime, c, s) for s, c in zip(solutions, conditions, strict=True)))
 

@@ -1,7 +1,11 @@
-"""What an impact leaves: final motion, impulses, energy, contact velocities.
+"""What an impact leaves, for one contact or many: the one result type.
 
-A :class:`Solution` is a self-contained value: it holds the bodies as given and just
-after, the contact, the impulse at O and the energies, and refers back to no solver.
+A :class:`Solution` is a self-contained value: the bodies as given and just after, every
+contact's normal and tangential impulse, every pivot's reaction, the energies, the rule
+that acted (and in which order), the case or regime with its conditions, and the labelled
+equations that were solved. The one-contact core (:class:`~rigidimpact.solve.impact.Impact`)
+and every rule for several contacts (:class:`~rigidimpact.solve.collision.Collision`)
+give this same type, so what reads one reads the other.
 
 Examples
 --------
@@ -19,7 +23,7 @@ Matrix([[1, 0]])
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
@@ -33,63 +37,127 @@ from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Solution"]
 
+EYE = sp.ImmutableMatrix.eye(2)
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, kw_only=True)
 class Solution:
-    """The solved impact.
+    """The solved impact: one type for one contact and for several, for every rule.
 
     Parameters
     ----------
-    before, after : pair of Body
-        The two bodies as given and just after the impact (scene frame).
-    contact : Contact
+    before, after : tuple of Body
+        The bodies as given and just after the impact (scene frame).
+    impulses : mapping
+        Contact name -> its normal impulse (on the second body, along the unit normal).
+    tangential : mapping
+        Contact name -> its tangential impulse (along the normal turned by +90 degrees);
+        empty when the rule ran without friction (every one is then zero).
+    contacts : tuple of Contact
+        The contacts, with their laws.
+    rule, order, acted, passes : str, tuple, tuple, int
+        The rule that acted (``simultaneous``, ``sequential``, ``compliant``; the
+        one-contact core says ``simultaneous``: with one contact every rule gives its
+        answer), the order of a sequential rule, the contacts that pushed, and the
+        passes in which some contact acted.
+    equations, unknowns, values : tuple, tuple, mapping
+        The labelled equations solved (contact frame for one contact), what they were
+        solved for and their values (for one contact; see
+        :meth:`~rigidimpact.solve.collision.Collision.equations` for several).
+    conditions : tuple
+        With symbols: when this is the rule's outcome (relations; empty: always).
+    regime, regimes, path, courses :
+        Friction: the course the impact took (``slip``, ``slip-stick``, ...); with
+        symbols every course it can take as ``(name, conditions, Solution)`` (the fields
+        above are then ``Piecewise`` over them); the impulse at each event (Routh's
+        diagram); what each step of a sequential rule did.
     frame : 2x2 matrix
-        Rotation from scene to contact coordinates.
-    equations : tuple of Equation
-        The laws used, in the contact frame.
-    unknowns : tuple of Symbol
-        What was solved for (contact-frame components).
-    values : mapping
-        Unknown -> exact expression.
-    contact_impulse : pair of Expr
-        The impulse the first body gives the second, (normal, tangential) in the contact
-        frame, as solved.
-    kinetic_energy_before, energy_lost : Expr
-        The energy lost comes from the work of the impulse (Kelvin's theorem): an impulse
-        P at a point changes a body's kinetic energy by P times the mean of that point's
-        velocity before and after, so the pair loses ``-P . (u_before + u_after) / 2``
-        with u the closing velocity of the touching points; exact, and linear in the
-        compact impulse, where ``K_i - K_f`` from squared velocities swells.
-    energy_loss_fraction : Expr
-        ``(K_i - K_f) / K_i``, the paper's eq. (7) for the barbell.
-    approach_speed : Expr
-        How fast the touching points closed along the normal.
-    regime : str or None
-        With friction and numbers, the course the impact took (``slip``,
-        ``slip-stick``, ``slip-reversal``, ...).
-    regimes : tuple of (name, conditions, Solution)
-        With friction and symbols, every course the impact can take, each with the
-        conditions under which it does and its own solution; the fields above are then
-        ``Piecewise`` over them.
-    path : tuple of (P_n, P_t)
-        The impulse at each event of a frictional impact (Routh's diagram).
+        One contact: the rotation from scene to contact coordinates.
+    approach_speed : Expr or None
+        One contact: how fast the touching points closed along the normal.
+    energies : (K before, lost, lost / K before) or None
+        Given by the one-contact core from the work of the impulse (Kelvin's theorem: an
+        impulse P at a point changes a body's kinetic energy by P times the mean of that
+        point's velocities before and after), exact and compact; otherwise taken from the
+        bodies' kinetic energies.
+    pivot_reactions : mapping
+        Pivoted body name -> its pivot's reaction impulse (scene frame).
+    notes, method, energy_tolerance, history :
+        What the rule could not settle, how a large problem was solved, the relative
+        energy error an integration carries, and a compliant run's record when asked.
     """
 
-    before: tuple[Body, Body]
-    after: tuple[Body, Body]
-    contact: Contact
-    frame: sp.ImmutableMatrix
-    equations: tuple[Equation, ...]
-    unknowns: tuple[sp.Symbol, ...]
-    values: Mapping[sp.Symbol, sp.Expr]
-    contact_impulse: tuple[sp.Expr, sp.Expr]
-    kinetic_energy_before: sp.Expr
-    energy_lost: sp.Expr
-    energy_loss_fraction: sp.Expr
-    approach_speed: sp.Expr
+    before: tuple[Body, ...]
+    after: tuple[Body, ...]
+    impulses: Mapping[str, sp.Expr]
+    tangential: Mapping[str, sp.Expr] = field(default_factory=dict)
+    contacts: tuple[Contact, ...] = ()
+    rule: str = "simultaneous"
+    order: tuple[str, ...] = ()
+    acted: tuple[str, ...] = ()
+    passes: int = 1
+    equations: tuple[Equation, ...] = ()
+    unknowns: tuple[sp.Symbol, ...] = ()
+    values: Mapping[sp.Symbol, sp.Expr] = field(default_factory=dict)
+    conditions: tuple[Any, ...] = ()
     regime: str | None = None
     regimes: tuple[tuple[str | None, tuple[sp.Basic, ...], Solution], ...] = ()
     path: tuple[tuple[sp.Expr, sp.Expr], ...] = ()
+    courses: tuple[str, ...] = ()
+    frame: sp.ImmutableMatrix = EYE
+    approach_speed: sp.Expr | None = None
+    energies: tuple[sp.Expr, sp.Expr, sp.Expr] | None = field(default=None, repr=False)
+    pivot_reactions: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+                                                                   repr=False)
+    notes: tuple[str, ...] = ()
+    method: str = field(default="", repr=False)
+    energy_tolerance: float | None = field(default=None, repr=False)
+    history: Any = field(default=None, repr=False, compare=False)
+
+    @property
+    def contact(self) -> Contact:
+        """The (first) contact."""
+        return self.contacts[0]
+
+    @property
+    def contact_impulse(self) -> tuple[sp.Expr, sp.Expr]:
+        """The first contact's impulse (normal, tangential) in its own frame."""
+        name = self.contact.name
+        return self.impulses[name], self.tangential.get(name, sp.Integer(0))
+
+    @cached_property
+    def kinetic_energy_before(self) -> sp.Expr:
+        """Total kinetic energy just before the impact."""
+        if self.energies is not None:
+            return self.energies[0]
+        return sum((b.kinetic_energy for b in self.before), sp.Integer(0))
+
+    @cached_property
+    def energy_lost(self) -> sp.Expr:
+        """Kinetic energy lost (negative: the model created energy)."""
+        if self.energies is not None:
+            return self.energies[1]
+        after = sum((b.kinetic_energy for b in self.after), sp.Integer(0))
+        return tidy(self.kinetic_energy_before - after)
+
+    @cached_property
+    def energy_loss_fraction(self) -> sp.Expr:
+        """``(K_i - K_f) / K_i``, the paper's eq. (7) for the barbell; negative when the
+        model created energy."""
+        if self.energies is not None:
+            return self.energies[2]
+        after = sum((b.kinetic_energy for b in self.after), sp.Integer(0))
+        return tidy(1 - after / self.kinetic_energy_before)
+
+    @property
+    def frictional(self) -> bool:
+        """Whether the rule ran with friction (its tangential impulses are kept)."""
+        return bool(self.tangential) and any(c.laws[1].grips for c in self.contacts)
+
+    @property
+    def label(self) -> str:
+        """``simultaneous`` or ``sequential left, right``."""
+        return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
 
     def regime_at(self, values: Mapping[sp.Symbol, Any]) -> str | None:
         """The course the impact takes at these values (None without friction).
@@ -111,8 +179,8 @@ class Solution:
         return None
 
     def __repr__(self) -> str:
-        return (f"Solution({self.before[0].name!r}, {self.before[1].name!r}, "
-                f"unknowns={[str(u) for u in self.unknowns]})")
+        return (f"Solution({self.label!r}, bodies={[b.name for b in self.before]}, "
+                f"acted={list(self.acted)})")
 
     def _repr_latex_(self) -> str:
         r"""The results, typeset in the paper's notation (Jupyter).
@@ -152,9 +220,13 @@ class Solution:
         ...        Contact(restitution=1)).solve().impulse.T
         Matrix([[2, 0]])
         """
-        local = sp.ImmutableMatrix(self.contact_impulse)
-        return local if self.frame == sp.eye(2) else \
-            (self.frame.T * local).applyfunc(tidy)
+        normal, along = self.contact_impulse
+        if self.frame != EYE:  # the one-contact core's own frame (a tilt kept symbolic)
+            return (self.frame.T * sp.ImmutableMatrix([normal, along])).applyfunc(tidy)
+        c = self.contact
+        if tuple(c.normal) == (1, 0):
+            return sp.ImmutableMatrix([normal, along])
+        return (normal * c.unit_normal + along * c.tangent).applyfunc(tidy)
 
     @property
     def normal_impulse(self) -> sp.Expr:
@@ -168,7 +240,7 @@ class Solution:
 
     def pivot_impulse(self, body: Body) -> sp.ImmutableMatrix:
         """The reaction impulse a pivot gives its body (scene frame): the body's change of
-        momentum less the contact impulse it received.
+        momentum less the contact impulses it received.
 
         Examples
         --------
@@ -180,8 +252,14 @@ class Solution:
         >>> sol.pivot_impulse(rod).T  # struck at the centre of percussion, 2/3 down
         Matrix([[0, 0]])
         """
-        index = (self.before[0].name, self.before[1].name).index(body.name)
-        given = self.impulse if index == 1 else -self.impulse
+        if body.name in self.pivot_reactions:
+            return sp.ImmutableMatrix(self.pivot_reactions[body.name])
+        if len(self.contacts) != 1:
+            raise ValueError(f"no pivot reaction was found for {body.name}")
+        names = [b.name for b in self.before]
+        index = names.index(body.name)
+        second = self.contact.second if self.contact.bodies else names[1]
+        given = self.impulse if body.name == second else -self.impulse
         change = self.after[index].momentum - self.before[index].momentum
         return (change - given).applyfunc(tidy)
 
@@ -198,9 +276,10 @@ class Solution:
 
     def results(self) -> dict[str, sp.Expr]:
         """Results under the keys of docs/scenes.md: ``BODY.vx``, ``BODY.vy``, ``BODY.omega``
-        (not for a fixed body), ``impulse`` and ``energy_loss_fraction`` (and ``impulse_t``
-        when sticking), ``contact.normal_impulse`` and ``contact.tangential_impulse``, and
-        ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body.
+        (not for a fixed body), ``impulse`` (the first contact's normal impulse) and
+        ``energy_loss_fraction`` (and ``impulse_t`` when one contact sticks),
+        ``CONTACT.normal_impulse`` and ``CONTACT.tangential_impulse`` for every contact,
+        and ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body.
 
         Examples
         --------
@@ -218,13 +297,15 @@ class Solution:
                 continue
             results[f"{body.name}.vx"] = body.velocity[0]
             results[f"{body.name}.vy"] = body.velocity[1]
-            results[f"{body.name}.omega"] = body.spin
-        results["impulse"] = self.normal_impulse
-        if self.contact.tangential == "stick":
+            results[f"{body.name}.omega"] = sp.sympify(body.spin)
+        first = next(iter(self.impulses))
+        results["impulse"] = self.impulses[first]
+        if len(self.contacts) == 1 and self.contact.tangential == "stick":
             results["impulse_t"] = self.tangential_impulse
         results["energy_loss_fraction"] = self.energy_loss_fraction
-        results[f"{self.contact.name}.normal_impulse"] = self.normal_impulse
-        results[f"{self.contact.name}.tangential_impulse"] = self.tangential_impulse
+        for name, impulse in self.impulses.items():
+            results[f"{name}.normal_impulse"] = impulse
+            results[f"{name}.tangential_impulse"] = self.tangential.get(name, sp.Integer(0))
         for body in self.before:
             if body.support == "pivot":
                 reaction = self.pivot_impulse(body)
