@@ -64,7 +64,7 @@ STATE = {"q1": sp.Rational(3, 5), "q2": sp.Rational(4, 5), "u1": sp.Integer(-1),
 FRICTION, RESTITUTION = sp.Rational(7, 10), sp.Integer(1)
 
 
-def strike(law: str, kane=None, N=None, tip=None) -> ri.mechanics.ImpactMap:
+def strike(law: str, kane=None, N=None, tip=None) -> ri.Solution:
     """The tip's impact on the floor under `law` at the state above (numbers)."""
     if kane is None:
         kane, N, tip = pendulum()
@@ -87,10 +87,10 @@ def main(argv=None) -> int:
     out = {}
     for law in ("newton", "poisson", "energetic"):
         solved = strike(law, kane, N, tip)
-        (normal, along), = solved.impulses.values()
+        normal, along = solved.contact_impulse
         out[law] = {"u1": float(solved.speeds_after[0]), "u2": float(solved.speeds_after[1]),
                     "normal_impulse": float(normal), "tangential_impulse": float(along),
-                    "course": next(iter(solved.courses.values())),
+                    "course": solved.regime,
                     "energy_lost": float(solved.energy_lost),
                     "warnings": list(solved.warnings)}
     if args.json:

@@ -12,7 +12,7 @@ import sympy as sp
 from helpers import touching
 from rigidimpact.errors import InputError
 from rigidimpact.model.bodies import Body
-from rigidimpact.solve.collision import Collision
+from rigidimpact.solve.collision import Collision, Sequential
 
 HALF = sp.Rational(1, 2)
 
@@ -137,3 +137,80 @@ def test_friction_rules_that_cannot_create_energy_do_not():
 
         assert problem("energetic", e).sequential(("left", "right")).energy_loss_fraction >= 0
         assert problem("newton", 0).simultaneous().energy_loss_fraction >= 0
+
+
+# ---- symbols: one sequential pass with friction, case by case -----------------------------
+
+SIDE_BY_SIDE = """
+[[bodies]]
+name = "a"
+shape = "particle"
+mass = "1"
+velocity = ["1", "-1"]
+[[bodies]]
+name = "b"
+shape = "particle"
+mass = "1"
+position = ["5", "0"]
+velocity = ["2", "-1"]
+[[bodies]]
+name = "floor"
+shape = "fixed"
+[[contacts]]
+name = "left"
+bodies = ["a", "floor"]
+normal = ["0", "-1"]
+restitution = "e"
+tangential = "coulomb"
+friction = "mu"
+law = "LAW"
+[[contacts]]
+name = "right"
+bodies = ["b", "floor"]
+point = ["5", "0"]
+normal = ["0", "-1"]
+restitution = "e"
+tangential = "coulomb"
+friction = "mu"
+law = "LAW"
+[impact]
+rule = "sequential"
+order = ["left", "right"]
+"""
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_a_symbolic_sequential_pass_with_friction_is_piecewise(law):
+    # two particles slide onto a floor side by side (W diagonal: no coupling). By hand,
+    # each has normal impulse 1 + e; the slip (1 and 2) is used up by friction
+    # mu (1 + e) or stops: a.vx = max(1 - mu (1 + e), 0), b.vx = max(2 - mu (1 + e), 0)
+    from rigidimpact.scenes.scene import parse_scene
+
+    scene = parse_scene(SIDE_BY_SIDE.replace("LAW", law))
+    results = scene.derivation().results
+    e, mu = (scene.symbols[n] for n in ("e", "mu"))
+    assert isinstance(results["a.vx"], sp.Piecewise)
+    for e_value, mu_value in [(0, sp.Rational(1, 4)), (sp.Rational(1, 2), sp.Rational(1, 2)),
+                              (sp.Rational(1, 2), 1), (1, sp.Rational(3, 4)), (1, 2)]:
+        at = {e: e_value, mu: mu_value}
+        used = mu_value * (1 + e_value)
+        assert results["a.vx"].subs(at) == max(1 - used, 0), at
+        assert results["b.vx"].subs(at) == max(2 - used, 0), at
+        assert results["a.vy"].subs(at) == e_value
+        # the same at numbers, by the rule's own numeric passes
+        (numeric,) = scene.collision(at).solve(Sequential(("left", "right")))
+        for key in ("a.vx", "b.vx", "left.tangential_impulse", "right.tangential_impulse"):
+            assert results[key].subs(at) == numeric.results()[key], (at, key)
+
+
+def test_a_pass_that_never_ends_the_rule_names_what_needs_numbers():
+    from pathlib import Path
+
+    from rigidimpact.scenes.scene import parse_scene
+
+    text = (Path(__file__).resolve().parents[1] / "derivations" / "rod-slides-flat.toml"
+            ).read_text()
+    text = text.replace('mu = "1/4"\n', "").replace('e = "1/2"\n', "").replace(
+        'rule = "simultaneous"', 'rule = "sequential"\norder = ["left", "right"]')
+    with pytest.raises(InputError, match="does not end the sequential rule .* for e, mu"):
+        parse_scene(text).derivation()

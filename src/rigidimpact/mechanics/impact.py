@@ -44,8 +44,9 @@ l*u(t)*A.x
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -56,6 +57,8 @@ from sympy.polys.matrices import DomainMatrix
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
+from rigidimpact.solve.collision import MAX_PASSES, Rule, Sequential, Simultaneous
+from rigidimpact.solve.solution import Solution
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
 
@@ -103,46 +106,7 @@ def contact(point: Any, normal: Any, *, other: Any = None, restitution: Any = 0,
     return PointContact(point, normal, laws, other)
 
 
-@dataclass(frozen=True)
-class ImpactMap:
-    """What an impact does to a mechanics system: the one result of :meth:`SystemImpact.solve`.
-
-    Attributes
-    ----------
-    speeds_before, speeds_after
-        The generalized speeds u before (the system's own symbols) and their closed forms
-        after, in q and the speeds before.
-    impulses : dict
-        Contact name -> (normal impulse, tangential impulse).
-    courses : dict
-        Contact name -> how its impulse came about (``stick``, ``smooth``, Routh's
-        ``slip``, ``slip-stick``, ``slip-reversal`` ...).
-    equations, unknowns
-        The labelled equations solved (generalized momentum balance ``M (u+ - u-) =
-        J^T P``, then each contact's laws) and what they were solved for.
-    energy_lost
-        ``T- - T+`` from the mass matrix (negative: the model created energy).
-    """
-
-    speeds_before: tuple[Any, ...]
-    speeds_after: sp.ImmutableMatrix
-    impulses: dict[str, tuple[sp.Expr, sp.Expr]]
-    courses: dict[str, str]
-    equations: tuple[Equation, ...]
-    unknowns: tuple[sp.Symbol, ...]
-    energy_lost: sp.Expr
-    warnings: tuple[str, ...] = field(default=())
-
-    @property
-    def matrix(self) -> sp.Matrix:
-        """H with ``u+ = H u-`` (the map is linear in the speeds before for every law
-        except friction whose course depends on them)."""
-        return self.speeds_after.jacobian(sp.Matrix(self.speeds_before))
-
-    def _repr_latex_(self) -> str:
-        rows = " \\\\ ".join(f"{sp.latex(u)}^{{+}} &= {sp.latex(v)}" for u, v in
-                             zip(self.speeds_before, self.speeds_after, strict=True))
-        return f"$$\\begin{{aligned}} {rows} \\end{{aligned}}$$"
+ImpactMap = Solution  # what an impact does to a mechanics system: the one result type
 
 
 @dataclass(frozen=True)
@@ -159,6 +123,9 @@ class SystemImpact:
     # rows (normal, tangent) of every contact in turn, v = J u; formed from the points'
     # partial velocities when not given (at() gives it with numbers put in)
     J: Any = None
+    # dependent speeds (a nonholonomic system): every speed, independent first, and T
+    # with u_all = T u (the velocity constraints solved for the dependent ones)
+    fold: tuple[tuple[Any, ...], sp.ImmutableMatrix] | None = None
 
     @property
     def u_before(self) -> sp.Matrix:
@@ -191,15 +158,19 @@ class SystemImpact:
         except ValueError:
             raise InputError(f"{c.name}.point", f"its velocity in {self.frame} is not "
                              "defined (set_vel or v2pt_theory)") from None
-        partials = me.partial_velocity([velocity], list(self.u), self.frame)[0]
-        rest = (velocity - sum((p * s for p, s in zip(partials, self.u, strict=True)),
+        speeds = self.u if self.fold is None else self.fold[0]
+        partials = me.partial_velocity([velocity], list(speeds), self.frame)[0]
+        rest = (velocity - sum((p * s for p, s in zip(partials, speeds, strict=True)),
                                me.Vector(0))).simplify()
         if rest != me.Vector(0) and any(x != 0 for x in rest.to_matrix(self.frame)):
             raise InputError(f"{c.name}.point", "its velocity has a part that is not linear "
                              "in the speeds (a driven or moving constraint): not supported")
         n, t = self._unit(c)
-        return ([sp.trigsimp(p.dot(n)) for p in partials],
-                [sp.trigsimp(p.dot(t)) for p in partials])
+        rows = sp.Matrix([[p.dot(n) for p in partials], [p.dot(t) for p in partials]])
+        if self.fold is not None:  # along the independent speeds: v = J_all T u
+            rows = rows * self.fold[1]
+        return ([_no_tan(sp.trigsimp(x)) for x in rows.row(0)],
+                [_no_tan(sp.trigsimp(x)) for x in rows.row(1)])
 
     @cached_property
     def _stand_ins(self) -> dict[sp.Basic, sp.Dummy]:
@@ -247,14 +218,23 @@ class SystemImpact:
             return self.J * self._M_inv_JT
         return self._out(self._solved[1]).applyfunc(_tidy)
 
-    def solve(self) -> ImpactMap:
-        """The speeds after, each contact's impulse, the equations and the energy lost.
+    def solve(self, rule: Rule | None = None) -> Solution:
+        """The speeds after, each contact's impulse, the equations and the energy lost,
+        as the one :class:`~rigidimpact.solve.solution.Solution` of rigidimpact.
 
         One contact: its own exact answer under its laws (Routh's method for Coulomb,
         Walton's for rough; with symbols a friction law's course must be decided by
-        numbers). Several contacts: all act together, each under a linear law (smooth or
-        stick with its restitution), the impulses from one linear system; with numbers a
-        normal impulse that would pull is said in a warning.
+        numbers), whatever the rule. Several contacts, by `rule`:
+
+        - :class:`~rigidimpact.solve.collision.Simultaneous` (the default): all act
+          together, each under a linear law (smooth, or stick, with Newton's
+          restitution). With symbols, the case in which every contact acts, with the
+          conditions (each normal impulse >= 0) under which it is the answer; with
+          numbers, the sets of acting contacts are tried from the largest down and the
+          first in which no contact pulls and no released contact closes is the answer.
+        - :class:`~rigidimpact.solve.collision.Sequential` with an order: one contact at a
+          time, each its own impact under its own laws (Routh's and Walton's too), in
+          passes until none approaches; numbers needed.
         """
         v = self.J * self.u_before
         normals = [v[2 * i] for i in range(len(self.contacts))]
@@ -263,22 +243,64 @@ class SystemImpact:
                              f"{', '.join(f'{float(x):.6g}' for x in normals)} >= 0): "
                              "there is no impact")
         laws = [c.laws.laws for c in self.contacts]
-        if all(not tangential.solved_by_regimes for _, tangential in laws):
+        if len(self.contacts) == 1:
+            if laws[0][1].solved_by_regimes:
+                return self._by_regimes()
             return self._linear()
-        if len(self.contacts) > 1:
-            name = next(c.name for c, (_, t) in zip(self.contacts, laws, strict=True)
-                        if t.solved_by_regimes)
-            raise InputError(f"{name}.tangential", "friction by regimes (Coulomb, rough) "
-                             "at one of several contacts of a mechanics system is not "
-                             "supported: use smooth or stick there")
-        return self._by_regimes()
+        rule = Simultaneous() if rule is None else rule
+        if isinstance(rule, Sequential):
+            if rule.order is None:
+                raise InputError("rule", "give the sequential rule its order of contacts, "
+                                 "e.g. ri.Sequential((\"left\", \"right\"))")
+            return self._sequential(tuple(rule.order))
+        if not isinstance(rule, Simultaneous):
+            raise InputError("rule", f"the {rule.name} rule is not offered for a mechanics "
+                             "system: use Simultaneous() or Sequential(order)")
+        for c, (restitution, tangential) in zip(self.contacts, laws, strict=True):
+            if tangential.solved_by_regimes:
+                raise InputError(f"{c.name}.tangential", f"the {tangential.name} law "
+                                 "(by regimes) has no form for several contacts of a "
+                                 "mechanics system acting together: use smooth or stick "
+                                 "there, or the rule Sequential(order)")
+            if restitution.name != "newton":
+                raise InputError(f"{c.name}.law", f"{restitution.name}'s law has no form "
+                                 "for several contacts of a mechanics system acting "
+                                 "together here: use Newton's, or the rule "
+                                 "Sequential(order)")
+        if not self._numbers or not all(x.is_number for x in self.u_before):
+            return self._linear()
+        return self._acting()
 
-    def _linear(self) -> ImpactMap:
+    def _acting(self) -> Solution:
+        """With numbers: the largest set of acting contacts in which none pulls and every
+        released one leaves at least as fast as its law asks."""
+        k = len(self.contacts)
+        v = self.J * self.u_before
+        for size in range(k, 0, -1):
+            for active in itertools.combinations(range(k), size):
+                try:
+                    solution = self._linear(active)
+                except InputError:
+                    continue  # these contacts' conditions do not fix their impulses
+                P = [solution.impulses[c.name] for c in self.contacts]
+                after = self.J * sp.Matrix(solution.speeds_after)
+                scale = max(abs(x) for x in v)
+                released_ok = all(
+                    after[2 * i] >= self.contacts[i].laws.laws[0].leaving(min(v[2 * i], 0))
+                    - sp.Float(1e-12) * scale for i in range(k) if i not in active)
+                if all(P[i] >= 0 for i in active) and released_ok:
+                    return solution
+        raise InputError("contacts", "no set of acting contacts fits the laws (each "
+                         "pushing, each released one leaving): the rule has no answer")
+
+    def _linear(self, active: Sequence[int] | None = None) -> Solution:
         """Every law a pair of linear conditions: one linear system in the speeds after
-        and the impulses, ``M u+ - J^T P = M u-`` with each contact's two conditions,
-        solved fraction-free over the polynomials of the stand-ins (no gcd until the
-        end, where each result is reduced once)."""
+        and the impulses, ``M u+ - J^T P = M u-`` with each acting contact's two
+        conditions (a released one: no impulse), solved fraction-free over the
+        polynomials of the stand-ins (no gcd until the end, where each result is
+        reduced once)."""
         n, k = len(self.u), len(self.contacts)
+        acting = range(k) if active is None else active
         M, J = self._in(self.M), self._in(self.J)
         u = self._in(self.u_before)
         after = sp.Matrix(sp.symbols(f"x0:{n}"))
@@ -287,9 +309,17 @@ class SystemImpact:
         for i, c in enumerate(self.contacts):
             restitution, tangential = c.laws.laws
             pair = slice(2 * i, 2 * i + 2)
+            if i not in acting:
+                rows += [P[2 * i], P[2 * i + 1]]
+                continue
             closing = (J[i * 2, :] * u)[0]
+            if closing.is_number:  # a contact at rest or opening leaves at rest or faster
+                closing = min(closing, 0)
             rows += tangential.linear_conditions(J[pair, :] * u, J[pair, :] * after,
                                                  P[pair, 0], restitution.leaving(closing))
+        # each row over one denominator, kept as its numerator (a nonholonomic system's
+        # folded mass matrix has 1/cos in it): polynomials for the fraction-free solve
+        rows = [sp.fraction(sp.together(sp.expand(r)))[0] for r in rows]
         A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
         ring = sp.QQ[tuple(gens)] if gens else sp.QQ
@@ -307,10 +337,19 @@ class SystemImpact:
         du = DomainMatrix.from_Matrix(u).convert_to(field)
         dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
         twice = (du.transpose() * dM * du - dx.transpose() * dM * dx)[0, 0].element
-        courses = {c.name: c.laws.laws[1].name for c in self.contacts}
-        return self._map(u_after, impulse, courses, field.to_sympy(twice) / 2)
+        courses = {c.name: c.laws.laws[1].name if i in acting else "released"
+                   for i, c in enumerate(self.contacts)}
+        solution = self._map(u_after, impulse, courses, field.to_sympy(twice) / 2)
+        if k > 1 and active is None:  # the case where every contact acts, and when:
+            # each approaching, each pushing
+            closing = self.J * self.u_before
+            conditions = tuple(sp.Le(closing[2 * i], 0) for i in range(k)) + tuple(
+                sp.Ge(p, 0) for p in solution.impulses.values())
+            solution = replace(solution, conditions=tuple(
+                c for c in conditions if c is not sp.true))
+        return solution
 
-    def _by_regimes(self) -> ImpactMap:
+    def _by_regimes(self) -> Solution:
         """One contact whose law picks its course from the numbers (Coulomb by Routh's
         method, rough by Walton's): W and the velocities before must be numbers."""
         c = self.contacts[0]
@@ -321,10 +360,6 @@ class SystemImpact:
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
                              "depends on the numbers: give numbers for q, the speeds and "
                              "the constants first (SystemImpact.at and the speeds' values)")
-        if W.det() == 0:
-            raise InputError(f"{c.name}.tangential", "the point cannot move both along and "
-                             "across the contact here (W is singular): a grip is not "
-                             "determined; make it smooth")
         normal, along, course = tangential.alone(W, v, restitution)
         impulse = sp.Matrix([normal, along])
         after = u + self._M_inv_JT * impulse
@@ -332,17 +367,60 @@ class SystemImpact:
         return self._map(self._in(after), self._in(impulse), {c.name: course},
                          self._in(sp.Matrix([energy]))[0])
 
+    def _sequential(self, order: tuple[str, ...]) -> Solution:
+        """One contact at a time in `order`, each its own impact under its own laws
+        (its 2x2 block of W, :meth:`ContactLaw.alone`), in passes until none approaches."""
+        names = [c.name for c in self.contacts]
+        if sorted(order) != sorted(names) or len(order) != len(names):
+            raise InputError("rule.order", f"must list the contacts by name, each once: "
+                             f"{', '.join(names)}")
+        if not (self._numbers and all(x.is_number for x in self.u_before)):
+            raise InputError("rule", "the sequential rule at a mechanics system needs "
+                             "numbers: SystemImpact.at(...) with q, the speeds and the "
+                             "constants")
+        u = sp.Matrix(self.u_before)
+        scale = max(abs(x) for x in self.J * u)
+        total = sp.zeros(2 * len(names), 1)
+        courses: dict[str, list[str]] = {n: [] for n in names}
+        passes = 0
+        while True:
+            acted = False
+            for name in order:
+                i = names.index(name)
+                pair = slice(2 * i, 2 * i + 2)
+                v = self.J[pair, :] * u
+                if not v[0] < -sp.Float(1e-12) * scale:
+                    continue
+                restitution, tangential = self.contacts[i].laws.laws
+                normal, along, course = tangential.alone(self.W[pair, pair], v, restitution)
+                push = sp.Matrix([normal, along])
+                u = u + self._M_inv_JT[:, pair] * push
+                total[pair, 0] = total[pair, 0] + push
+                courses[name].append(course)
+                acted = True
+            passes += 1
+            if not acted:
+                break
+            if passes >= MAX_PASSES:
+                raise InputError("contacts", f"the sequential rule did not end within "
+                                 f"{MAX_PASSES} passes")
+        energy = ((self.u_before.T * self.M * self.u_before)[0] - (u.T * self.M * u)[0]) / 2
+        solution = self._map(self._in(u), self._in(total),
+                             {n: ", ".join(c) or "released" for n, c in courses.items()},
+                             self._in(sp.Matrix([energy]))[0], summed=True)
+        return replace(solution, rule="sequential", order=order, passes=passes - 1)
+
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
-             energy: sp.Expr) -> ImpactMap:
+             energy: sp.Expr, summed: bool = False) -> Solution:
         """The result, from the stand-ins back to q, the speeds and their sines."""
         back = self._out
         P = back(impulse)
-        impulses = {c.name: (_small(P[2 * i]), _small(P[2 * i + 1]))
-                    for i, c in enumerate(self.contacts)}
+        normal = {c.name: _small(P[2 * i]) for i, c in enumerate(self.contacts)}
+        along = {c.name: _small(P[2 * i + 1]) for i, c in enumerate(self.contacts)}
         v = self.J * self.u_before
-        equations, unknowns = self._equations(v, courses, impulses)
+        equations, unknowns = self._equations(v, courses, normal, along, summed)
         lost = _small(back(sp.Matrix([energy]))[0])
-        warnings = self._warnings(impulses)
+        warnings = self._warnings(normal)
         before = (self.u_before.T * self.M * self.u_before)[0] / 2
         if lost.is_number and before.is_number and lost < -sp.Float(1e-12) * before:
             laws = ", ".join(f"{c.laws.law} with {c.laws.tangential}" for c in self.contacts)
@@ -351,8 +429,21 @@ class SystemImpact:
                          f"({laws}) cannot honour the energy balance here (Newton's law "
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
-        return ImpactMap(tuple(self.u), sp.ImmutableMatrix(back(after).applyfunc(_small)),
-                         impulses, courses, equations, unknowns, lost, warnings)
+        one = len(self.contacts) == 1
+        return Solution(
+            before=(), after=(), impulses=normal, tangential=along,
+            contacts=tuple(c.laws for c in self.contacts),
+            acted=tuple(n for n, p in normal.items() if p != 0), equations=equations,
+            unknowns=unknowns, regime=next(iter(courses.values())) if one else None,
+            courses=tuple(f"{n}: {c}" for n, c in courses.items()),
+            energies=(before, lost, lost / before), warnings=warnings,
+            speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
+            speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)))
+
+    def _all(self, independent: sp.Matrix) -> sp.Matrix:
+        """Every speed from the independent ones (the dependent ones by the velocity
+        constraints, which hold after the impact as before)."""
+        return independent if self.fold is None else self.fold[1] * independent
 
     def at(self, values: dict) -> SystemImpact:
         """The same impact with numbers (or expressions) for q, the constants and (keyed
@@ -362,12 +453,13 @@ class SystemImpact:
                        zip(self.u, self.u_before, strict=True))
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
                          for c in self.contacts)
+        fold = None if self.fold is None else (self.fold[0], self.fold[1].xreplace(put))
         return SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts,
-                            speeds, self.J.xreplace(put))
+                            speeds, self.J.xreplace(put), fold)
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
-                   impulses: dict[str, tuple[sp.Expr, sp.Expr]]
-                   ) -> tuple[tuple[Equation, ...], tuple]:
+                   normal: dict[str, sp.Expr], along: dict[str, sp.Expr],
+                   summed: bool = False) -> tuple[tuple[Equation, ...], tuple]:
         after = [sp.Symbol(f"{_name(s)}^+") for s in self.u]
         pushes = []
         for c in self.contacts:
@@ -382,6 +474,13 @@ class SystemImpact:
         for i, c in enumerate(self.contacts):
             restitution, tangential = c.laws.laws
             course = courses[c.name]
+            if summed or course == "released":
+                how = (f"the sum of {c.name}'s impulses in turn (each its own impact)"
+                       if summed else f"{c.name} released: no impulse")
+                found += [Equation(how, "", P[2 * i], normal[c.name], law="rule"),
+                          Equation(how + ", tangential", "", P[2 * i + 1], along[c.name],
+                                   law="rule")]
+                continue
             if not tangential.solved_by_regimes or course == "stick":
                 found.append(Equation(f"restitution at {c.name} ({restitution.name}'s law "
                                       "on a straight impulse path)", "", v_after[2 * i],
@@ -394,18 +493,23 @@ class SystemImpact:
                                       P[2 * i + 1], 0, law="tangential"))
             else:  # Routh's (or Walton's) exact impulse for the course taken
                 how = f"{c.name} alone by the {tangential.name} law, course {course}"
-                found += [Equation(how, "", P[2 * i], impulses[c.name][0], law="tangential"),
+                found += [Equation(how, "", P[2 * i], normal[c.name], law="tangential"),
                           Equation(how + ", tangential", "", P[2 * i + 1],
-                                   impulses[c.name][1], law="tangential")]
+                                   along[c.name], law="tangential")]
         return tuple(found), tuple(after + pushes)
 
-    def _warnings(self, impulses: dict[str, tuple[sp.Expr, sp.Expr]]) -> tuple[str, ...]:
+    def _warnings(self, impulses: dict[str, sp.Expr]) -> tuple[str, ...]:
         found = []
-        for name, (normal, _) in impulses.items():
+        for name, normal in impulses.items():
             if normal.is_number and normal < 0:
                 found.append(f"{name} would pull (normal impulse {float(normal):.6g}): "
                              "the model cannot honour a push-only contact here")
         return tuple(found)
+
+
+def _no_tan(expr: Any) -> sp.Expr:
+    """tan written as sin/cos (the solver's stand-ins are sines and cosines)."""
+    return sp.sympify(expr).replace(sp.tan, lambda a: sp.sin(a) / sp.cos(a))
 
 
 def _small(expr: sp.Expr) -> sp.Expr:
@@ -439,16 +543,50 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
     dependent = getattr(system, "u_dep", None)
     if dependent is None:  # a KanesMethod keeps them here
         dependent = getattr(system, "_udep", ())
-    if dependent is not None and len(dependent):
-        raise InputError("system", "dependent speeds are not supported yet: give the "
-                         "system in independent speeds")
     if M.shape != (len(u), len(u)):
         raise InputError("system", f"its mass matrix is {M.shape[0]}x{M.shape[1]} for "
                          f"{len(u)} speeds")
+    fold = None
+    if dependent is not None and len(dependent):
+        M, u, fold = _folded(M, u, tuple(dependent))
     if not contacts:
         raise InputError("contacts", "give at least one contact")
     if frame is None:
         frame = getattr(system, "frame", None)
     if frame is None:
         frame = contacts[0].normal.args[0][1]
-    return SystemImpact(frame, q, u, M, tuple(contacts))
+    return SystemImpact(frame, q, u, M, tuple(contacts), fold=fold)
+
+
+def _folded(M: sp.MatrixBase, u: tuple, dependent: tuple
+            ) -> tuple[sp.ImmutableMatrix, tuple, tuple[tuple, sp.ImmutableMatrix]]:
+    """A nonholonomic system in its independent speeds.
+
+    Kane's method orders the speeds independent first and stacks its mass matrix as
+    ``[k_d; k_nh]``: the generalized inertia along the independent (nonholonomic)
+    partial velocities, ``k_d = T^T M_all``, over the velocity constraints' own
+    coefficients ``k_nh`` (``k_nh u_all + f_nh = 0``). The constraints give the dependent
+    speeds' changes from the independent ones, ``u_all = T u`` with ``T = [I; A]``,
+    ``A = -k_nh,dep^-1 k_nh,ind``; they hold through the impact (their impulsive
+    reactions do no work), so the impact's generalized momentum balance in the
+    independent speeds has the mass matrix ``k_d T = T^T M_all T`` and the contacts'
+    Jacobian ``J_all T``.
+    """
+    p = len(u) - len(dependent)
+    if tuple(u[p:]) != dependent:
+        raise InputError("system", "the dependent speeds must come last among its speeds "
+                         "(as Kane's method orders them)")
+    k_d, k_nh = sp.Matrix(M[:p, :]), sp.Matrix(M[p:, :])
+    block = k_nh[:, p:]
+    if sp.simplify(block.det()) == 0:
+        raise InputError("system", "its velocity constraints do not fix the dependent "
+                         "speeds from the independent ones")
+    def plain(x: sp.Expr) -> sp.Expr:  # tan as sin/cos: the solver's stand-ins see them
+        return _no_tan(sp.cancel(_no_tan(sp.trigsimp(_no_tan(x)))))
+
+    k_d, k_nh = k_d.applyfunc(plain), k_nh.applyfunc(plain)
+    block = k_nh[:, p:]
+    A = (-block.LUsolve(k_nh[:, :p])).applyfunc(plain)
+    T = sp.ImmutableMatrix(sp.Matrix.vstack(sp.eye(p), A))
+    folded = sp.ImmutableMatrix((k_d * T).applyfunc(plain))
+    return folded, tuple(u[:p]), (tuple(u), T)

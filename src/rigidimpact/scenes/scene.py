@@ -267,7 +267,7 @@ class Scene:
             setup += (f"rule: {self.rule}" + ("" if self.order is None
                                               else f", order {', '.join(self.order)}"),)
         results = first.results()
-        if len(outcomes) > 1 and outcomes[0].rule == "simultaneous":  # one case at a time
+        if len(outcomes) > 1 and all(o.conditions for o in outcomes):  # one case at a time
             cases = [sp.And(*o.conditions) for o in outcomes]
             results = {key: _cases([o.results()[key] for o in outcomes], cases)
                        for key in results}

@@ -723,7 +723,7 @@ class Collision:
         restitution, tangential = self.contacts[k].laws
         rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
-        if W.det() == 0 and tangential.grips:
+        if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
             raise InputError(f"{self.contacts[k].name}.tangential",
                              "the touching point cannot move both along and across the "
                              "contact (its 2x2 W is singular): a grip along it is not "
@@ -980,6 +980,82 @@ class Collision:
         return self._outcome("sequential", tuple(order), sp.Matrix(u),
                        self._named(total.applyfunc(tidy)), tuple(order),
                        conditions=_conditions(conditions))
+
+    def sequential_cases(self, order: Sequence[str]) -> tuple[Solution, ...]:
+        """The sequential rule with symbols, friction allowed: one pass in `order`, each
+        contact's step its own impact under its own laws, as in :meth:`sequential_pass`.
+        A Coulomb or rough step can take several courses (Routh's and Walton's regimes,
+        each with its conditions), so the pass is a tree of cases: one outcome per path
+        through it, with every condition along the path (and the pass's own: each
+        contact closing at its turn, none closing after). A path whose conditions cannot
+        hold is dropped.
+
+        Examples
+        --------
+        A particle of mass 1 sliding onto a floor at (1, -1) with Coulomb's mu and
+        Poisson's e = 1/2: the normal impulse is 1 in compression and 3/2 in all, so it
+        slides throughout while mu 3/2 <= 1, stops sliding in compression once mu >= 1,
+        and in restitution between.
+
+        >>> mu = sp.Symbol("mu", positive=True)
+        >>> floor = Contact((0, -1), sp.Rational(1, 2), "coulomb", "poisson", "f",
+        ...                 bodies=("p", "floor"), friction=mu)
+        >>> ball = Body.rigid(1, 0, (0, 0), (1, -1), name="p")
+        >>> cases = Collision((ball, Body.fixed("floor")), (floor,)).sequential_cases(("f",))
+        >>> for c in cases:
+        ...     print(c.courses, c.results()["p.vx"], c.conditions)
+        ('f: slip',) -(3*mu - 2)/2 (mu <= 2/3,)
+        ('f: slip-stick, in compression',) 0 (mu > 1,)
+        ('f: slip-stick, in restitution',) 0 (mu <= 1, mu > 2/3)
+        """
+        if not self.frictional:
+            return (self.sequential_pass(order),)
+        index = self._order_index(order)
+        n = len(index)
+        # each path so far: (u, normal impulses, tangential impulses, conditions, courses)
+        branches: list[tuple[sp.Matrix, sp.Matrix, sp.Matrix, list, list[str]]] = [
+            (sp.Matrix(self.u_before), sp.zeros(n, 1), sp.zeros(n, 1), [], [])]
+        for name in order:
+            k = index[name]
+            restitution, tangential = self.contacts[k].laws
+            rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
+            W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+            grown = []
+            for u, total, along, conditions, courses in branches:
+                v = (rows * u).applyfunc(tidy)
+                here = [*conditions, sp.Lt(v[0], 0)]
+                if tangential.solved_by_regimes:
+                    steps = [(r.impulse, r.conditions, r.name)
+                             for r in tangential.regimes(W, v, restitution)]
+                else:
+                    normal, t, course = tangential.alone(W, v, restitution)
+                    steps = [((normal, t), (), course)]
+                for (normal, t), more, course in steps:
+                    kept = _conditions([*here, *more])
+                    if kept == (sp.false,):
+                        continue
+                    push = sp.Matrix([tidy(normal), tidy(t)])
+                    after = (u + self.M_inverse * rows.T * push).applyfunc(tidy)
+                    grown.append((after, total + _at(n, k, push[0]), along + _at(n, k, push[1]),
+                                  [c for c in kept if c is not sp.true],
+                                  [*courses, f"{name}: {course}"]))
+            branches = grown
+        cases = []
+        for u, total, along, conditions, courses in branches:
+            kept = _conditions([*conditions, *(sp.Ge(x, 0) for x in self._times(u))])
+            if kept == (sp.false,):
+                continue
+            cases.append(self._outcome("sequential", tuple(order), u,
+                                       self._named(total.applyfunc(tidy)), tuple(order),
+                                       tangential=self._named(along.applyfunc(tidy)),
+                                       courses=tuple(courses), conditions=kept))
+        if not cases:
+            symbols = ", ".join(sorted(map(str, self.symbols)))
+            raise InputError("contacts", f"one pass in the order {', '.join(order)} does not "
+                             "end the sequential rule for any value of the symbols (a "
+                             "contact closes again after it): the passes that follow need "
+                             f"numbers; give [values] (or --set) for {symbols}")
+        return tuple(cases)
 
     def every_order(self) -> tuple[Solution, ...]:
         """The sequential rule in every order of the contacts."""
@@ -1242,6 +1318,12 @@ def _sign_of(relation: sp.Basic) -> sp.Basic:
     """
     if relation in (sp.true, sp.false):
         return relation
+    if isinstance(relation, (sp.And, sp.Or)):  # a regime's compound condition
+        return type(relation)(*(_sign_of(r) for r in relation.args))
+    if isinstance(relation, sp.Not):
+        return sp.Not(_sign_of(relation.args[0]))
+    if not isinstance(relation, sp.core.relational.Relational):
+        return relation
     op = type(relation)
     expr = sp.factor(relation.lhs - relation.rhs)
     numerator, denominator = sp.fraction(expr)
@@ -1254,6 +1336,13 @@ def _sign_of(relation: sp.Basic) -> sp.Basic:
             continue
         kept.append(factor)
     return op(sp.Mul(*kept), 0)
+
+
+def _at(n: int, k: int, value: sp.Expr) -> sp.Matrix:
+    """An n-vector holding `value` at k."""
+    vector = sp.zeros(n, 1)
+    vector[k] = value
+    return vector
 
 
 def _conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
@@ -1421,7 +1510,7 @@ class Sequential(Rule):
         if self.order is None:
             return collision.every_order()
         if collision.symbols:
-            return (collision.sequential_pass(self.order),)
+            return collision.sequential_cases(self.order)
         return (collision.sequential(self.order),)
 
 

@@ -82,6 +82,13 @@ class Solution:
         bodies' kinetic energies.
     pivot_reactions : mapping
         Pivoted body name -> its pivot's reaction impulse (scene frame).
+    warnings : tuple of str
+        What the model could not honour here (a contact that would pull, energy
+        created), said where the solver knew it.
+    speeds_before, speeds_after :
+        A sympy.physics.mechanics system's generalized speeds u before (its own
+        symbols) and their closed forms after, in q and the speeds before (the
+        impact's bodies are then the system's, not listed in `before` and `after`).
     notes, method, energy_tolerance, history :
         What the rule could not settle, how a large problem was solved, the relative
         energy error an integration carries, and a compliant run's record when asked.
@@ -110,6 +117,9 @@ class Solution:
     pivot_reactions: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
                                                                    repr=False)
     notes: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+    speeds_before: tuple[Any, ...] = ()
+    speeds_after: sp.ImmutableMatrix | None = None
     method: str = field(default="", repr=False)
     energy_tolerance: float | None = field(default=None, repr=False)
     history: Any = field(default=None, repr=False, compare=False)
@@ -155,6 +165,14 @@ class Solution:
         return bool(self.tangential) and any(c.laws[1].grips for c in self.contacts)
 
     @property
+    def matrix(self) -> sp.Matrix:
+        """A mechanics system's H with ``u+ = H u-`` (linear in the speeds before for
+        every law except friction whose course depends on them)."""
+        if self.speeds_after is None:
+            raise ValueError("only an impact of generalized speeds has this matrix")
+        return self.speeds_after.jacobian(sp.Matrix(self.speeds_before))
+
+    @property
     def label(self) -> str:
         """``simultaneous`` or ``sequential left, right``."""
         return self.rule if not self.order else f"{self.rule} {', '.join(self.order)}"
@@ -183,7 +201,8 @@ class Solution:
                 f"acted={list(self.acted)})")
 
     def _repr_latex_(self) -> str:
-        r"""The results, typeset in the paper's notation (Jupyter).
+        r"""The results, typeset in the paper's notation (Jupyter); a mechanics system's
+        speeds after as ``u^+ = ...``.
 
         Examples
         --------
@@ -195,6 +214,10 @@ class Solution:
         $$\begin{aligned} V_x^{(\mathrm{a})} &= 0
         """
 
+        if self.speeds_after is not None:
+            rows = " \\\\ ".join(f"{sp.latex(u)}^{{+}} &= {sp.latex(v)}" for u, v in
+                                 zip(self.speeds_before, self.speeds_after, strict=True))
+            return f"$$\\begin{{aligned}} {rows} \\end{{aligned}}$$"
         return aligned([(result_lhs(k), to_latex(v), "") for k, v in self.results().items()])
 
     @property
@@ -292,6 +315,9 @@ class Solution:
          'contact.tangential_impulse', 'energy_loss_fraction', 'impulse']
         """
         results: dict[str, sp.Expr] = {}
+        if self.speeds_after is not None:  # a mechanics system: its speeds after
+            for speed, value in zip(self.speeds_before, self.speeds_after, strict=True):
+                results[f"{getattr(speed, 'func', speed)}"] = value
         for body in self.after:
             if body.support == "fixed":
                 continue
@@ -300,7 +326,8 @@ class Solution:
             results[f"{body.name}.omega"] = sp.sympify(body.spin)
         first = next(iter(self.impulses))
         results["impulse"] = self.impulses[first]
-        if len(self.contacts) == 1 and self.contact.tangential == "stick":
+        if len(self.contacts) == 1 and self.contact.tangential == "stick" \
+                and self.speeds_after is None:
             results["impulse_t"] = self.tangential_impulse
         results["energy_loss_fraction"] = self.energy_loss_fraction
         for name, impulse in self.impulses.items():
