@@ -290,6 +290,14 @@ class ContactLaw:
     # the law has no velocity-level form and acts only as one contact's own impact
     velocity_states: ClassVar[tuple[str, ...]] = ("stick",)
     grips: ClassVar[bool] = True  # False: the law never gives a tangential impulse
+    # True: the law's printed condition is on the velocities after (no slip), so where
+    # no momentum law holds its tangential impulse is an unknown of its own
+    unknown_tangential: ClassVar[bool] = False
+
+    def energy_warning(self, restitution: NewtonRestitution) -> str | None:
+        """What this law, with `restitution`, cannot honour in general (kinetic energy
+        created for some data), said before any numbers; None when nothing."""
+        return None
 
     def cone(self) -> Any:
         """The friction coefficient bounding a sticking contact (None: no bound)."""
@@ -360,6 +368,9 @@ class NewtonRestitution(ContactLaw):
     e: sp.Expr
     name = "newton"
     splits_on_compression = False  # on a bent impulse path: the end is set by velocity
+    # on a bent impulse path (friction): never creates kinetic energy (Poisson's and the
+    # energetic law); Newton's kinematic law can (Kane and Levinson's paradox)
+    dissipative_on_bent_path: ClassVar[bool] = False
     # contacts acting together (the simultaneous rule): "velocity" (each acting contact
     # leaves at -e times its closing velocity), "impulse" (the compression impulses
     # solved with target zero, each scaled by 1 + e), None (no such form)
@@ -430,6 +441,14 @@ class Stick(ContactLaw):
 
     name = "stick"
     velocity_states = ("stick",)
+    unknown_tangential = True
+
+    def energy_warning(self, restitution: NewtonRestitution) -> str | None:
+        if sp.sympify(restitution.e).is_zero:
+            return None
+        return ("Newton's restitution with a sticking contact is not energy-consistent: for "
+                "e > 0 it creates kinetic energy for some data (check that "
+                "energy_loss_fraction >= 0 at your values; evaluate warns when it is not)")
 
     def equations(self, before, after):
         return (no_slip(after[0], after[1]),)
@@ -454,6 +473,7 @@ class PoissonRestitution(NewtonRestitution):
 
     name = "poisson"
     splits_on_compression = True
+    dissipative_on_bent_path = True
     together = "impulse"
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
@@ -493,6 +513,7 @@ class EnergeticRestitution(NewtonRestitution):
 
     name = "energetic"
     splits_on_compression = True
+    dissipative_on_bent_path = True
     together = None  # the work split of one contact: no form for contacts acting together
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
@@ -526,6 +547,14 @@ class Coulomb(ContactLaw):
 
     mu: Any = None
     name = "coulomb"
+
+    def energy_warning(self, restitution: NewtonRestitution) -> str | None:
+        if restitution.dissipative_on_bent_path or sp.sympify(restitution.e).is_zero:
+            return None
+        return ("Newton's restitution with Coulomb friction is not energy-consistent: when "
+                "slip stops or reverses during the impact it can create kinetic energy (the "
+                "Kane-Levinson paradox; Poisson's and the energetic law do not); evaluate "
+                "warns where it does")
     solved_by_regimes = True
     velocity_states: ClassVar[tuple[str, ...]] = ("stick", "slide+", "slide-")
 
@@ -573,6 +602,9 @@ class Rough(Coulomb):
     @classmethod
     def from_contact(cls, contact: Any) -> Rough:
         return cls(contact.friction, contact.tangential_restitution)
+
+    def energy_warning(self, restitution: NewtonRestitution) -> str | None:
+        return None  # Walton's law sets the velocities after: said at numbers, if at all
 
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:

@@ -316,7 +316,7 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     if "rod-compliance" in plan.effects and not any(b.shape == "barbell"
                                                     for b in scene.bodies):
         raise InputError("simulate.effects", "rod-compliance needs a barbell in the scene")
-    if scene.contact.tangential != "smooth":
+    if scene.contact.laws[1].grips:
         raise InputError("contact.tangential", "the compliant models have a smooth contact")
     parts, state, slot = [], [], 0
     for body in scene.pair:  # seen from the contact point

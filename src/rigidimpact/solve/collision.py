@@ -57,10 +57,9 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation, NewtonRestitution
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.impulse import Coordinate, coordinates_of, moving
+from rigidimpact.solve.impulse import Coordinate, coordinates_of, jacobian, moving
 from rigidimpact.solve.lcp import NoSolution, confirm, lemke, pivoting, proximal, residual
 from rigidimpact.solve.solution import Solution
-from rigidimpact.symbolic.geometry import cross
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
@@ -180,9 +179,13 @@ class Collision:
     def _smooth_only(self, where: str) -> None:
         rough = [t.name for t in self.contacts if t.laws[1].grips]
         if rough:
+            needed = (f": give [values] (or --set) for "
+                      f"{', '.join(sorted(map(str, self.symbols)))}, or ask for one "
+                      "sequential pass in an order (solved with symbols, case by case)"
+                      if where == "with symbols" and self.symbols else "")
             raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
                              f"solved with numbers, by the simultaneous or sequential rule; "
-                             f"not {where}")
+                             f"not {where}{needed}")
 
     def _numbers_only(self, rule: str) -> None:
         if self.symbols:
@@ -239,31 +242,9 @@ class Collision:
         tangent, as a function of u."""
         return self._rows(lambda t: t.tangent)
 
-    @cached_property
-    def _columns(self) -> dict[str, list[tuple[int, Coordinate]]]:
-        """Each body's coordinates with their column in u."""
-        columns: dict[str, list[tuple[int, Coordinate]]] = {}
-        for j, coordinate in enumerate(self.coordinates):
-            columns.setdefault(coordinate.body, []).append((j, coordinate))
-        return columns
-
     def _rows(self, direction_of) -> sp.Matrix:
-        entries: dict[tuple[int, int], sp.Expr] = {}
-        for i, touch in enumerate(self.contacts):
-            direction = direction_of(touch)
-            for name, sign in ((touch.first, -1), (touch.second, 1)):
-                for j, coordinate in self._columns.get(name, ()):
-                    if coordinate.kind == "vx":
-                        value = direction[0]
-                    elif coordinate.kind == "vy":
-                        value = direction[1]
-                    else:  # d . (z x (p - axis)) = (p - axis) x d
-                        body = self._body(name)
-                        axis = body.pivot if body.support == "pivot" else body.position
-                        value = cross(touch.point - axis, direction)
-                    entries[i, j] = entries.get((i, j), 0) + sign * value
-        return sp.SparseMatrix(len(self.contacts), len(self.coordinates),
-                               {k: v for k, v in entries.items() if v != 0})
+        return jacobian(self.bodies, self.coordinates,
+                        [(t.first, t.second, t.point, direction_of(t)) for t in self.contacts])
 
     @property
     def frictional(self) -> bool:
@@ -319,9 +300,10 @@ class Collision:
         return [1 / c.inertia for c in self.coordinates]
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
-        return tuple(b if b.support == "fixed" else b.with_motion(
-            b.velocity.applyfunc(tidy), tidy(sp.sympify(b.spin)))
-            for b in moving(self.bodies, self.coordinates, list(u)))
+        """The bodies moving with `u`, tidied (a pivoted body's centre by its turn)."""
+        after = moving(self.bodies, self.coordinates, [_tidied(x) for x in u])
+        return tuple(b if b.support != "pivot" else b.with_motion(
+            b.velocity.applyfunc(_tidied), b.spin) for b in after)
 
     def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
@@ -1336,6 +1318,12 @@ def _sign_of(relation: sp.Basic) -> sp.Basic:
             continue
         kept.append(factor)
     return op(sp.Mul(*kept), 0)
+
+
+def _tidied(x: Any) -> sp.Expr:
+    """`tidy`, with a number left as it is (most of them, at scale)."""
+    x = sp.sympify(x)
+    return x if x.is_Number else tidy(x)
 
 
 def _at(n: int, k: int, value: sp.Expr) -> sp.Matrix:

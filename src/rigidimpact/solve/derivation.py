@@ -217,7 +217,8 @@ class Derivation:
         model = model_name(contact)
         if regime is not None:
             model += f" (regime {regime}"
-            if contact.law == "newton" and ("reversal" in regime or "stick" in regime):
+            if not contact.laws[0].dissipative_on_bent_path and (
+                    "reversal" in regime or "stick" in regime):
                 model += ": slip stopped or reversed during the impact, where Newton's " \
                          "kinematic law can create energy (the Kane-Levinson paradox); " \
                          "Poisson's or the energetic law would not"
@@ -296,17 +297,9 @@ def model_warnings(contact: Contact) -> tuple[str, ...]:
     >>> model_warnings(Contact(restitution=0, tangential="stick"))
     ()
     """
-    if contact.tangential == "stick" and not contact.restitution.is_zero:
-        return ("Newton's restitution with a sticking contact is not energy-consistent: for "
-                "e > 0 it creates kinetic energy for some data (check that "
-                "energy_loss_fraction >= 0 at your values; evaluate warns when it is not)",)
-    if contact.tangential == "coulomb" and contact.law == "newton" \
-            and not contact.restitution.is_zero:
-        return ("Newton's restitution with Coulomb friction is not energy-consistent: when "
-                "slip stops or reverses during the impact it can create kinetic energy (the "
-                "Kane-Levinson paradox; Poisson's and the energetic law do not); evaluate "
-                "warns where it does",)
-    return ()
+    restitution, tangential = contact.laws
+    warning = tangential.energy_warning(restitution)
+    return () if warning is None else (warning,)
 
 
 def physics_warnings(numbers: Mapping[str, Any], dps: int | None = None,

@@ -221,7 +221,7 @@ class Impact:
         supported (no conservation law then holds without them)."""
         if self.first.support == "free" or self.second.support == "free":
             return ()
-        names = ("P_n", "P_t") if self.contact.tangential == "stick" else ("P_n",)
+        names = ("P_n", "P_t") if self.contact.laws[1].unknown_tangential else ("P_n",)
         return tuple(make_symbol(n, real=True) for n in names)
 
     @property
@@ -271,11 +271,11 @@ class Impact:
         before, after = self.before, self.after
         restitution, tangential = self._contact_laws()
         linear, angular = self._momentum_laws()
-        smooth = tangential.name == "smooth"
+        smooth = not tangential.grips
         # with friction the path in impulse space bends: Poisson's and the energetic law
         # are then not Newton's relation, and Routh's method (printed course by course)
         # is what imposes them
-        bent = self.contact.frictional and self.contact.law != "newton"
+        bent = self.contact.frictional and restitution.splits_on_compression
         return (*linear, *(tangential.equations(before, after) if smooth else ()), *angular,
                 *(() if bent else restitution.equations(before, after)),
                 *(() if smooth else tangential.equations(before, after)))
@@ -308,7 +308,7 @@ class Impact:
                      if supported[0].support == "pivot" else [])
             return pivot, angular
         linear = [laws.normal_momentum(first, first_after, second, second_after)]
-        if self.contact.tangential != "smooth":
+        if self.contact.laws[1].grips:
             linear.append(
                 laws.pair_tangential_momentum(first, first_after, second, second_after))
         return linear, angular

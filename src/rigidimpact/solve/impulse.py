@@ -36,9 +36,9 @@ from functools import cached_property
 import sympy as sp
 
 from rigidimpact.model.bodies import Body
-from rigidimpact.symbolic.geometry import perp, spin_cross
+from rigidimpact.symbolic.geometry import cross, spin_cross
 
-__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "moving"]
+__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "jacobian", "moving"]
 
 
 @dataclass(frozen=True)
@@ -78,6 +78,43 @@ def coordinates_of(bodies: Sequence[Body]) -> tuple[Coordinate, ...]:
             if not body.inertia.is_zero:
                 found.append(Coordinate(body.name, "omega", body.inertia, body.spin))
     return tuple(found)
+
+
+def jacobian(bodies: Sequence[Body], coordinates: Sequence[Coordinate],
+             rows: Sequence[tuple[str, str, sp.MatrixBase, sp.MatrixBase]]) -> sp.SparseMatrix:
+    """The Jacobian rows of contacts: for each ``(first, second, point, direction)``, the
+    velocity of the touching points at `point` (second minus first) along `direction`, as
+    a function of the generalized velocities u. Sparse: a row touches only its two
+    bodies' coordinates. A unit spin moves the point, seen from the body's axis (its
+    pivot, or its centre), by ``z x (point - axis)``, whose part along d is
+    ``(point - axis) x d``.
+
+    Examples
+    --------
+    >>> a, b = Body.particle(1, (1, 0), "a"), Body.rigid(2, 1, (0, 1), name="b")
+    >>> coordinates = coordinates_of((a, b))
+    >>> jacobian((a, b), coordinates, [("a", "b", sp.Matrix([0, 0]), sp.Matrix([1, 0]))])
+    Matrix([[-1, 0, 1, 0, 1]])
+    """
+    by_name = {b.name: b for b in bodies}
+    columns: dict[str, list[tuple[int, Coordinate]]] = {}
+    for j, coordinate in enumerate(coordinates):
+        columns.setdefault(coordinate.body, []).append((j, coordinate))
+    entries: dict[tuple[int, int], sp.Expr] = {}
+    for i, (first, second, point, direction) in enumerate(rows):
+        for name, sign in ((first, -1), (second, 1)):
+            for j, coordinate in columns.get(name, ()):
+                if coordinate.kind == "vx":
+                    value = direction[0]
+                elif coordinate.kind == "vy":
+                    value = direction[1]
+                else:
+                    body = by_name[name]
+                    axis = body.pivot if body.support == "pivot" else body.position
+                    value = cross(point - axis, direction)
+                entries[i, j] = entries.get((i, j), 0) + sign * value
+    return sp.SparseMatrix(len(rows), len(coordinates),
+                           {k: v for k, v in entries.items() if v != 0})
 
 
 def moving(bodies: Sequence[Body], coordinates: Sequence[Coordinate],
@@ -136,20 +173,14 @@ class ImpulseProblem:
     @cached_property
     def J(self) -> sp.ImmutableMatrix:
         """Rows: the normal and tangential relative velocity of the touching points at O
-        (second minus first); columns: the coordinates."""
-        columns = []
-        for coordinate in self.coordinates:
-            k = [b.name for b in self.bodies].index(coordinate.body)
-            body, sign = self.bodies[k], (-1, 1)[k]
-            if coordinate.kind == "vx":
-                column = sp.Matrix([1, 0])
-            elif coordinate.kind == "vy":
-                column = sp.Matrix([0, 1])
-            else:  # a unit spin moves O, seen from the axis, by z x (O - axis)
-                axis = body.pivot if body.support == "pivot" else body.position
-                column = perp(-axis)
-            columns.append(sign * column)
-        return sp.ImmutableMatrix.hstack(*columns) if columns else sp.ImmutableMatrix(2, 0, [])
+        (second minus first); columns: the coordinates (:func:`jacobian`, as for any
+        number of contacts)."""
+        first, second = (b.name for b in self.bodies)
+        origin = sp.ImmutableMatrix([0, 0])
+        rows = jacobian(self.bodies, self.coordinates,
+                        [(first, second, origin, sp.ImmutableMatrix([1, 0])),
+                         (first, second, origin, sp.ImmutableMatrix([0, 1]))])
+        return sp.ImmutableMatrix(rows) if self.coordinates else sp.ImmutableMatrix(2, 0, [])
 
     @cached_property
     def M_inverse(self) -> sp.ImmutableMatrix:

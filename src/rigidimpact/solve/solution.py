@@ -326,7 +326,7 @@ class Solution:
             results[f"{body.name}.omega"] = sp.sympify(body.spin)
         first = next(iter(self.impulses))
         results["impulse"] = self.impulses[first]
-        if len(self.contacts) == 1 and self.contact.tangential == "stick" \
+        if len(self.contacts) == 1 and self.contact.laws[1].unknown_tangential \
                 and self.speeds_after is None:
             results["impulse_t"] = self.tangential_impulse
         results["energy_loss_fraction"] = self.energy_loss_fraction
