@@ -256,13 +256,13 @@ class Impact:
             local = tuple(replace(eq, paper=numbers.get(eq.law, eq.paper)) for eq in local)
         return tuple(eq.xreplace(stand_ins) for eq in local) if stand_ins else local
 
-    def _contact_laws(self) -> tuple[laws.ContactLaw, laws.ContactLaw]:
+    def _contact_laws(self) -> tuple[laws.NewtonRestitution, laws.ContactLaw]:
         """The contact's restitution and tangential laws (e as 50-digit numbers in
         numeric mode)."""
         restitution, tangential = self.contact.laws
         if self.numeric:
-            restitution = laws.RESTITUTION_LAWS[self.contact.law](
-                self.contact.restitution.evalf(NUMERIC_DIGITS))
+            restitution = replace(restitution,
+                                  e=self.contact.restitution.evalf(NUMERIC_DIGITS))
         return restitution, tangential
 
     def _local_equations(self) -> tuple[laws.Equation, ...]:
