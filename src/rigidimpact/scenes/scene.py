@@ -333,7 +333,8 @@ def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
 
 def _contact_line(c: Contact) -> str:
     """One line of the givens for a contact: where, between which bodies, its laws."""
-    return (f"contact {c.name}: {c.first} -> {c.second} at ({c.point[0]}, {c.point[1]}), "
+    label = "contact" if c.name == "contact" else f"contact {c.name}"
+    return (f"{label}: {c.first} -> {c.second} at ({c.point[0]}, {c.point[1]}), "
             f"normal ({c.normal[0]}, {c.normal[1]}), {c.law} restitution {c.restitution}, "
             + _tangential_words(c))
 
