@@ -531,3 +531,35 @@ def test_a_knife_edge_sleigh_striking_a_wall_matches_the_multiplier_solution():
     assert ours == [found[U[0]], found[U[2]], found[U[1]]]  # in Kane's order u1, u3, u2
     assert sp.nsimplify(solved.impulses["contact"].xreplace(values).xreplace(before)) \
         == found[P]
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_a_hinged_link_on_a_rough_floor_matches_the_built_in_rod(law):
+    # one degree of freedom at the contact (W singular): Routh's method with slip and
+    # approach stopping together. The same rod as tests/test_routh.py's hinged rod
+    # (mass 1, length 2, hinge at (-1, sqrt 3), its end at O, spin -1), stated as a
+    # KanesMethod system; the built-in shapes' answer is the other engine.
+    q, w = me.dynamicsymbols("q w")
+    N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
+    A.orient_axis(N, N.z, q)
+    A.set_ang_vel(N, w * N.z)
+    hinge = me.Point("hinge")
+    hinge.set_vel(N, 0)
+    centre, end = hinge.locatenew("C", A.x), hinge.locatenew("E", 2 * A.x)
+    centre.v2pt_theory(hinge, N, A)
+    end.v2pt_theory(hinge, N, A)
+    kane = me.KanesMethod(N, [q], [w], [q.diff() - w])
+    kane.kanes_equations([me.RigidBody("rod", centre, A, 1, (me.inertia(A, 0, 0, sp.Rational(1, 3)),
+                                                              centre))], [])
+    mu, e = sp.Rational(1, 10), sp.Rational(1, 2)
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        end, N.y, restitution=e, tangential="coulomb", friction=mu, law=law)], frame=N)
+    ours = hit.at({q: -sp.pi / 3}).at({w: -1}).solve()
+    rod = ri.Body.rod(1, 2, -sp.pi / 3, -1, (-sp.sqrt(3) / 2, -sp.Rational(1, 2)), -1, "rod",
+                      pivot=(-1, sp.sqrt(3)))
+    theirs = ri.Impact(rod, ri.Body.fixed("floor"),
+                       ri.Contact((0, -1), e, "coulomb", law, friction=mu)).solve()
+    assert ours.regime == theirs.regime == "slip-reversal"
+    assert sp.simplify(ours.speeds_after[0] - theirs.after[0].spin) == 0
+    for a, b in zip(ours.contact_impulse, theirs.contact_impulse, strict=True):
+        assert sp.simplify(a - b) == 0
