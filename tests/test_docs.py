@@ -1,0 +1,21 @@
+"""The Python examples of docs/scenes.md run as written (README.md's are doctests)."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "scenes.md"
+BLOCKS = [b for b in re.findall(r"```python\n(.*?)```", DOCS.read_text(), re.S)
+          if b.startswith("import rigidimpact as ri")]
+
+
+def test_the_scene_guide_has_python_examples():
+    assert BLOCKS
+
+
+@pytest.mark.parametrize("block", BLOCKS)
+def test_a_python_example_of_the_scene_guide_runs(block):
+    exec(compile(block, str(DOCS), "exec"), {})  # noqa: S102 - our own documentation
