@@ -12,7 +12,7 @@ import sympy as sp
 from helpers import touching
 from rigidimpact.errors import InputError
 from rigidimpact.model.bodies import Body
-from rigidimpact.solve.collision import Collision, Sequential
+from rigidimpact.solve.collision import Collision, Sequential, Simultaneous
 
 HALF = sp.Rational(1, 2)
 
@@ -214,3 +214,77 @@ def test_a_pass_that_never_ends_the_rule_names_what_needs_numbers():
         'rule = "simultaneous"', 'rule = "sequential"\norder = ["left", "right"]')
     with pytest.raises(InputError, match="does not end the sequential rule .* for e, mu"):
         parse_scene(text).derivation()
+
+
+STICKING_ROD = """
+[[bodies]]
+name = "rod"
+shape = "rigid"
+mass = "1"
+inertia = "1/3"
+position = ["0", "0"]
+velocity = ["v", "-1"]
+spin = "w"
+[[bodies]]
+name = "floor"
+shape = "fixed"
+[[contacts]]
+name = "left"
+bodies = ["rod", "floor"]
+point = ["-1", "0"]
+normal = ["0", "-1"]
+restitution = "e"
+tangential = "stick"
+[[contacts]]
+name = "right"
+bodies = ["rod", "floor"]
+point = ["1", "0"]
+normal = ["0", "-1"]
+restitution = "e"
+tangential = "stick"
+"""
+
+
+def test_sticking_contacts_acting_together_have_closed_forms():
+    # a rod (mass 1, inertia 1/3, ends at -1 and 1) lands on both ends, each sticking.
+    # By hand, both acting (|w| < 1, both ends approach): Newton's e at each end gives
+    # vy = e, omega = -e w, and no slip gives vx = 0; the two tangential impulses are
+    # not unique (their sum is v), which the case says with a free tau_1
+    from rigidimpact.scenes.scene import parse_scene
+
+    scene = parse_scene(STICKING_ROD)
+    outcomes = scene.collision().solve(Simultaneous())
+    both = [o for o in outcomes if o.acted == ("left", "right") and len(o.conditions) == 2]
+    (case,) = both
+    v, w, e = (scene.symbols[n] for n in ("v", "w", "e"))
+    r = case.results()
+    assert (r["rod.vx"], r["rod.vy"], sp.expand(r["rod.omega"])) == (0, e, -e * w)
+    assert any("tau_1" in note for note in case.notes)
+    # every case, at numbers, is the numeric rule's motion (the velocity-level states
+    # tried one by one with numbers)
+    results = scene.derivation().results
+    rng = random.Random(7)
+    for _ in range(8):
+        at = {v: sp.Rational(rng.randint(-20, 20), 10), w: sp.Rational(rng.randint(-30, 30), 10),
+              e: sp.Rational(rng.randint(0, 10), 10)}
+        (numeric,) = scene.collision(at).solve(Simultaneous())
+        for key in ("rod.vx", "rod.vy", "rod.omega"):
+            assert sp.simplify(results[key].subs(at)) == numeric.results()[key], (at, key)
+
+
+def test_both_ends_sticking_at_numbers_say_the_impulses_are_not_unique():
+    # formerly refused as a Painleve inconsistency: four conditions (Newton's e and no
+    # slip at each end) on the rod's three freedoms are consistent, so the motion is
+    # fixed (vy = e, omega = -e w, vx = 0) while the tangential impulses only sum to v
+    from rigidimpact.scenes.scene import parse_scene
+
+    scene = parse_scene(STICKING_ROD)
+    at = {scene.symbols["v"]: sp.Rational(7, 10), scene.symbols["w"]: -sp.Rational(2, 5),
+          scene.symbols["e"]: sp.Rational(1, 10)}
+    (outcome,) = scene.collision(at).solve(Simultaneous())
+    r = outcome.results()
+    assert (r["rod.vx"], r["rod.vy"], r["rod.omega"]) == (0, sp.Rational(1, 10),
+                                                          sp.Rational(1, 25))
+    # on the floor along the tangent (1, 0): the rod loses its vx = 7/10 to them
+    assert r["left.tangential_impulse"] + r["right.tangential_impulse"] == sp.Rational(7, 10)
+    assert any("impulses are not" in note for note in outcome.notes)

@@ -411,14 +411,19 @@ class Collision:
         if count > MAX_SYMBOLIC_CASES:
             raise InputError("contacts", _too_many_states(n, count))
         deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+        not_unique = False
         for pattern in itertools.product(*states):
             if all(state == "off" for state in pattern):
                 continue
             if time.perf_counter() > deadline:
                 raise InputError("contacts", _too_many_states(n, count))
-            solved = self._friction_pattern(pattern, W, v_n, v_t, target, mu)
-            if solved is not None and all(solved != f for f, _ in found):
+            fits = self._friction_pattern(pattern, W, v_n, v_t, target, mu)
+            if fits is None:
+                continue
+            solved, unique = fits
+            if all(solved != f for f, _ in found):
                 found.append((solved, pattern))
+                not_unique = not_unique or not unique
         if not found:
             raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
                              "friction here (a Painleve-type inconsistency); try the "
@@ -433,6 +438,9 @@ class Collision:
                    for f, _ in found]
         u = motions[0]
         notes: tuple[str, ...] = ()
+        if not_unique:
+            notes = ("more contact conditions than freedoms: the motion after is unique but "
+                     "the impulses are not; shown: the least-norm impulses of each state",)
         if len(found) > 1 and all(m == u for m in motions):
             # with the velocities after fixed, the conditions on the impulses are convex:
             # every mixture of the solutions found is one too; the mean is shown
@@ -440,11 +448,11 @@ class Collision:
                         ).applyfunc(tidy)
             pattern = tuple(pattern[i] if all(p[i] == pattern[i] for _, p in found)
                             else "mixed" for i in range(n))
-            notes = (f"the motion after is unique but the impulses are not: {len(found)} "
+            notes += (f"the motion after is unique but the impulses are not: {len(found)} "
                      "ways to share them between the contacts fit the rule, and every "
                      "mixture of them; shown: their mean",)
         elif len(found) > 1:
-            notes = (f"the simultaneous rule with friction has {len(found)} solutions here, "
+            notes += (f"the simultaneous rule with friction has {len(found)} solutions here, "
                      "with different motions after; shown: " + ", ".join(
                          _STATE[s] for s in pattern) + "; others: " + "; ".join(
                          ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
@@ -482,9 +490,10 @@ class Collision:
                                      f"{t.name}: {_STATE['off']}"
                                      for i, t in enumerate(self.contacts)))
 
-    def _friction_pattern(self, pattern, W, v_n, v_t, target, mu) -> sp.Matrix | None:
+    def _friction_pattern(self, pattern, W, v_n, v_t, target,
+                          mu) -> tuple[sp.Matrix, bool] | None:
         """The impulses (normal then tangential) for one choice of contact states, if
-        that choice is consistent."""
+        that choice is consistent, and whether they are the only ones."""
         n = len(pattern)
         P = sp.symbols(f"p0:{2 * n}")
         after = sp.Matrix(list(v_n) + list(v_t)) + W * sp.Matrix(P)
@@ -501,9 +510,11 @@ class Collision:
             else:
                 equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
         matrix, rhs = sp.linear_eq_to_matrix(equations, P)
-        impulses = _exact_solve(matrix, rhs)
-        if impulses is None:  # these states do not fix the impulses
-            return None
+        impulses, unique = _exact_solve(matrix, rhs), True
+        if impulses is None:  # the states do not fix the impulses: if they are consistent
+            impulses, unique = _least_norm(matrix, rhs), False  # the motion is fixed (W's
+            if impulses is None:  # null vectors are J^T's); the least-norm ones are shown
+                return None
         after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
         for i, state in enumerate(pattern):
             p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
@@ -517,7 +528,7 @@ class Collision:
                 return None
             if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
                 return None
-        return impulses
+        return impulses, unique
 
     def _poisson(self) -> bool:
         """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
@@ -887,10 +898,16 @@ class Collision:
         >>> both.results()["c.vx"], both.conditions
         (2/(m + 2), (True,))
         """
-        self._smooth_only("with symbols")
+        regimes = [t.name for t in self.contacts if t.laws[1].solved_by_regimes]
+        if regimes:  # Coulomb's and Walton's courses: no closed form acting together
+            self._smooth_only("with symbols")
+        stick = [i for i, t in enumerate(self.contacts) if t.laws[1].grips]
         v = self.velocity_before
         poisson = self._poisson()
         n = len(v)
+        if stick and poisson:
+            raise InputError(f"{self.contacts[stick[0]].name}.law", "a sticking contact "
+                             "acting together with others takes Newton's law")
         # Newton's target -e min(v, 0) depends on each contact's sign before: one
         # pattern of signs at a time (a contact at rest, or under Poisson's law: one)
         options = []
@@ -912,7 +929,9 @@ class Collision:
             if signs == (sp.false,):
                 continue
             target = sp.Matrix([t for _, t, _ in pattern])
-            for active, compression, after in self._active_sets(v, target):
+            found = (self._active_sets(v, target) if not stick
+                     else self._sticking_sets(v, target, stick))
+            for active, compression, after, *extra in found:
                 if time.perf_counter() > deadline:
                     raise InputError("contacts", _too_many_cases(n, count))
                 held = _conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
@@ -923,12 +942,60 @@ class Collision:
                 impulses = sp.Matrix([self.contacts[i].laws[0].from_compression(
                     compression[i]) if poisson else compression[i]
                     for i in range(n)]).applyfunc(tidy)
-                u = self._kick(self.u_before, impulses)
-                cases.append(self._outcome("simultaneous", (), u,
-                                     self._named(impulses),
-                                     tuple(self.contacts[i].name for i in active),
-                                     conditions=held))
+                if extra:  # sticking contacts: their tangential impulses move u too
+                    tangential, free = extra
+                    u = (self.u_before + self.M_inverse * (self.J.T * impulses
+                                                           + self.J_t.T * tangential)
+                         ).applyfunc(tidy)
+                    more: dict[str, Any] = {"tangential": self._named(tangential),
+                            "courses": tuple(f"{t.name}: " + (_STATE["stick"] if i in active
+                                                              else _STATE["off"])
+                                             for i, t in enumerate(self.contacts))}
+                    if free:
+                        more["notes"] = (f"the motion after is unique but the impulses are "
+                                         f"not: {', '.join(map(str, free))} may take any "
+                                         "value that meets the conditions",)
+                else:
+                    u, more = self._kick(self.u_before, impulses), {}
+                more["conditions"] = held
+                cases.append(self._outcome("simultaneous", (), u, self._named(impulses),
+                                           tuple(self.contacts[i].name for i in active),
+                                           **more))
         return tuple(cases)
+
+    def _sticking_sets(self, v: sp.Matrix, target: sp.Matrix, stick: Sequence[int]):
+        """As :meth:`_active_sets`, with the contacts in `stick` leaving without slip
+        where they act (their tangential impulse an unknown of its own, no cone):
+        ``(active, P_n, v_n + (W P)_n, P_t)`` for each set whose block is invertible."""
+        n = len(v)
+        rows = sp.Matrix.vstack(self.J, self.J_t)
+        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        slip = (self.J_t * self.u_before).applyfunc(tidy)
+        deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+        for size in range(n, 0, -1):
+            for active in itertools.combinations(range(n), size):
+                if time.perf_counter() > deadline:
+                    raise InputError("contacts", _too_many_cases(n, 2**n))
+                unknowns = list(active) + [n + i for i in active if i in stick]
+                block = W.extract(unknowns, unknowns)
+                rhs = sp.Matrix([target[i] - v[i] for i in active]
+                                + [-slip[i] for i in active if i in stick])
+                if tidy(block.det()) != 0:
+                    solved, free = block.LUsolve(rhs), ()
+                else:  # more conditions than freedoms: consistent, or no such case
+                    try:
+                        solved, params = block.gauss_jordan_solve(rhs)
+                    except ValueError:
+                        continue
+                    # the impulses are not unique (the motion after is: a null vector
+                    # of W's block is one of J^T's); each free part keeps a name
+                    free = tuple(sp.Symbol(f"tau_{k + 1}", real=True)
+                                 for k in range(len(params)))
+                    solved = solved.xreplace(dict(zip(params, free, strict=True)))
+                P = sp.zeros(2 * n, 1)
+                for k, j in enumerate(unknowns):
+                    P[j] = tidy(solved[k])
+                yield active, P[:n, 0], v + (W * P)[:n, 0], P[n:, 0], free
 
     def sequential_pass(self, order: Sequence[str]) -> Solution:
         """The sequential rule with symbols: one pass in `order`, every contact acting
@@ -1276,6 +1343,27 @@ def _exact_solve(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
     if tuple(pivots) != tuple(range(size)):
         return None
     return reduced.to_Matrix()[:, size]
+
+
+def _least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
+    """The least-norm solution of a consistent singular system of numbers, exactly
+    (``A^T (A A^T)^+``, from a basis of A's rows); None when it has no solution.
+
+    Examples
+    --------
+    >>> _least_norm(sp.Matrix([[1, 1], [2, 2]]), sp.Matrix([2, 4])).T
+    Matrix([[1, 1]])
+    >>> _least_norm(sp.Matrix([[1, 1], [1, 1]]), sp.Matrix([2, 3])) is None
+    True
+    """
+    augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
+    reduced, pivots = augmented.rref()
+    size = matrix.shape[1]
+    if size in pivots:  # a row 0 = c != 0: inconsistent
+        return None
+    rows = reduced.to_Matrix()[:len(pivots), :]
+    A, b = rows[:, :size], rows[:, size]
+    return (A.T * (A * A.T).inv() * b).applyfunc(tidy)
 
 
 def _too_many_states(n: int, count: int) -> str:
