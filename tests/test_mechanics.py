@@ -388,12 +388,11 @@ def test_examples_print_their_json_keys(capsys, script, keys):
 
 # ---- several contacts of a mechanics system, by the rules -------------------------------
 
-def _flat_rod(restitution, tangential="smooth", friction=None, law="newton"):
-    """A free rod (mass 1, half-length 1, inertia 1/3) as a sympy.physics.mechanics
-    system in x, y, theta, with both ends on a floor: the shipped scenes rod-lands-flat
-    and rod-slides-flat, stated the other way."""
+def _free_planar_body(speeds: str):
+    """A body free in the plane: its frame A turned by theta about N.z, its centre C at
+    (x, y) moving at the first two `speeds`, its spin the third."""
     x, y, th = me.dynamicsymbols("x y theta")
-    ux, uy, w = me.dynamicsymbols("u_x u_y w")
+    ux, uy, w = me.dynamicsymbols(speeds)
     N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
     A.orient_axis(N, N.z, th)
     A.set_ang_vel(N, w * N.z)
@@ -401,6 +400,14 @@ def _flat_rod(restitution, tangential="smooth", friction=None, law="newton"):
     O.set_vel(N, 0)
     C = O.locatenew("C", x * N.x + y * N.y)
     C.set_vel(N, ux * N.x + uy * N.y)
+    return N, A, C, (x, y, th), (ux, uy, w)
+
+
+def _flat_rod(restitution, tangential="smooth", friction=None, law="newton"):
+    """A free rod (mass 1, half-length 1, inertia 1/3) as a sympy.physics.mechanics
+    system in x, y, theta, with both ends on a floor: the shipped scenes rod-lands-flat
+    and rod-slides-flat, stated the other way."""
+    N, A, C, (x, y, th), (ux, uy, w) = _free_planar_body("u_x u_y w")
     ends = [C.locatenew(name, sign * A.x) for name, sign in (("L", -1), ("R", 1))]
     for end in ends:
         end.v2pt_theory(C, N, A)
@@ -492,17 +499,9 @@ def test_a_knife_edge_sleigh_striking_a_wall_matches_the_multiplier_solution():
     # strikes a wall (normal -x) with Newton's e. The independent check is the other
     # formulation, with the knife edge's impulsive reaction as an unknown multiplier:
     # M_all (u+ - u-) = J_n^T P + J_c^T L, J_c u+ = 0, J_n u+ = -e J_n u-.
-    x, y, th = me.dynamicsymbols("x y theta")
-    u1, u2, u3 = me.dynamicsymbols("u1 u2 u3")
+    N, A, C, (x, y, th), (u1, u2, u3) = _free_planar_body("u1 u2 u3")
     m, inertia, a, b = sp.symbols("m I a b", positive=True)
     e = sp.Symbol("e", nonnegative=True)
-    N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
-    A.orient_axis(N, N.z, th)
-    A.set_ang_vel(N, u3 * N.z)
-    O = me.Point("O")
-    O.set_vel(N, 0)
-    C = O.locatenew("C", x * N.x + y * N.y)
-    C.set_vel(N, u1 * N.x + u2 * N.y)
     D = C.locatenew("D", a * A.x + b * A.y)
     D.v2pt_theory(C, N, A)
     kane = me.KanesMethod(N, [x, y, th], [u1, u3],
