@@ -296,7 +296,15 @@ class ContactLaw:
 
     def energy_warning(self, restitution: NewtonRestitution) -> str | None:
         """What this law, with `restitution`, cannot honour in general (kinetic energy
-        created for some data), said before any numbers; None when nothing."""
+        created for some data), said before any numbers; None when nothing.
+
+        Examples
+        --------
+        >>> Coulomb(1).energy_warning(NewtonRestitution(1))[:40]
+        "Newton's restitution with Coulomb fricti"
+        >>> Coulomb(1).energy_warning(PoissonRestitution(1)) is None
+        True
+        """
         return None
 
     def cone(self) -> Any:
@@ -483,12 +491,24 @@ class PoissonRestitution(NewtonRestitution):
     def from_compression(self, compression: sp.Expr) -> sp.Expr:
         """The whole normal impulse from the impulse of compression: ``(1 + e) P_c``.
         Contacts acting together under this law (``together = "impulse"``) solve for
-        their compression impulses, then each takes this."""
+        their compression impulses, then each takes this.
+
+        Examples
+        --------
+        >>> PoissonRestitution(sp.Rational(1, 2)).from_compression(2)
+        3
+        """
         return (1 + self.e) * compression
 
     def compression(self, total: sp.Expr) -> sp.Expr:
         """The impulse of compression within a whole normal impulse (the inverse of
-        :meth:`from_compression`)."""
+        :meth:`from_compression`).
+
+        Examples
+        --------
+        >>> PoissonRestitution(sp.Rational(1, 2)).compression(3)
+        2
+        """
         return total / (1 + self.e)
 
     def equations(self, before, after):

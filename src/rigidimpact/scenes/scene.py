@@ -128,7 +128,28 @@ class Scene:
     @property
     def pair(self) -> tuple[Body, Body]:
         """The first contact's two bodies, first then second, seen from its point (the
-        frame of the two-body core and of the one-contact simulators)."""
+        frame of the two-body core and of the one-contact simulators).
+
+        Examples
+        --------
+        >>> scene = parse_scene('''
+        ... [[bodies]]
+        ... name = "a"
+        ... shape = "particle"
+        ... mass = "1"
+        ... velocity = ["1", "0"]
+        ... [[bodies]]
+        ... name = "b"
+        ... shape = "disc"
+        ... mass = "1"
+        ... radius = "1"
+        ... [contact]
+        ... restitution = "1"
+        ... point = ["5", "0"]
+        ... ''')
+        >>> [tuple(b.position) for b in scene.bodies], [tuple(b.position) for b in scene.pair]
+        ([(5, 0), (6, 0)], [(0, 0), (1, 0)])
+        """
         c = self.contact
         by_name = {b.name: b for b in self.bodies}
         point = -sp.ImmutableMatrix(c.point)
@@ -287,6 +308,15 @@ class Scene:
         digits). Several contacts: solved at the numbers by the scene's rule, and the
         extra keys say which rule, which contacts acted, and (for every order or a
         sample of orders) each order's results and the spread.
+
+        Examples
+        --------
+        >>> import rigidimpact
+        >>> root = Path(rigidimpact.__file__).parents[2]
+        >>> scene = load_scene(root / "derivations" / "newtons-cradle.toml")
+        >>> out = scene.evaluate({}, {})
+        >>> out.numbers["last.vx"], out.extra["rule"]
+        (1.0, 'sequential left, right')
         """
         if len(self.contacts) == 1:
             return self.derivation().evaluate(settings, dps, sources)

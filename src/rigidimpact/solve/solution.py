@@ -167,7 +167,15 @@ class Solution:
     @property
     def matrix(self) -> sp.Matrix:
         """A mechanics system's H with ``u+ = H u-`` (linear in the speeds before for
-        every law except friction whose course depends on them)."""
+        every law except friction whose course depends on them).
+
+        Examples
+        --------
+        >>> u = sp.Symbol("u")
+        >>> Solution(before=(), after=(), impulses={}, speeds_before=(u,),
+        ...          speeds_after=sp.ImmutableMatrix([-u / 2])).matrix
+        Matrix([[-1/2]])
+        """
         if self.speeds_after is None:
             raise ValueError("only an impact of generalized speeds has this matrix")
         return self.speeds_after.jacobian(sp.Matrix(self.speeds_before))
