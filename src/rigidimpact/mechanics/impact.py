@@ -57,7 +57,7 @@ from sympy.polys.matrices import DomainMatrix
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
-from rigidimpact.solve.collision import MAX_PASSES, Rule, Sequential, Simultaneous
+from rigidimpact.solve.collision import Rule, Sequential, Simultaneous, sequential_passes
 from rigidimpact.solve.solution import Solution
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
@@ -378,37 +378,34 @@ class SystemImpact:
             raise InputError("rule", "the sequential rule at a mechanics system needs "
                              "numbers: SystemImpact.at(...) with q, the speeds and the "
                              "constants")
-        u = sp.Matrix(self.u_before)
-        scale = max(abs(x) for x in self.J * u)
+        state = {"u": sp.Matrix(self.u_before)}
+
+        def closing(i: int) -> sp.Expr:
+            return (self.J[2 * i, :] * state["u"])[0]
+
+        def step(i: int, _: sp.Expr) -> tuple[sp.Expr, sp.Expr, str]:
+            pair = slice(2 * i, 2 * i + 2)
+            restitution, tangential = self.contacts[i].laws.laws
+            normal, along, course = tangential.alone(self.W[pair, pair],
+                                                     self.J[pair, :] * state["u"], restitution)
+            state["u"] = state["u"] + self._M_inv_JT[:, pair] * sp.Matrix([normal, along])
+            return normal, along, course
+
+        count, steps = sequential_passes([names.index(n) for n in order], closing, step,
+                                         max(abs(x) for x in self.J * self.u_before),
+                                         sp.Float(1e-12))
+        u = state["u"]
         total = sp.zeros(2 * len(names), 1)
         courses: dict[str, list[str]] = {n: [] for n in names}
-        passes = 0
-        while True:
-            acted = False
-            for name in order:
-                i = names.index(name)
-                pair = slice(2 * i, 2 * i + 2)
-                v = self.J[pair, :] * u
-                if not v[0] < -sp.Float(1e-12) * scale:
-                    continue
-                restitution, tangential = self.contacts[i].laws.laws
-                normal, along, course = tangential.alone(self.W[pair, pair], v, restitution)
-                push = sp.Matrix([normal, along])
-                u = u + self._M_inv_JT[:, pair] * push
-                total[pair, 0] = total[pair, 0] + push
-                courses[name].append(course)
-                acted = True
-            passes += 1
-            if not acted:
-                break
-            if passes >= MAX_PASSES:
-                raise InputError("contacts", f"the sequential rule did not end within "
-                                 f"{MAX_PASSES} passes")
+        for i, normal, along, course in steps:
+            total[2 * i] += normal
+            total[2 * i + 1] += along
+            courses[names[i]].append(str(course))
         energy = ((self.u_before.T * self.M * self.u_before)[0] - (u.T * self.M * u)[0]) / 2
         solution = self._map(self._in(u), self._in(total),
                              {n: ", ".join(c) or "released" for n, c in courses.items()},
                              self._in(sp.Matrix([energy]))[0], summed=True)
-        return replace(solution, rule="sequential", order=order, passes=passes - 1)
+        return replace(solution, rule="sequential", order=order, passes=count)
 
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
              energy: sp.Expr, summed: bool = False) -> Solution:

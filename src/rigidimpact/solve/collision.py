@@ -43,7 +43,7 @@ import itertools
 import math
 import random
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from functools import cached_property
@@ -63,6 +63,7 @@ from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
+           "sequential_passes",
            "Rule", "Simultaneous", "Sequential", "Compliant", "RULE_TYPES",
            "rule_laws"]
 
@@ -679,35 +680,30 @@ class Collision:
         """
         self._numbers_only("sequential")
         index = self._order_index(order)
-        u, total = list(self.u_before), sp.zeros(len(index), 1)
-        tangential, courses = sp.zeros(len(index), 1), []
-        scale = max(abs(v) for v in self.velocity_before)
-        passes, acted_now = 0, True
-        while acted_now:  # a pass in which no contact acted ends the rule
-            if passes == MAX_PASSES:
-                raise InputError("impact.rule", f"the sequential rule did not settle in "
-                                 f"{MAX_PASSES} passes (e = 1 chains can ring forever)")
-            passes, acted_now = passes + 1, False
-            for name in order:
-                k = index[name]
-                closing = self._closing(k, u)
-                if closing >= 0 or -closing <= SETTLED * scale:
-                    continue
-                touch = self.contacts[k]
-                if touch.laws[1].grips:  # one contact's own impact (Routh's for Coulomb)
-                    impulse, along, course, after = self._routh_step(k, sp.Matrix(u))
-                    u = list(after)
-                    tangential[k] += along
-                    courses.append(f"{name}: {course}")
-                else:
-                    impulse = self._smooth_step(k, u, closing)
-                total[k] += impulse
-                acted_now = True
+        u = list(self.u_before)
+
+        def step(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
+            if self.contacts[k].laws[1].grips:  # its own impact (Routh's for Coulomb)
+                impulse, along, course, after = self._routh_step(k, sp.Matrix(u))
+                u[:] = list(after)
+                return impulse, along, course
+            return self._smooth_step(k, u, closing), sp.Integer(0), None
+
+        count, steps = sequential_passes([index[name] for name in order],
+                                         lambda k: self._closing(k, u), step,
+                                         max(abs(v) for v in self.velocity_before))
+        total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
+        for k, impulse, along, _ in steps:
+            total[k] += impulse
+            tangential[k] += along
+        courses = tuple(f"{self.contacts[k].name}: {course}" for k, _, _, course in steps
+                        if course is not None)
         return self._outcome("sequential", tuple(order), sp.Matrix(u),
-                       self._named(total.applyfunc(tidy)),
-                       tuple(t.name for t, p in zip(self.contacts, total, strict=True) if p > 0),
-                       passes - 1, tangential=self._named(tangential.applyfunc(tidy))
-                       if self.frictional else {}, courses=tuple(courses))
+                             self._named(total.applyfunc(tidy)),
+                             tuple(t.name for t, p in zip(self.contacts, total, strict=True)
+                                   if p > 0),
+                             count, tangential=self._named(tangential.applyfunc(tidy))
+                             if self.frictional else {}, courses=courses)
 
     def _routh_step(self, k: int,
                     u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
@@ -1406,6 +1402,43 @@ def _sign_of(relation: sp.Basic) -> sp.Basic:
             continue
         kept.append(factor)
     return op(sp.Mul(*kept), 0)
+
+
+def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
+                      step: Callable[[int, sp.Expr], tuple[sp.Expr, sp.Expr, str | None]],
+                      scale: sp.Expr, settled: sp.Expr = SETTLED
+                      ) -> tuple[int, list[tuple[int, sp.Expr, sp.Expr, str | None]]]:
+    """The sequential rule's passes, for any model: contact by contact in `order`, each
+    contact still closing (``closing(k) < 0``, beyond `settled` times `scale`) takes its
+    own impact (``step(k, closing)``: its normal and tangential impulse and its course,
+    the model's velocities moved by the step), repeated until a pass in which none acts.
+    Returns the passes in which some contact acted and every step taken.
+
+    Examples
+    --------
+    Two unit masses at rest and a third arriving at 1, e = 1, head on:
+
+    >>> u = [1, 0, 0]
+    >>> def hit(k, closing):  # equal masses: they swap velocities
+    ...     u[k], u[k + 1] = u[k + 1], u[k]
+    ...     return -closing, 0, None
+    >>> sequential_passes([0, 1], lambda k: u[k + 1] - u[k], hit, 1)
+    (1, [(0, 1, 0, None), (1, 1, 0, None)])
+    """
+    steps: list[tuple[int, sp.Expr, sp.Expr, str | None]] = []
+    count, acted = 0, True
+    while acted:  # a pass in which no contact acted ends the rule
+        if count == MAX_PASSES:
+            raise InputError("impact.rule", f"the sequential rule did not settle in "
+                             f"{MAX_PASSES} passes (e = 1 chains can ring forever)")
+        count, acted = count + 1, False
+        for k in order:
+            now = closing(k)
+            if now >= 0 or -now <= settled * scale:
+                continue
+            steps.append((k, *step(k, now)))
+            acted = True
+    return count - 1, steps
 
 
 def _tidied(x: Any) -> sp.Expr:
