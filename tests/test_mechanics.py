@@ -562,3 +562,22 @@ def test_a_hinged_link_on_a_rough_floor_matches_the_built_in_rod(law):
     assert sp.simplify(ours.speeds_after[0] - theirs.after[0].spin) == 0
     for a, b in zip(ours.contact_impulse, theirs.contact_impulse, strict=True):
         assert sp.simplify(a - b) == 0
+
+
+def test_both_ends_sticking_as_a_mechanics_system_match_the_built_in_shapes():
+    # four conditions (Newton's e and no slip at each end) on three freedoms: consistent,
+    # so the motion is fixed (by hand: vx = 0, vy = e, omega = -e w) and the impulses are
+    # not unique, which a note says; the built-in shapes' rule is the other engine
+    e, v, w = sp.Rational(1, 10), sp.Rational(7, 10), -sp.Rational(2, 5)
+    hit, q, u = _flat_rod(e, "stick")
+    ours = _at(hit, q, u, (v, -1, w)).solve()
+    assert list(ours.speeds_after) == [0, e, -e * w]
+    assert any("the impulses are not" in note for note in ours.notes)
+    rod = ri.Body.rigid(1, sp.Rational(1, 3), (0, 0), (v, -1), w, "rod")
+    contacts = tuple(ri.Contact((0, -1), e, "stick", name=name, bodies=("rod", "floor"),
+                                point=(x, 0)) for name, x in (("left", -1), ("right", 1)))
+    (theirs,) = ri.Collision((rod, ri.Body.fixed("floor")), contacts).solve(ri.Simultaneous())
+    r = theirs.results()
+    assert list(ours.speeds_after) == [r["rod.vx"], r["rod.vy"], r["rod.omega"]]
+    assert [ours.impulses[n] for n in ("left", "right")] == \
+        [r["left.normal_impulse"], r["right.normal_impulse"]]

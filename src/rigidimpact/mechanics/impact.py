@@ -58,6 +58,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.solve.collision import Rule, Sequential, Simultaneous, sequential_passes
+from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.solution import Solution
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
@@ -324,22 +325,34 @@ class SystemImpact:
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
         ring = sp.QQ[tuple(gens)] if gens else sp.QQ
         dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
-        if dA.det() == ring.zero:
-            raise InputError("contacts", "the contacts' conditions do not fix the impulses "
-                             "(more conditions than the system has freedoms)")
-        numerators, denominator = dA.solve_den(db)
-        field = ring.get_field() if gens else sp.QQ
-        x = [field.convert_from(numerators[i, 0].element, ring)
-             / field.convert_from(denominator, ring) for i in range(n + 2 * k)]
-        solved = [field.to_sympy(v) for v in x]
-        u_after, impulse = sp.Matrix(solved[:n]), sp.Matrix(solved[n:])
-        dM = DomainMatrix.from_Matrix(M).convert_to(field)
-        du = DomainMatrix.from_Matrix(u).convert_to(field)
-        dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
-        twice = (du.transpose() * dM * du - dx.transpose() * dM * dx)[0, 0].element
+        notes: tuple[str, ...] = ()
+        if dA.det() != ring.zero:
+            numerators, denominator = dA.solve_den(db)
+            field = ring.get_field() if gens else sp.QQ
+            x = [field.convert_from(numerators[i, 0].element, ring)
+                 / field.convert_from(denominator, ring) for i in range(n + 2 * k)]
+            solved = sp.Matrix([field.to_sympy(v) for v in x])
+            dM = DomainMatrix.from_Matrix(M).convert_to(field)
+            du = DomainMatrix.from_Matrix(u).convert_to(field)
+            dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
+            twice = field.to_sympy((du.transpose() * dM * du
+                                    - dx.transpose() * dM * dx)[0, 0].element)
+        else:  # more conditions than freedoms: with numbers, consistent or not at all
+            found = None if gens else least_norm(A, b)
+            if found is None:
+                raise InputError("contacts", "the contacts' conditions do not fix the "
+                                 "impulses (more conditions than the system has freedoms)"
+                                 + ("" if gens else " and contradict one another"))
+            solved = found  # the motion is fixed (W's null vectors are J^T's)
+            twice = (u.T * M * u - solved[:n, :].T * M * solved[:n, :])[0]
+            notes = ("more contact conditions than freedoms: the motion after is unique but "
+                     "the impulses are not; shown: the least-norm impulses",)
+        u_after, impulse = solved[:n, :], solved[n:, :]
         courses = {c.name: c.laws.laws[1].name if i in acting else "released"
                    for i, c in enumerate(self.contacts)}
-        solution = self._map(u_after, impulse, courses, field.to_sympy(twice) / 2)
+        solution = self._map(u_after, impulse, courses, twice / 2)
+        if notes:
+            solution = replace(solution, notes=notes)
         if k > 1 and active is None:  # the case where every contact acts, and when:
             # each approaching, each pushing
             closing = self.J * self.u_before

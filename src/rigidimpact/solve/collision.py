@@ -58,7 +58,15 @@ from rigidimpact.laws.law import Equation, NewtonRestitution
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impact import Impact
 from rigidimpact.solve.impulse import Coordinate, coordinates_of, jacobian, moving
-from rigidimpact.solve.lcp import NoSolution, confirm, lemke, pivoting, proximal, residual
+from rigidimpact.solve.lcp import (
+    NoSolution,
+    confirm,
+    least_norm,
+    lemke,
+    pivoting,
+    proximal,
+    residual,
+)
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -513,7 +521,7 @@ class Collision:
         matrix, rhs = sp.linear_eq_to_matrix(equations, P)
         impulses, unique = _exact_solve(matrix, rhs), True
         if impulses is None:  # the states do not fix the impulses: if they are consistent
-            impulses, unique = _least_norm(matrix, rhs), False  # the motion is fixed (W's
+            impulses, unique = least_norm(matrix, rhs), False  # the motion is fixed (W's
             if impulses is None:  # null vectors are J^T's); the least-norm ones are shown
                 return None
         after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
@@ -1339,27 +1347,6 @@ def _exact_solve(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
     if tuple(pivots) != tuple(range(size)):
         return None
     return reduced.to_Matrix()[:, size]
-
-
-def _least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
-    """The least-norm solution of a consistent singular system of numbers, exactly
-    (``A^T (A A^T)^+``, from a basis of A's rows); None when it has no solution.
-
-    Examples
-    --------
-    >>> _least_norm(sp.Matrix([[1, 1], [2, 2]]), sp.Matrix([2, 4])).T
-    Matrix([[1, 1]])
-    >>> _least_norm(sp.Matrix([[1, 1], [1, 1]]), sp.Matrix([2, 3])) is None
-    True
-    """
-    augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
-    reduced, pivots = augmented.rref()
-    size = matrix.shape[1]
-    if size in pivots:  # a row 0 = c != 0: inconsistent
-        return None
-    rows = reduced.to_Matrix()[:len(pivots), :]
-    A, b = rows[:, :size], rows[:, size]
-    return (A.T * (A * A.T).inv() * b).applyfunc(tidy)
 
 
 def _too_many_states(n: int, count: int) -> str:

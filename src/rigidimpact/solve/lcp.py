@@ -38,8 +38,12 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
+import sympy as sp
 
-__all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm"]
+from rigidimpact.symbolic.rewrite import tidy
+
+__all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm",
+           "least_norm"]
 
 
 class NoSolution(ValueError):
@@ -246,3 +250,24 @@ def confirm(W: dict[int, dict[int, Fraction]], q: Sequence[Fraction],
             if w < 0:
                 return None
     return z
+
+
+def least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
+    """The least-norm solution of a consistent singular system of numbers, exactly
+    (``A^T (A A^T)^+``, from a basis of A's rows); None when it has no solution.
+
+    Examples
+    --------
+    >>> least_norm(sp.Matrix([[1, 1], [2, 2]]), sp.Matrix([2, 4])).T
+    Matrix([[1, 1]])
+    >>> least_norm(sp.Matrix([[1, 1], [1, 1]]), sp.Matrix([2, 3])) is None
+    True
+    """
+    augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
+    reduced, pivots = augmented.rref()
+    size = matrix.shape[1]
+    if size in pivots:  # a row 0 = c != 0: inconsistent
+        return None
+    rows = reduced.to_Matrix()[:len(pivots), :]
+    A, b = rows[:, :size], rows[:, size]
+    return (A.T * (A * A.T).inv() * b).applyfunc(tidy)
