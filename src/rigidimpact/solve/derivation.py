@@ -74,7 +74,7 @@ class Derivation:
         Wall time the derivation took.
     warnings : tuple of str
         What the model cannot honour in general (see :func:`model_warnings`).
-    outcomes : tuple of collision.Outcome
+    outcomes : tuple of Solution
         With several contacts: each rule's (or order's) outcome; `results` are the
         first's.
     """
