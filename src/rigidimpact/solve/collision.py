@@ -722,9 +722,10 @@ class Collision:
         W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
         if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
             raise InputError(f"{self.contacts[k].name}.tangential",
-                             "the touching point cannot move both along and across the "
-                             "contact (its 2x2 W is singular): a grip along it is not "
-                             "determined; make the contact smooth")
+                             f"{tangential.name}: the touching points have one degree of "
+                             "freedom here (their 2x2 W is singular), so they cannot both "
+                             "stop slipping and leave by the restitution law; tangential = "
+                             "\"coulomb\" follows them (Routh's method), or make it smooth")
         normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
         normal, along = tidy(normal), tidy(along)
         u_after = (u + self.M_inverse * (self.J[k, :].T * normal
