@@ -806,6 +806,6 @@ def test_the_setup_line_states_every_contacts_friction():
     from rigidimpact.scenes.scene import parse_scene
 
     scene = parse_scene(ROD_AND_ROOF.format(rule="simultaneous"))
-    setup = scene.derivation_at(scene.values).setup
+    setup = scene.derivation(scene.values).setup
     lines = [line for line in setup if line.startswith("contact ")]
     assert len(lines) == 2 and all(line.endswith("Coulomb friction 2/5") for line in lines)

@@ -346,13 +346,6 @@ class Scene:
             extra["method"] = outcomes[0].method
         return Evaluation(numbers, warnings, None, extra)
 
-    def derivation_at(self, values: Mapping[sp.Symbol, Any]) -> Derivation:
-        """With several contacts, the derivation at these numbers (they are solved with
-        numbers); with one contact, the symbolic derivation."""
-        if len(self.contacts) == 1:
-            return self.derivation()
-        return self.derivation(values)
-
 
 def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
     """One expression over exclusive cases (a ``Piecewise`` unless all agree)."""
