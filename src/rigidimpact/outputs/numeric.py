@@ -518,6 +518,20 @@ def _mp_point(kernel: Kernel, key: str, args: Mapping[str, Any], dps: int) -> mp
     return value
 
 
+def _exact_number(key: str, expr: sp.Expr, dps: int | None) -> Any:
+    """An exact number at `dps` digits (mpmath), or as float64 when it fits."""
+    value = sp.N(expr, (dps or FALLBACK_DIGITS) + 10)
+    if not value.is_real or not value.is_finite:
+        raise InputError(key, "undefined at these values (a division by zero or an "
+                         "infinite result); the geometry or data are degenerate")
+    if dps:
+        with mpmath.workdps(dps):
+            return mpmath.mpf(value._to_mpmath(mpmath.mp.prec))
+    precise = mpmath.mpf(value._to_mpmath(200))
+    fits = precise == 0 or _FLOAT_TINY <= abs(precise) <= _FLOAT_MAX
+    return float(precise) if fits else precise
+
+
 def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, Any],
              dps: int | None = None) -> dict[str, Any]:
     """Evaluate every result at `values` (name -> number): float64, or mpmath at `dps`.
@@ -539,10 +553,19 @@ def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, Any],
     mpf('1.0e+400')
     """
     out: dict[str, Any] = {}
-    if not dps:  # every result at once through the fused kernel, when float64 suffices
-        together = _fused_point(results, values)
+    # a result with no symbols left is a number already: evaluated from its exact form
+    # at the precision asked (its integers may be far past what float64 holds)
+    constants = {key: expr for key, expr in results.items()
+                 if isinstance(expr, sp.Basic) and not expr.free_symbols}
+    for key, expr in constants.items():
+        out[key] = _exact_number(key, expr, dps)
+    order = list(results)
+    results = {key: expr for key, expr in results.items() if key not in constants}
+    if not dps and results:  # every result at once through the fused kernel, when
+        together = _fused_point(results, values)  # float64 suffices
         if together is not None:
-            return together
+            out.update(together)
+            results = {}
     for key, kernel in kernels(results).items():
         args = {n: values[n] for n in kernel.arguments}
         if dps:
@@ -554,4 +577,4 @@ def evaluate(results: Mapping[str, sp.Expr], values: Mapping[str, Any],
             fits = precise == 0 or _FLOAT_TINY <= abs(precise) <= _FLOAT_MAX
             value = float(precise) if fits else precise
         out[key] = value
-    return out
+    return {key: out[key] for key in order}

@@ -378,6 +378,50 @@ def prepare(scene: Scene, plan: Plan, values: Mapping) -> Model:
     return Model(tuple(parts), y0, normal, e, k_c, c_c, fast, slow, integrator, contact_info)
 
 
+def _apart_after(parts: list[_Part], y: np.ndarray, normal: np.ndarray) -> float | None:
+    """How long from now the touching points of rigid bodies in free flight may still
+    meet, or None if no bound holds (they do not draw apart).
+
+    Gravity moves both bodies alike, so the penetration ``n . (p1 - p2)`` is linear in
+    time plus one sinusoid per spinning body, each no larger than that body's arm:
+    once the linear part has fallen below minus the arms' sum, it stays negative.
+    """
+    first, second = parts
+    level, rate, reach = 0.0, 0.0, 0.0
+    for part, sign in ((first, 1.0), (second, -1.0)):
+        s = part.slot
+        if part.kind == "point":
+            level += sign * float(normal @ y[s:s + 2])
+            rate += sign * float(normal @ y[s + 2:s + 4])
+            continue
+        assert part.kind == "rigid" and part.contact is not None
+        point, _ = _contact_point(part, y)
+        arm = point - y[s:s + 2]
+        rate += sign * float(normal @ y[s + 3:s + 5])
+        if part.round or y[s + 5] == 0.0:
+            level += sign * float(normal @ point)
+        else:
+            level += sign * float(normal @ y[s:s + 2])
+            reach += float(np.linalg.norm(arm))
+    if rate >= 0.0:
+        return None
+    return max(0.0, (level + reach) / -rate)
+
+
+def _fly(parts: list[_Part], y: np.ndarray, dt: float, g: float) -> np.ndarray:
+    """Rigid bodies (and points) in free flight for `dt`, in closed form."""
+    y = y.copy()
+    for part in parts:
+        s = part.slot
+        place, speed = (slice(s, s + 2), slice(s + 2, s + 4)) if part.kind == "point" \
+            else (slice(s, s + 2), slice(s + 3, s + 5))
+        y[place] += y[speed] * dt + np.array([0.0, -0.5 * g * dt * dt])
+        y[speed] += np.array([0.0, -g * dt])
+        if part.kind == "rigid":
+            y[s + 2] += y[s + 5] * dt
+    return y
+
+
 class _OutOfTime(Exception):
     """Raised from the right-hand side when a run passes its time budget."""
 
@@ -506,11 +550,45 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     explicit = integrator["method"] in ("RK45", "DOP853")
     springs = any(p.kind == "spring" for p in parts)
     why = ""
+    apart = None  # with rigid bodies apart for good: the time past which none can meet
+    flown = None  # the state where the closed-form flight began
     for _ in range(MAX_SEGMENTS):
+        if apart is not None and t >= apart and not touching:
+            # no force acts and the touching points stay apart: closed form to the end
+            flown, y = y, _fly(parts, y, horizon - t, g)
+            try:  # its state and energies must stay within float64
+                with np.errstate(over="raise", invalid="raise"):
+                    fits = bool(np.all(np.isfinite(y))) and \
+                        bool(np.isfinite(sum(_energy(parts, y, g))))
+            except FloatingPointError:
+                fits = False
+            if not fits:
+                raise InputError("simulate.until", f"until = {horizon:g} s: the free "
+                                 "flight after the contact leaves float64's range by then; "
+                                 "ask for a shorter time")
+            times.append(horizon)
+            states.append(y.copy())
+            why = (f"reached until = {horizon:g} s (free flight from t = {t:.6g} s in "
+                   "closed form: the touching points draw apart for good)")
+            t = horizon
+            break
         if touching:
             stop = min(horizon, t + SETTLE_PERIODS * slow)
         elif math.isfinite(horizon):
             stop = horizon
+            if not springs:  # free flight: followed only while the points may meet
+                wait = _apart_after(parts, y, normal)
+                if wait is not None and t + wait < horizon:
+                    stop = apart = t + wait
+                    if wait == 0.0:
+                        continue
+                elif wait is None and (horizon - t) / _max_step(parts, y, fast, False,
+                                                                explicit) > MAX_STEPS:
+                    raise InputError("simulate.until", f"until = {horizon:g} s: after "
+                                     f"t = {t:.3g} s the bodies do not draw apart, so they "
+                                     "may touch again at any time, and following them that "
+                                     "long would take more than "
+                                     f"{MAX_STEPS} steps; ask for a shorter time")
         else:
             stop = quiet_since + SETTLE_PERIODS * slow
         if t >= stop:
@@ -565,9 +643,12 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     final["t"] = t
     kinetic0, stored0 = _energy(parts, y0, g)
     kinetic, stored = _energy(parts, y, g)
+    # a closed-form flight keeps its energy exactly: the balance is taken where it began
+    # (far on, kinetic and potential energy are large and cancel in float64)
+    balanced = sum(_energy(parts, flown, g)) if flown is not None else kinetic + stored
     energy = {"initial": kinetic0 + stored0, "kinetic": kinetic, "stored": stored,
               "contact_work": float(y[-1]),
-              "balance_error": kinetic + stored - (kinetic0 + stored0) - float(y[-1])}
+              "balance_error": balanced - (kinetic0 + stored0) - float(y[-1])}
     _check_balance(energy, plan.settings["tolerance"], integrator["method"])
     details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
     track = Trajectory(np.array(times), np.array(states), tuple(parts))

@@ -123,9 +123,13 @@ def _against_fixed(touch: Contact, f: Flyer, sign: float, round_body: bool) -> W
             + 0.5 * down * t * t
 
     def bound(horizon: float) -> float:
-        """A time by which a first touch, if any, must have come (at most the horizon)."""
-        if math.isfinite(horizon):
-            return horizon
+        """A time by which a first touch, if any, must have come: the flight's own, at
+        most the horizon (so the search's scales do not grow with a far horizon)."""
+        return min(horizon, natural())
+
+    def natural() -> float:
+        """The time past which the contact cannot close: the centre's parabola has fallen
+        more than the reach below the plane, or risen past it for good."""
         a, b, c0 = 0.5 * down, float(n @ v0), centre(0.0) + reach
         if a < 0.0:  # gravity closes the gap: the centre's parabola falls below -reach
             return (-b - math.sqrt(b * b - 4 * a * c0)) / (2 * a)
@@ -141,16 +145,17 @@ def _against_fixed(touch: Contact, f: Flyer, sign: float, round_body: bool) -> W
 
     def first_touch(horizon: float) -> float | None:
         stop = bound(horizon)
-        if not stop > 0.0:
-            return None
         speed = float(np.linalg.norm(v0)) + abs(down) * stop
         curvature = w * w * reach + abs(down) + 1e-300
         slope = rate(0.0)
         if slope <= 1e-12 * max(speed, abs(w) * reach, 1e-300):
             # not opening: the contact stays closed if the gap bends inward at once
-            if -w * w * float(n @ np.asarray(offset)) + down < 0.0 or gap(1e-9 * stop) < 0:
+            if -w * w * float(n @ np.asarray(offset)) + down < 0.0 or \
+                    stop > 0.0 and gap(1e-9 * stop) < 0:
                 return 0.0
             start = 1e-9 * stop
+        if not stop > 0.0:
+            return None
         else:
             start = min(slope / curvature, stop)
         if start >= stop:

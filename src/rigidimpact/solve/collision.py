@@ -68,6 +68,7 @@ from rigidimpact.solve.lcp import (
     residual,
 )
 from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.geometry import perp
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
@@ -76,6 +77,10 @@ __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
            "rule_laws"]
 
 RULES = ("simultaneous", "sequential", "compliant")
+FLOAT_DIGITS = 60  # where exact algebra would nest roots: floating point at this precision
+# a sequential run still going after this long is refused (a Routh step with numbers
+# takes 5 to 60 ms here: two contacts ringing for 1000 passes took 50 to 115 s)
+MAX_SEQUENTIAL_SECONDS = 10.0
 MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 # a sequence of one-at-a-time impacts can go on forever while converging (inelastic
 # collapse); it is cut where every closing speed left is this small next to the first
@@ -172,14 +177,14 @@ class Collision:
                     raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
                                      "contact must be where it is")
         # in numbers (a closing speed may hold a sine: compared at 30 digits)
-        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self.velocity_before):
+        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self._velocity_before):
             raise InputError("bodies", "no contact is approaching: there is no impact")
 
     @cached_property
     def symbols(self) -> frozenset[sp.Symbol]:
         """The symbols left in the collision (none: every rule runs; some: the
         simultaneous and one-pass sequential formulas, each with its conditions)."""
-        return frozenset(self.J.free_symbols | self.M_inverse.free_symbols
+        return frozenset(self._J.free_symbols | self.M_inverse.free_symbols
                          | self.u_before.free_symbols
                          | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
                                                   t.tangential_restitution or 0).free_symbols
@@ -243,17 +248,56 @@ class Collision:
     def J(self) -> sp.Matrix:
         """One row per contact: its normal closing velocity as a function of u (sparse:
         a contact touches only its two bodies' coordinates)."""
-        return self._rows(lambda t: t.unit_normal)
+        return self._rows(lambda t, s: t.unit_normal)
 
     @cached_property
     def J_t(self) -> sp.Matrix:
         """One row per contact: the tangential velocity (second minus first) along its
         tangent, as a function of u."""
-        return self._rows(lambda t: t.tangent)
+        return self._rows(lambda t, s: t.tangent)
+
+    @cached_property
+    def row_scale(self) -> tuple[sp.Expr, ...]:
+        """Each contact's rows in the solvers' J and J_t are its unit normal's and
+        tangent's times this.
+
+        A normal given as rational numbers is used as given, so its scale is its length
+        (sqrt(61)/8 for (3/4, -5/8)); any other normal is made unit (scale 1). Every rule
+        is unchanged by a positive scale of a contact's rows (the closing velocity and
+        the impulse scale inversely, the laws and the friction cone are homogeneous), so
+        the algebra stays in the rationals where the data are rational instead of in a
+        field with one square root adjoined per contact; the impulses are put back on
+        the unit normal where the Solution is made (:meth:`_named`).
+
+        Examples
+        --------
+        >>> from rigidimpact.model.bodies import Body
+        >>> Collision((Body.rigid(1, 1, (0, 0), (0, -1), name="a"), Body.fixed("floor")),
+        ...           (Contact(normal=(3, -4), bodies=("a", "floor")),)).row_scale
+        (5,)
+        """
+        return tuple(sp.sqrt(t.normal[0] ** 2 + t.normal[1] ** 2)
+                     if all(isinstance(x, sp.Rational) for x in t.normal) else sp.Integer(1)
+                     for t in self.contacts)
+
+    @cached_property
+    def _J(self) -> sp.Matrix:
+        """J with each row times its :attr:`row_scale` (what the rules solve with)."""
+        if all(s == 1 for s in self.row_scale):
+            return self.J
+        return self._rows(lambda t, s: t.unit_normal if s == 1 else t.normal)
+
+    @cached_property
+    def _J_t(self) -> sp.Matrix:
+        """J_t with each row times its :attr:`row_scale`."""
+        if all(s == 1 for s in self.row_scale):
+            return self.J_t
+        return self._rows(lambda t, s: t.tangent if s == 1 else perp(t.normal))
 
     def _rows(self, direction_of) -> sp.Matrix:
         return jacobian(self.bodies, self.coordinates,
-                        [(t.first, t.second, t.point, direction_of(t)) for t in self.contacts])
+                        [(t.first, t.second, t.point, direction_of(t, s))
+                         for t, s in zip(self.contacts, self.row_scale, strict=True)])
 
     @property
     def frictional(self) -> bool:
@@ -269,13 +313,21 @@ class Collision:
     @cached_property
     def W(self) -> sp.Matrix:
         """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
-        if not (self.J.free_symbols or self.M_inverse.free_symbols):
+        return self._product(self.J)
+
+    @cached_property
+    def _W(self) -> sp.Matrix:
+        """W of the scaled rows (:attr:`row_scale`): what the rules solve with."""
+        return self.W if self._J is self.J else self._product(self._J)
+
+    def _product(self, J: sp.Matrix) -> sp.Matrix:
+        if not (J.free_symbols or self.M_inverse.free_symbols):
             # numbers: in their own field (the rationals, or with sqrt(3) adjoined), where
             # the product of sparse rows is exact and fast at hundreds of contacts
-            J, Minv = self.J.to_DM(extension=True), self.M_inverse.to_DM(extension=True)
+            J, Minv = J.to_DM(extension=True), self.M_inverse.to_DM(extension=True)
             J, Minv = J.unify(Minv)
             return (J * Minv * J.transpose()).to_Matrix()
-        return (self.J * self.M_inverse * self.J.T).applyfunc(sp.nsimplify)
+        return (J * self.M_inverse * J.T).applyfunc(_tidied)
 
     @cached_property
     def u_before(self) -> sp.Matrix:
@@ -284,6 +336,11 @@ class Collision:
     @cached_property
     def velocity_before(self) -> sp.Matrix:
         """Normal closing velocity of every contact before (negative: approaching)."""
+        return (self.J * self.u_before).applyfunc(tidy)
+
+    @cached_property
+    def _velocity_before(self) -> sp.Matrix:
+        """The closing velocities of the scaled rows (:attr:`row_scale`)."""
         return self._times(self.u_before)
 
     def _closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
@@ -299,7 +356,7 @@ class Collision:
     def _J_rows(self) -> list[list[tuple[int, sp.Expr]]]:
         """Each row of J as its nonzero (column, value) pairs."""
         found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
-        for i, j, value in self.J.row_list():
+        for i, j, value in self._J.row_list():
             found[i].append((j, value))
         return found
 
@@ -347,7 +404,7 @@ class Collision:
         self._numbers_only("simultaneous")
         if self.frictional:
             return self._frictional_simultaneous()
-        v = self.velocity_before
+        v = self._velocity_before
         poisson = self._poisson()
         target = sp.zeros(len(v), 1) if poisson else \
             sp.Matrix([self._leaving(i, min(v[i], 0)) for i in range(len(v))])
@@ -371,8 +428,8 @@ class Collision:
         would pass into each other): Poisson's law scales each compression impulse by
         its own 1 + e, which need not leave every contact opening."""
         after = self._times(u)
-        scale = max(abs(x) for x in self.velocity_before)
-        closing = [(t.name, after[i]) for i, t in enumerate(self.contacts)
+        scale = max(abs(x) for x in self._velocity_before)
+        closing = [(t.name, after[i] / self.row_scale[i]) for i, t in enumerate(self.contacts)
                    if after[i] < -sp.Rational(1, 10**12) * scale]
         return tuple(f"{name} still approaches after the impact (normal velocity "
                      f"{float(speed):.6g}): the bodies would pass into each other; the "
@@ -409,11 +466,11 @@ class Collision:
                              "has no form for contacts acting together: use the "
                              "sequential rule (each contact's own impact)")
         n = len(self.contacts)
-        v_n, v_t = self.velocity_before, (self.J_t * self.u_before).applyfunc(tidy)
+        v_n, v_t = self._velocity_before, (self._J_t * self.u_before).applyfunc(tidy)
         mu = [law.cone() for law in tangential]
         target = [self._leaving(i, min(v_n[i], 0)) for i in range(n)]
-        rows = sp.Matrix.vstack(self.J, self.J_t)
-        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        rows = sp.Matrix.vstack(self._J, self._J_t)
+        W = (rows * self.M_inverse * rows.T).applyfunc(_tidied)
         states = [("off",) + law.velocity_states for law in tangential]
         found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
         count = math.prod(len(s) for s in states)
@@ -566,14 +623,14 @@ class Collision:
                                      "contacts, more than can be tried in "
                                      f"{MAX_SYMBOLIC_SECONDS:.0f} s (give numbers for the "
                                      "symbols: the rule then needs no such search)")
-                block = self.W.extract(list(active), list(active))
+                block = self._W.extract(list(active), list(active))
                 if tidy(block.det()) == 0:
                     continue
                 solved = block.LUsolve(sp.Matrix([target[i] - v[i] for i in active]))
                 impulses = sp.zeros(n, 1)
                 for k, i in enumerate(active):
                     impulses[i] = tidy(solved[k])
-                yield active, impulses, v + self.W * impulses
+                yield active, impulses, v + self._W * impulses
 
     def _lcp(self, v: sp.Matrix,
              target: sp.Matrix) -> tuple[sp.Matrix, tuple[str, ...], str]:
@@ -589,10 +646,10 @@ class Collision:
         if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED):
             return self._lcp_at_scale(v, target, rational)
         if rational:
-            W = self.W.to_DM()
+            W = self._W.to_DM()
             if W.rank() == W.shape[0]:
                 q = [Fraction(int(x.p), int(x.q)) for x in v - target]
-                M = [[Fraction(int(x.p), int(x.q)) for x in self.W.row(i)]
+                M = [[Fraction(int(x.p), int(x.q)) for x in self._W.row(i)]
                      for i in range(len(v))]
                 try:
                     z = lemke(M, q)
@@ -610,7 +667,7 @@ class Collision:
 
     @cached_property
     def _W_entries(self) -> list[tuple[int, int, sp.Expr]]:
-        return [(i, j, x) for (i, j), x in sorted(self.W.todok().items()) if x != 0]
+        return [(i, j, x) for (i, j), x in sorted(self._W.todok().items()) if x != 0]
 
     def _lcp_at_scale(self, v: sp.Matrix, target: sp.Matrix,
                       rational: bool) -> tuple[sp.Matrix, tuple[str, ...], str]:
@@ -674,7 +731,7 @@ class Collision:
     def _smooth_step(self, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
         """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
         (only the two bodies' coordinates the contact moves)."""
-        impulse = tidy((self._leaving(k, closing) - closing) / self.W[k, k])
+        impulse = tidy((self._leaving(k, closing) - closing) / self._W[k, k])
         for j, value in self._J_rows[k]:
             u[j] = tidy(u[j] + value * impulse * self._inverse_inertia[j])
         return impulse
@@ -689,37 +746,55 @@ class Collision:
         self._numbers_only("sequential")
         index = self._order_index(order)
         u = list(self.u_before)
+        floating: list[str] = []
 
         def step(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
             if self.contacts[k].laws[1].grips:  # its own impact (Routh's for Coulomb)
+                if not floating and not all(x.is_Rational for x in u):
+                    # the arithmetic is chosen before the next case analysis: a state
+                    # out of the rationals (an energetic step's square root) would
+                    # nest a root in every later step, so from here on every step
+                    # starts from the state rounded to FLOAT_DIGITS-digit rationals
+                    floating.append(self.contacts[k].name)
+                if floating:
+                    u[:] = [_rounded(x) for x in u]
                 impulse, along, course, after = self._routh_step(k, sp.Matrix(u))
+                if floating:
+                    impulse, along = _rounded(impulse), _rounded(along)
+                    after = after.applyfunc(_rounded)
                 u[:] = list(after)
                 return impulse, along, course
             return self._smooth_step(k, u, closing), sp.Integer(0), None
 
         count, steps = sequential_passes([index[name] for name in order],
                                          lambda k: self._closing(k, u), step,
-                                         max(abs(v) for v in self.velocity_before))
+                                         max(abs(v) for v in self._velocity_before))
         total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
         for k, impulse, along, _ in steps:
             total[k] += impulse
             tangential[k] += along
         courses = tuple(f"{self.contacts[k].name}: {course}" for k, _, _, course in steps
                         if course is not None)
+        notes = (f"from {floating[0]}'s step on, the velocities held square roots that "
+                 "would nest at every further step: each step from there started from "
+                 f"them rounded to {FLOAT_DIGITS} digits (the results are good to about "
+                 "that many digits, not exact)",) if floating else ()
         return self._outcome("sequential", tuple(order), sp.Matrix(u),
                              self._named(total.applyfunc(tidy)),
                              tuple(t.name for t, p in zip(self.contacts, total, strict=True)
                                    if p > 0),
                              count, tangential=self._named(tangential.applyfunc(tidy))
-                             if self.frictional else {}, courses=courses)
+                             if self.frictional else {}, courses=courses, notes=notes,
+                             method=f"rounded to {FLOAT_DIGITS} digits between steps"
+                             if floating else "")
 
     def _routh_step(self, k: int,
                     u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
         """Contact k's impact alone under its own laws (Routh's method for Coulomb,
         Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
         restitution, tangential = self.contacts[k].laws
-        rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
-        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+        rows = sp.Matrix.vstack(self._J[k, :], self._J_t[k, :])
+        W = (rows * self.M_inverse * rows.T).applyfunc(_tidied)
         if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
             raise InputError(f"{self.contacts[k].name}.tangential",
                              f"{tangential.name}: the touching points have one degree of "
@@ -728,8 +803,8 @@ class Collision:
                              "\"coulomb\" follows them (Routh's method), or make it smooth")
         normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
         normal, along = tidy(normal), tidy(along)
-        u_after = (u + self.M_inverse * (self.J[k, :].T * normal
-                                         + self.J_t[k, :].T * along)).applyfunc(tidy)
+        u_after = (u + self.M_inverse * (self._J[k, :].T * normal
+                                         + self._J_t[k, :].T * along)).applyfunc(tidy)
         return normal, along, course, u_after
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
@@ -777,7 +852,7 @@ class Collision:
             raise InputError("stiffness", "every contact stiffness must be a positive number")
         # only the coordinates some contact moves are integrated (a chain's balls do not
         # spin or move across it); J is sparse, each contact touching two bodies
-        entries = self.J.row_list()
+        entries = self.J.row_list()  # the springs push along the unit normals
         moved = sorted({j for _, j, _ in entries})
         column = {j: c for c, j in enumerate(moved)}
         n = len(moved)
@@ -809,7 +884,7 @@ class Collision:
 
         u_all = np.array(self.u_before.evalf(), dtype=float).ravel()
         y = np.concatenate([u_all[moved], np.zeros(k), np.zeros(k)])
-        speed = float(max(abs(v) for v in self.velocity_before))
+        speed = float(max(abs(v) for v in self._velocity_before))
         mass = 1 / w_diag  # each contact's effective mass
         if hertz:  # a Hertz contact lasts about 3 (m^2 / (k^2 v))^(1/5)
             period = 3 * float(((mass / stiff) ** 2 / speed).max() ** 0.2)
@@ -870,7 +945,7 @@ class Collision:
         impulses = sp.Matrix([sp.Float(x, 17) for x in y[n + k:]])
         history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
         return self._outcome("compliant", (), u_after,
-                       self._named(impulses),
+                       {t.name: impulses[i] for i, t in enumerate(self.contacts)},
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
                              if p > 0), history=history,
                        energy_tolerance=max(COMPLIANT_ENERGY_TOLERANCE, 10 * k * tolerance))
@@ -907,7 +982,7 @@ class Collision:
         if regimes:  # Coulomb's and Walton's courses: no closed form acting together
             self._smooth_only("with symbols")
         stick = [i for i, t in enumerate(self.contacts) if t.laws[1].grips]
-        v = self.velocity_before
+        v = self._velocity_before
         poisson = self._poisson()
         n = len(v)
         if stick and poisson:
@@ -949,8 +1024,8 @@ class Collision:
                     for i in range(n)]).applyfunc(tidy)
                 if extra:  # sticking contacts: their tangential impulses move u too
                     tangential, free = extra
-                    u = (self.u_before + self.M_inverse * (self.J.T * impulses
-                                                           + self.J_t.T * tangential)
+                    u = (self.u_before + self.M_inverse * (self._J.T * impulses
+                                                           + self._J_t.T * tangential)
                          ).applyfunc(tidy)
                     more: dict[str, Any] = {"tangential": self._named(tangential),
                             "courses": tuple(f"{t.name}: " + (_STATE["stick"] if i in active
@@ -973,9 +1048,9 @@ class Collision:
         where they act (their tangential impulse an unknown of its own, no cone):
         ``(active, P_n, v_n + (W P)_n, P_t)`` for each set whose block is invertible."""
         n = len(v)
-        rows = sp.Matrix.vstack(self.J, self.J_t)
-        W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
-        slip = (self.J_t * self.u_before).applyfunc(tidy)
+        rows = sp.Matrix.vstack(self._J, self._J_t)
+        W = (rows * self.M_inverse * rows.T).applyfunc(_tidied)
+        slip = (self._J_t * self.u_before).applyfunc(tidy)
         deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
         for size in range(n, 0, -1):
             for active in itertools.combinations(range(n), size):
@@ -1072,8 +1147,8 @@ class Collision:
         for name in order:
             k = index[name]
             restitution, tangential = self.contacts[k].laws
-            rows = sp.Matrix.vstack(self.J[k, :], self.J_t[k, :])
-            W = (rows * self.M_inverse * rows.T).applyfunc(sp.nsimplify)
+            rows = sp.Matrix.vstack(self._J[k, :], self._J_t[k, :])
+            W = (rows * self.M_inverse * rows.T).applyfunc(_tidied)
             grown = []
             for u, total, along, conditions, courses in branches:
                 v = (rows * u).applyfunc(tidy)
@@ -1149,6 +1224,10 @@ class Collision:
         >>> chain(3).solve(Sequential(("c0", "c1")))[0].results()["ball2.vx"]
         1
         """
+        if not isinstance(rule, Rule):
+            raise InputError("rule", "must be a rule object (Simultaneous(), "
+                             "Sequential(order) or Compliant()), not "
+                             f"{type(rule).__name__} {rule!r}")
         if len(self.contacts) == 1:  # every rule gives the one contact's own answer
             return (self.alone(),)
         return tuple(replace(o, pivot_reactions=self._pivot_reactions(o))
@@ -1233,7 +1312,9 @@ class Collision:
         symbols = self.unknowns()
         u_after, P_n = sp.Matrix(symbols[:size]), sp.Matrix(symbols[size:size + n])
         P_t = sp.Matrix(symbols[size + n:]) if self.frictional else sp.zeros(n, 1)
-        push = self.J.T * P_n + self.J_t.T * P_t
+        J, J_t = self.J, self.J_t
+        push = J.T * P_n + J_t.T * P_t
+        v_before = J * self.u_before
         found = []
         for i, c in enumerate(self.coordinates):
             body = self._body(c.body)
@@ -1248,8 +1329,8 @@ class Collision:
             self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
         for k, t in enumerate(self.contacts):
             restitution, tangential = t.laws
-            closing = (self.J[k, :] * u_after)[0]
-            slip = (self.J_t[k, :] * u_after)[0]
+            closing = (J[k, :] * u_after)[0]
+            slip = (J_t[k, :] * u_after)[0]
             normal, along = outcome.impulses[t.name], outcome.tangential.get(t.name, 0)
             if outcome.rule != "simultaneous" or routh:
                 how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
@@ -1267,22 +1348,23 @@ class Collision:
                 found.append(Equation(f"{t.name} released: no impulse", "", P_n[k], 0,
                                       law="released"))
             elif restitution.together == "impulse" and n > 1:
-                compression = (self.velocity_before[k] + sum(
-                    (self.W[k, j] * self.contacts[j].laws[0].compression(P_n[j])
+                W_k = J[k, :] * self.M_inverse * J.T
+                compression = (v_before[k] + sum(
+                    (W_k[0, j] * self.contacts[j].laws[0].compression(P_n[j])
                      for j in range(n)), sp.Integer(0)))
                 found.append(Equation(f"{t.name} at rest at the end of compression "
                                       "(Poisson's law: each impulse is 1 + e times its "
                                       "compression impulse)", "", tidy(compression), 0,
                                       law="restitution"))
             else:
-                before = self.velocity_before[k]
+                before = tidy(v_before[k])
                 closed = before.is_negative
                 found.append(Equation(f"restitution at {t.name} (Newton's law" + (
                     ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
                     self._leaving(k, before) if closed else 0, law="restitution"))
             if not self.frictional:
                 continue
-            after_slip = tidy((self.J_t[k, :] * u)[0])
+            after_slip = tidy((J_t[k, :] * u)[0])
             if not tangential.grips or t.name not in outcome.acted:
                 found.append(Equation(f"{t.name}: no tangential impulse", "", P_t[k], 0,
                                       law="tangential"))
@@ -1322,7 +1404,10 @@ class Collision:
         return next(t for t in self.contacts if t.name == name)
 
     def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
-        return {t.name: impulses[k] for k, t in enumerate(self.contacts)}
+        """Each contact's impulse along its unit normal (or tangent), by name, from the
+        impulses of its scaled rows (see :attr:`row_scale`)."""
+        return {t.name: impulses[k] if s == 1 else tidy(impulses[k] * s)
+                for k, (t, s) in enumerate(zip(self.contacts, self.row_scale, strict=True))}
 
 
 def _too_many_cases(n: int, count: int) -> str:
@@ -1415,10 +1500,14 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
     """
     steps: list[tuple[int, sp.Expr, sp.Expr, str | None]] = []
     count, acted = 0, True
+    deadline = time.perf_counter() + MAX_SEQUENTIAL_SECONDS
     while acted:  # a pass in which no contact acted ends the rule
-        if count == MAX_PASSES:
+        if count == MAX_PASSES or time.perf_counter() > deadline:
             raise InputError("impact.rule", f"the sequential rule did not settle in "
-                             f"{MAX_PASSES} passes (e = 1 chains can ring forever)")
+                             f"{count} passes ({len(steps)} impacts, "
+                             f"{MAX_SEQUENTIAL_SECONDS:g} s at most): the contacts keep "
+                             "closing again after each other's impacts (with e = 1 they "
+                             "can ring for ever); try the simultaneous rule")
         count, acted = count + 1, False
         for k in order:
             now = closing(k)
@@ -1427,6 +1516,15 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
             steps.append((k, *step(k, now)))
             acted = True
     return count - 1, steps
+
+
+def _rounded(x: sp.Expr) -> sp.Expr:
+    """A number as the rational of its first FLOAT_DIGITS significant digits (exact
+    numbers that are rational already stay as they are)."""
+    x = sp.sympify(x)
+    if x.is_Float:
+        return x
+    return sp.N(x, FLOAT_DIGITS)
 
 
 def _tidied(x: Any) -> sp.Expr:
@@ -1462,6 +1560,42 @@ def _conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
     return tuple(joint.args) if isinstance(joint, sp.And) else (joint,)
 
 
+# the builders' budget: bodies are made one SymPy object at a time, a few ms each (a
+# 10,000-ball chain took 35 s to build and 19 s to solve here); past it, one line first
+MAX_BUILT_CONTACTS = 3000
+
+
+def whole_number(name: str, value: Any, least: int, most: int | None = None,
+                 why: str = "") -> int:
+    """`value` as an int in [least, most], or InputError naming `name` (a bool, a float
+    or a string is refused, not rounded or parsed).
+
+    Examples
+    --------
+    >>> whole_number("n", 3, 2)
+    3
+    >>> whole_number("n", 2.5, 2)
+    Traceback (most recent call last):
+    ...
+    rigidimpact.errors.InputError: n: must be a whole number, not float 2.5
+    """
+    if isinstance(value, bool) or not hasattr(value, "__index__"):
+        raise InputError(name, f"must be a whole number, not {type(value).__name__} "
+                         f"{value!r}")
+    value = int(value.__index__())
+    if value < least:
+        raise InputError(name, f"must be at least {least}, got {value}")
+    if most is not None and value > most:
+        raise InputError(name, f"{value} is past the budget of {most}{why}")
+    return value
+
+
+def _builder_size(name: str, value: Any, least: int) -> int:
+    return whole_number(name, value, least, MAX_BUILT_CONTACTS,
+                        f" (at most {MAX_BUILT_CONTACTS} contacts are built: each body is a SymPy "
+                        "object, a few milliseconds each)")
+
+
 def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     """Newton's cradle: n equal balls (mass 1, radius 1/2) in a line, touching, the first
     moving at `speed` into the rest.
@@ -1471,8 +1605,7 @@ def chain(n: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     >>> [chain(3).simultaneous().results()[f"ball{k}.vx"] for k in range(3)]
     [-1/3, 2/3, 2/3]
     """
-    if n < 2:
-        raise InputError("n", "a chain needs two balls or more")
+    n = _builder_size("n", n, 2)
     bodies = tuple(Body.rigid(1, sp.Rational(1, 10), (k, 0), (speed if k == 0 else 0, 0),
                               name=f"ball{k}") for k in range(n))
     touches = tuple(Contact(restitution=restitution, name=f"c{k}",
@@ -1490,6 +1623,7 @@ def fan(k: int) -> Collision:
     >>> [tuple(t.normal) for t in fan(2).contacts]
     [(3/5, 4/5), (5/13, 12/13)]
     """
+    k = _builder_size("k", k, 1)
     directions: list[tuple[sp.Rational, sp.Rational]] = []
     outer = 2
     while len(directions) < k:
@@ -1518,8 +1652,11 @@ def cluster(rows: int, columns: int, restitution: Any = 1, speed: Any = 1) -> Co
     >>> len(c.contacts), [t.name for t in c.contacts[:2]]
     (6, ['hit', 'd0_0_d0_1'])
     """
-    if rows < 1 or columns < 1:
-        raise InputError("cluster", "a cluster needs one disc or more")
+    rows, columns = whole_number("rows", rows, 1), whole_number("columns", columns, 1)
+    if 3 * rows * columns > MAX_BUILT_CONTACTS:
+        raise InputError("cluster", f"{rows} x {columns} discs make about "
+                         f"{3 * rows * columns} contacts, past the budget of "
+                         f"{MAX_BUILT_CONTACTS} (each body is a SymPy object)")
     half = sp.sqrt(3) / 2
     centres = {(i, j): (j + sp.Rational(i % 2, 2), i * half)
                for i in range(rows) for j in range(columns)}
@@ -1601,6 +1738,18 @@ class Sequential(Rule):
     seed: int = 0
     name: ClassVar[str] = "sequential"
 
+    def __post_init__(self) -> None:
+        if self.order is not None:
+            if isinstance(self.order, str) or not all(
+                    isinstance(x, str) for x in self.order):
+                raise InputError("order", "must be a sequence of contact names, e.g. "
+                                 f"(\"c0\", \"c1\"), not {self.order!r}")
+            object.__setattr__(self, "order", tuple(self.order))
+        if self.sample is not None:
+            whole_number("sample", self.sample, 1, MAX_SAMPLED_ORDERS,
+                          " sampled orders (each a whole sequential run)")
+        whole_number("seed", self.seed, 0)
+
     def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         if self.order is None and self.sample is not None:
             return collision.sampled_orders(self.sample, self.seed)
@@ -1619,6 +1768,17 @@ class Compliant(Rule):
     stiffness: tuple[float, ...] | float = 1e6
     hertz: bool = False
     name: ClassVar[str] = "compliant"
+
+    def __post_init__(self) -> None:
+        values = self.stiffness if isinstance(self.stiffness, (tuple, list)) \
+            else (self.stiffness,)
+        for value in values:
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                    not math.isfinite(value) or value <= 0:
+                raise InputError("stiffness", "every contact stiffness must be a positive "
+                                 f"finite number, not {value!r}")
+        if not isinstance(self.hertz, bool):
+            raise InputError("hertz", f"must be True or False, not {self.hertz!r}")
 
     def outcomes(self, collision: Collision) -> tuple[Solution, ...]:
         return (collision.compliant(self.stiffness, self.hertz),)

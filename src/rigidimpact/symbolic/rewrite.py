@@ -34,6 +34,8 @@ def tidy(expr: sp.Expr) -> sp.Expr:
     1/2
     """
     expr = sp.sympify(expr)
+    if expr.is_Rational or expr.is_Float:  # nothing to put over one denominator
+        return expr
     shielded, back = _shield(expr)
     if back:
         return _positive_lead(sp.together(_tidy(shielded).xreplace(back)))
