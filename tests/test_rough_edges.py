@@ -114,3 +114,95 @@ def test_passes_that_never_settle_are_refused_in_one_line():
 
     with pytest.raises(InputError, match="did not settle in 1000 passes"):
         sequential_passes([0, 1], lambda k: -1, lambda k, closing: (1, 0, None), 1)
+
+
+FOUR_DISCS = """
+title = "four discs: Newton's rule acting together creates energy"
+[[bodies]]
+name = "d0"
+shape = "rigid"
+mass = "4/3"
+inertia = "2/3"
+position = ["0", "0"]
+velocity = ["-1", "-3/2"]
+[[bodies]]
+name = "d1"
+shape = "rigid"
+mass = "7/2"
+inertia = "7/16"
+position = ["0", "3/2"]
+[[bodies]]
+name = "d2"
+shape = "rigid"
+mass = "7/2"
+inertia = "7/4"
+position = ["-42/29", "-40/29"]
+[[bodies]]
+name = "d3"
+shape = "rigid"
+mass = "3"
+inertia = "27/32"
+position = ["6/5", "37/20"]
+velocity = ["1/2", "-1/2"]
+[[contacts]]
+name = "k0"
+bodies = ["d0", "d1"]
+point = ["0", "1"]
+normal = ["0", "1"]
+restitution = "1"
+[[contacts]]
+name = "k1"
+bodies = ["d0", "d2"]
+point = ["-21/29", "-20/29"]
+normal = ["-21/29", "-20/29"]
+restitution = "1"
+[[contacts]]
+name = "k2"
+bodies = ["d1", "d3"]
+point = ["12/25", "41/25"]
+normal = ["24/25", "7/25"]
+restitution = "0"
+[impact]
+rule = "simultaneous"
+"""
+
+
+def test_energy_created_is_a_warning_in_python_too(tmp_path, capsys):
+    import sympy as sp
+
+    import rigidimpact as ri
+
+    [solution] = ri.parse_scene(FOUR_DISCS).outcomes()
+    # the kinetic energies before and after, summed here from the bodies
+    def kinetic(bodies):
+        return sum((b.mass * (b.velocity[0] ** 2 + b.velocity[1] ** 2) + b.inertia
+                    * b.spin ** 2) / 2 for b in bodies if b.support != "fixed")
+
+    gained = kinetic(solution.after) - kinetic(solution.before)
+    assert gained > 0 and sp.sympify(gained).is_Rational
+    assert solution.checks["energy"] == gained
+    assert any("kinetic energy is created" in w for w in solution.warnings)
+    # every condition the rule imposed holds exactly
+    assert all(v == 0 for k, v in solution.checks.items() if k != "energy")
+    path = tmp_path / "discs.toml"
+    path.write_text(FOUR_DISCS)
+    assert main(["evaluate", str(path), "--json"]) == 0
+    import json
+
+    data = json.loads(capsys.readouterr().out)
+    assert data["checks"]["energy"] == pytest.approx(float(gained))
+
+
+def test_a_check_that_fails_is_never_an_answer():
+    # a Solution whose impulses do not balance the momentum it reports is refused
+    from dataclasses import replace
+
+    import rigidimpact as ri
+    from rigidimpact.solve.collision import certified
+
+    solution = ri.chain(3).simultaneous()
+    wrong = replace(solution, impulses={**solution.impulses, "c0": solution.impulses["c0"]
+                                        + 1})
+    assert wrong.checks["ball0.momentum_x"] == 1
+    with pytest.raises(InputError, match="fails its own check"):
+        certified(wrong)

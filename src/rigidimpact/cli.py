@@ -298,6 +298,13 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         if result.extra:
             print(f"rule = {result.extra['rule']}; contacts that acted: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
+        if result.extra.get("checks"):
+            checks = result.extra["checks"]
+            worst = max(checks, key=lambda k: checks[k])
+            print(f"checks: {len(checks)} conditions (momentum, each contact's laws, "
+                  "energy) from the bodies and impulses alone; " + (
+                      "every residual is zero" if checks[worst] == 0 else
+                      f"largest residual {checks[worst]:.3g} ({worst})"))
             if "courses" in result.extra:
                 print(f"courses: {'; '.join(result.extra['courses'])}")
             if "sample" in result.extra:

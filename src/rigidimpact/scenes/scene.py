@@ -325,6 +325,8 @@ class Scene:
         numbers = derivation.evaluate({}, dps).numbers
         outcomes = derivation.outcomes
         extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}
+        if outcomes[0].checks:  # each law's residual, from the bodies and impulses alone
+            extra["checks"] = {k: float(v) for k, v in outcomes[0].checks.items()}
         if outcomes[0].courses:
             extra["courses"] = list(outcomes[0].courses)
         if len(outcomes) > 1:

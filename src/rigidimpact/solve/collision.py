@@ -50,6 +50,7 @@ from functools import cached_property
 from typing import Any, ClassVar
 
 import sympy as sp
+from sympy.polys.domains import QQ
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import damping_ratio_for
@@ -61,6 +62,7 @@ from rigidimpact.solve.impulse import Coordinate, coordinates_of, jacobian, movi
 from rigidimpact.solve.lcp import (
     NoSolution,
     confirm,
+    confirm_by_rows,
     least_norm,
     lemke,
     pivoting,
@@ -374,10 +376,13 @@ class Collision:
     def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                  **more: Any) -> Solution:
-        """The one :class:`Solution` a rule gives: the bodies moving with `u` after."""
-        return Solution(before=self.bodies, after=self._after(u), impulses=impulses,
-                        contacts=self.contacts, rule=rule, order=tuple(order),
-                        acted=tuple(acted), passes=passes, **more)
+        """The one :class:`Solution` a rule gives: the bodies moving with `u` after,
+        certified (see :mod:`rigidimpact.solve.certificate`): a physical limit of the
+        model here goes into its warnings; a broken condition is never an answer."""
+        solution = Solution(before=self.bodies, after=self._after(u), impulses=impulses,
+                            contacts=self.contacts, rule=rule, order=tuple(order),
+                            acted=tuple(acted), passes=passes, **more)
+        return certified(solution)
 
     def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
         change: dict[int, sp.Expr] = {}
@@ -415,7 +420,8 @@ class Collision:
         u = self._kick(self.u_before, impulses)
         return self._outcome("simultaneous", (), u, self._named(impulses),
                        tuple(t.name for t, p in zip(self.contacts, impulses, strict=True)
-                             if p > 0), notes=how + self._still_closing(u), method=method)
+                             if p > 0), notes=how + (self._still_closing(u) if poisson else ()),
+                             method=method)
 
     def _leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
         """The normal velocity after that contact k's restitution law asks on a straight
@@ -662,8 +668,29 @@ class Collision:
         return self._complementarity(v, target), (), ""
 
     @cached_property
+    def _rational_rows(self) -> bool:
+        """Whether J's rows and M^-1 are rational (then so is W)."""
+        return all(isinstance(x, sp.Rational) for row in self._J_rows for _, x in row) and \
+            all(isinstance(x, sp.Rational) for x in self._inverse_inertia)
+
+    @cached_property
     def _rational_W(self) -> bool:
-        return all(isinstance(x, sp.Rational) for _, _, x in self._W_entries)
+        """Whether W is rational (it can be where J is not: sqrt(3)^2)."""
+        return self._rational_rows or all(isinstance(x, sp.Rational)
+                                          for _, _, x in self._W_entries)
+
+    def _float_W(self) -> Any:
+        """W in float64 as a SciPy sparse matrix, from J's sparse rows (W itself, dense
+        when one body touches every contact, is never formed exactly at scale)."""
+        import scipy.sparse as sps
+
+        rows = self._J_rows
+        J = sps.csr_matrix(([float(x) for row in rows for _, x in row],
+                            ([i for i, row in enumerate(rows) for _ in row],
+                             [j for row in rows for j, _ in row])),
+                           shape=(len(rows), len(self.coordinates)))
+        inverse = sps.diags([float(x) for x in self._inverse_inertia])
+        return (J @ inverse @ J.T).tocsc()
 
     @cached_property
     def _W_entries(self) -> list[tuple[int, int, sp.Expr]]:
@@ -678,14 +705,10 @@ class Collision:
         body's freedoms) has many impulses with the same motion after, and the one
         reported is then said to be chosen close to the least-norm one."""
         import numpy as np
-        import scipy.sparse as sps
         from scipy.sparse.linalg import splu
 
         n = len(v)
-        entries = self._W_entries
-        W = sps.csc_matrix(([float(x) for _, _, x in entries],
-                            ([i for i, _, _ in entries], [j for _, j, _ in entries])),
-                           shape=(n, n))
+        W = self._float_W()
         q = np.array([float(v[i] - target[i]) for i in range(n)])
         try:
             pivots = np.abs(splu(W, permc_spec="MMD_AT_PLUS_A").U.diagonal())
@@ -698,15 +721,27 @@ class Collision:
         else:
             z, steps, _ = pivoting(W, q)
             method = f"block principal pivoting, {steps} steps"
-            if rational:
+            acting = [i for i in range(n) if z[i] > 0]
+            if rational and self._rational_rows:  # in SymPy's QQ (python-flint's fmpq
+                def field(x: sp.Rational) -> Any:  # where it is installed), W unformed
+                    return QQ(int(x.p), int(x.q))
+
+                exact = confirm_by_rows(
+                    [[(j, field(x)) for j, x in row] for row in self._J_rows],
+                    [field(x) for x in self._inverse_inertia],
+                    [field(x) for x in v - target], acting)
+            elif rational:  # W rational, J not (sqrt(3) in a hexagonal cluster)
                 rows: dict[int, dict[int, Fraction]] = {i: {} for i in range(n)}
-                for i, j, x in entries:
+                for i, j, x in self._W_entries:
                     rows[i][j] = Fraction(int(x.p), int(x.q))
                 exact = confirm(rows, [Fraction(int(x.p), int(x.q)) for x in v - target],
-                                [i for i in range(n) if z[i] > 0])
-                if exact is not None:
-                    return sp.Matrix([sp.Rational(x.numerator, x.denominator)
-                                      for x in exact]), (), (
+                                acting)
+            else:
+                exact = None
+            if exact is not None:
+                return sp.Matrix([sp.sympify(QQ.to_sympy(x) if not isinstance(x, Fraction)
+                                             else sp.Rational(x.numerator, x.denominator))
+                                  for x in exact]), (), (
                         f"{n} contacts: the acting set found in floating point ({method}) "
                         "and confirmed in exact arithmetic")
         error = residual(W, q, z)
@@ -1516,6 +1551,19 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
             steps.append((k, *step(k, now)))
             acted = True
     return count - 1, steps
+
+
+def certified(solution: Solution) -> Solution:
+    """`solution` with the physical limits its checks show among its warnings, or one
+    line refusing it when it breaks a condition its rule imposed (a numerical failure:
+    the answer would be wrong)."""
+    warnings, failures = solution.assessed()
+    if failures:
+        raise InputError("impact", f"the {solution.rule} rule's answer fails its own "
+                         f"check ({'; '.join(failures[:3])}): it is not given; please "
+                         "report the scene")
+    new = tuple(w for w in warnings if w not in solution.warnings)
+    return replace(solution, warnings=solution.warnings + new) if new else solution
 
 
 def _rounded(x: sp.Expr) -> sp.Expr:

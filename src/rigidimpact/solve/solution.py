@@ -32,6 +32,7 @@ import sympy as sp
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.bodies import Body
+from rigidimpact.solve.certificate import as_sympy, assess, residuals
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -123,6 +124,37 @@ class Solution:
     method: str = field(default="", repr=False)
     energy_tolerance: float | None = field(default=None, repr=False)
     history: Any = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def _certificate(self) -> dict[str, Any]:
+        if self.speeds_after is not None or self.frame != EYE or not self.contacts:
+            return {}  # a mechanics system's, or a tilt kept symbolic: its own frame
+        return residuals(self.before, self.after, self.contacts, self.impulses,
+                         self.tangential, self.rule, self.acted)
+
+    @property
+    def checks(self) -> dict[str, Any]:
+        """Each law's residual, computed from the bodies and impulses alone (see
+        :mod:`rigidimpact.solve.certificate`): zero where it holds, exact where the
+        answer is exact; empty with symbols left (the closed forms are checked where
+        they are derived) and for a mechanics system (its own coordinates).
+
+        Examples
+        --------
+        >>> from rigidimpact.model.bodies import Body
+        >>> from rigidimpact.laws.contact import Contact
+        >>> from rigidimpact.solve.impact import Impact
+        >>> checks = Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
+        ...                 Contact(restitution=1)).solve().checks
+        >>> checks["a.momentum_x"], checks["contact.opens"], checks["energy"]
+        (0, 0, 0)
+        """
+        return {k: as_sympy(v) for k, v in self._certificate.items() if not k.startswith("_")}
+
+    def assessed(self) -> tuple[list[str], list[str]]:
+        """(warnings, failures) of :attr:`checks`: the model's physical limits here,
+        and the conditions broken beyond the arithmetic's tolerance."""
+        return assess(self._certificate, self.rule, self.contacts)
 
     @property
     def contact(self) -> Contact:

@@ -1,0 +1,282 @@
+"""Every Solution checks itself: the residual of each law it must obey, computed from the
+bodies before and after and the impulses alone, apart from the path that solved it.
+
+The conditions, each a residual that is zero when it holds (a violation's size, never
+negative):
+
+- ``BODY.momentum_x``, ``BODY.momentum_y``: a free body's change of linear momentum less
+  the impulses it received (a pivoted body's linear balance holds by definition: its
+  pivot's reaction is that remainder);
+- ``BODY.angular_momentum``: its change of angular momentum about its centre (a pivoted
+  body: about its pivot) less the moments of those impulses;
+- ``CONTACT.pushes``: no pull, ``max(0, -P_n)``;
+- ``CONTACT.opens``: no penetration after, ``max(0, -v_n+)`` (v_n the normal velocity of
+  the second touching point relative to the first);
+- ``CONTACT.cone``: Coulomb's cone, ``max(0, |P_t| - mu P_n)``; ``CONTACT.smooth``: a
+  smooth contact's ``|P_t|``; ``CONTACT.sticks``: a sticking contact's slip after;
+- under the simultaneous rule with Newton's law at the velocity level:
+  ``CONTACT.restitution`` (an acting contact leaves at ``-e`` times its closing speed),
+  ``CONTACT.released`` (a released one at least that fast) and
+  ``CONTACT.complementarity`` (``P_n`` times the difference);
+- ``energy``: kinetic energy created, ``max(0, K+ - K-)``.
+
+The arithmetic is chosen from the numbers: exact (SymPy's rationals, or the expressions
+as they are) where the answer is exact, mpmath at 50 digits where it holds floats.
+
+Which violations are a model's physical limits and which a numerical failure depends on
+the rule and laws, so :func:`assess` sorts them: energy created (Newton's law at
+coupled contacts, or with friction) and a contact still closing under Poisson's law
+acting together are limits the model has, said in ``warnings``; any other residual
+above the tolerance means the answer is wrong, and it is never given as an answer.
+
+Examples
+--------
+>>> import rigidimpact as ri
+>>> solution = ri.chain(3).simultaneous()
+>>> max(solution.checks.values())
+0
+>>> solution.checks["c0.opens"], solution.checks["energy"]
+(0, 0)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import mpmath
+import sympy as sp
+from sympy.polys.domains import QQ
+
+__all__ = ["residuals", "assess", "as_sympy", "PHYSICAL_LIMITS", "FLOAT_TOLERANCE"]
+
+DIGITS = 50
+# a floating-point answer (a large problem's, or a compliant integration's) is trusted
+# to this relative size; an exact one must be exactly zero; one rounded to 60 digits
+# between steps, to 1e-40 (the sequential rule's settling threshold)
+FLOAT_TOLERANCE = 1e-9
+ROUNDED_TOLERANCE = mpmath.mpf(10) ** -35
+PHYSICAL_LIMITS = ("energy", "opens")
+SETTLED = 1e-40  # the sequential rule stops once every closing speed is below this
+
+
+def _perp(r: Sequence[Any]) -> tuple[Any, Any]:
+    return -r[1], r[0]
+
+
+def _cross(a: Sequence[Any], b: Sequence[Any]) -> Any:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _arithmetic(numbers: Sequence[Any]) -> str:
+    """"exact" (rationals), "mp" (numbers with floats or irrationals), or "symbolic"."""
+    kinds = set()
+    for x in numbers:
+        x = sp.sympify(x)
+        if x.free_symbols:
+            return "symbolic"
+        kinds.add("exact" if x.is_Rational else "mp")
+    return "mp" if "mp" in kinds else "exact"
+
+
+def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[Any],
+              impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
+              acted: Sequence[str]) -> dict[str, Any]:
+    """Each condition's residual (see the module's notes) as a number (exact, or an
+    mpmath number) or, with symbols left, a SymPy expression."""
+    bodies = {b.name: b for b in before}
+    later = {b.name: b for b in after}
+    data: list[Any] = []
+    for b in before:
+        if b.support == "fixed":
+            continue
+        a = later[b.name]
+        data += [b.mass, b.inertia, *b.position, *b.velocity, b.spin, *a.velocity, a.spin]
+        if b.support == "pivot":
+            data += list(b.pivot)
+    for c in contacts:
+        data += [*c.point, *c.normal, impulses[c.name], tangential.get(c.name, 0),
+                 c.restitution]
+        if c.laws[1].cone() is not None:
+            data.append(c.laws[1].cone())
+    how = _arithmetic(data)
+    if how == "symbolic":
+        return {}
+    floats = any(sp.sympify(x).has(sp.Float) for x in data)
+    if how == "exact" and all(sp.sqrt(c.normal[0] ** 2 + c.normal[1] ** 2).is_Rational
+                              for c in contacts):
+        # every number rational: in SymPy's QQ (python-flint's or gmpy's where present)
+        def num(x: Any) -> Any:
+            x = sp.sympify(x)
+            return QQ(int(x.p), int(x.q))
+
+        def root(x: Any) -> Any:
+            value = sp.sqrt(QQ.to_sympy(x))
+            return QQ(int(value.p), int(value.q))
+    elif how == "exact":  # a normal of irrational length: SymPy's own numbers
+        def num(x: Any) -> Any:
+            return sp.sympify(x)
+
+        def root(x: Any) -> Any:
+            return sp.sqrt(x)
+    else:
+        def num(x: Any) -> Any:
+            return mpmath.mpf(sp.N(x, DIGITS + 10)._to_mpmath(mpmath.mp.prec))
+
+        def root(x: Any) -> Any:
+            return mpmath.sqrt(x)
+
+    with mpmath.workdps(DIGITS):
+        found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
+                           root, how)
+    found["_floats"] = floats
+    return found
+
+
+def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, root,
+               how) -> dict[str, Any]:
+    zero = num(0)
+    received: dict[str, list[Any]] = {name: [zero, zero, zero] for name in bodies}
+    out: dict[str, Any] = {}
+
+    def velocity(body: Any, state: Any, point: Sequence[Any]) -> tuple[Any, Any]:
+        if body.support == "fixed":
+            return zero, zero
+        r = [num(point[k]) - num(body.position[k]) for k in range(2)]
+        w = num(state.spin)
+        turn = _perp(r)
+        return num(state.velocity[0]) + w * turn[0], num(state.velocity[1]) + w * turn[1]
+
+    for c in contacts:
+        first, second = c.bodies if c.bodies else tuple(bodies)[:2]
+        n = [num(x) for x in c.normal]
+        length = root(n[0] * n[0] + n[1] * n[1])
+        n = [n[0] / length, n[1] / length]
+        t = _perp(n)
+        p_n, p_t = num(impulses[c.name]), num(tangential.get(c.name, 0))
+        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
+        point = [num(x) for x in c.point]
+        for name, sign in ((second, 1), (first, -1)):
+            body = bodies[name]
+            if body.support == "fixed":
+                continue
+            axis = body.pivot if body.support == "pivot" else body.position
+            arm = [point[k] - num(axis[k]) for k in range(2)]
+            received[name][0] += sign * push[0]
+            received[name][1] += sign * push[1]
+            received[name][2] += sign * _cross(arm, push)
+
+        (v_before, _), (v_after, slip) = (
+            _relative(velocity, bodies, states, first, second, c.point, n, t)
+            for states in (bodies, later))
+        restitution, friction = c.laws
+        out[f"{c.name}.pushes"] = max(zero, -p_n)
+        out[f"{c.name}.opens"] = max(zero, -v_after)
+        mu = friction.cone()
+        if not friction.grips:
+            out[f"{c.name}.smooth"] = abs(p_t)
+        elif mu is not None:
+            out[f"{c.name}.cone"] = max(zero, abs(p_t) - num(mu) * p_n)
+        if friction.unknown_tangential and c.name in acted:
+            out[f"{c.name}.sticks"] = abs(slip)
+        if rule == "simultaneous" and restitution.together == "velocity":
+            target = -num(c.restitution) * min(v_before, zero)
+            if c.name in acted:
+                out[f"{c.name}.restitution"] = abs(v_after - target)
+            else:
+                out[f"{c.name}.released"] = max(zero, target - v_after)
+            out[f"{c.name}.complementarity"] = abs(p_n * (v_after - target))
+    kinetic = [zero, zero]
+    for name, body in bodies.items():
+        if body.support == "fixed":
+            continue
+        after = later[name]
+        m, inertia = num(body.mass), num(body.inertia)
+        dv = [num(after.velocity[k]) - num(body.velocity[k]) for k in range(2)]
+        dw = num(after.spin) - num(body.spin)
+        if body.support != "pivot":
+            out[f"{name}.momentum_x"] = abs(m * dv[0] - received[name][0])
+            out[f"{name}.momentum_y"] = abs(m * dv[1] - received[name][1])
+            out[f"{name}.angular_momentum"] = abs(inertia * dw - received[name][2])
+        else:  # about the pivot: I_c dw + m (R - pivot) x dV
+            arm = [num(body.position[k]) - num(body.pivot[k]) for k in range(2)]
+            out[f"{name}.angular_momentum"] = abs(inertia * dw + m * _cross(arm, dv)
+                                                  - received[name][2])
+        for k, state in enumerate((body, after)):
+            v = [num(state.velocity[0]), num(state.velocity[1])]
+            w = num(state.spin)
+            kinetic[k] += (m * (v[0] ** 2 + v[1] ** 2) + inertia * w * w) / 2
+    out["energy"] = max(zero, kinetic[1] - kinetic[0])
+    out["_scale"] = _scale(bodies, later, impulses, num, zero)
+    out["_kinetic"] = kinetic[0]
+    out["_exact"] = how == "exact"
+    return out
+
+
+def as_sympy(value: Any) -> sp.Expr:
+    """A residual as a SymPy number (exact Rational, or a 50-digit Float)."""
+    if isinstance(value, (mpmath.mpf, float)):
+        return sp.Float(value, DIGITS)
+    try:
+        return QQ.to_sympy(value)
+    except (TypeError, AttributeError):
+        return sp.sympify(value)
+
+
+def _relative(velocity, bodies, states, first, second, point, n, t) -> tuple[Any, Any]:
+    """The second touching point's velocity less the first's, along n and t."""
+    a = velocity(bodies[first], states[first], point)
+    b = velocity(bodies[second], states[second], point)
+    d = (b[0] - a[0], b[1] - a[1])
+    return d[0] * n[0] + d[1] * n[1], d[0] * t[0] + d[1] * t[1]
+
+
+def _scale(bodies, later, impulses, num, zero) -> Any:
+    """The size residuals are measured against: the largest speed, spin or impulse."""
+    sizes = [abs(num(x)) for b in bodies.values() if b.support != "fixed"
+             for x in (*b.velocity, b.spin)]
+    sizes += [abs(num(x)) for x in impulses.values()]
+    return max([zero, *sizes])
+
+
+def assess(checks: Mapping[str, Any], rule: str, contacts: Sequence[Any],
+           floating: bool = False) -> tuple[list[str], list[str]]:
+    """(warnings, failures): the physical limits the model shows here, and the
+    conditions the answer breaks beyond its arithmetic's tolerance (an answer with any
+    failure is wrong and must not be given). `floating`: the answer was found in
+    floating point (exact rationals must then be zero, irrational exact answers hold to
+    1e-35 of their size at 50 digits)."""
+    if not checks:
+        return [], []
+    scale = checks["_scale"] or 1
+    kinetic = checks["_kinetic"] or 1
+    if rule == "compliant":
+        tolerance: Any = 1e-6
+    elif checks["_exact"]:
+        tolerance = 0
+    elif floating or checks["_floats"]:
+        tolerance = FLOAT_TOLERANCE
+    else:
+        tolerance = ROUNDED_TOLERANCE
+    poisson_together = rule == "simultaneous" and len(contacts) > 1 and any(
+        c.laws[0].together == "impulse" for c in contacts)
+    warnings, failures = [], []
+    for key, value in checks.items():
+        if key.startswith("_"):
+            continue
+        size = value / (kinetic if key == "energy" else scale)
+        allowed = tolerance
+        if key.endswith(".opens") and rule == "sequential":  # passes end when every
+            allowed = max(tolerance, SETTLED)  # closing speed left is below this
+        if not (size > 0 and (allowed == 0 or float(size) > allowed)):
+            continue
+        if key == "energy":
+            warnings.append(f"kinetic energy is created: {float(value):.6g} more after "
+                            f"than before ({float(size):.3g} of it)")
+        elif key.endswith(".opens") and (poisson_together or rule == "compliant"):
+            name = key.rsplit(".", 1)[0]
+            warnings.append(f"{name} still approaches after the impact (normal velocity "
+                            f"{-float(value):.6g}): the bodies would pass into each other")
+        else:
+            failures.append(f"{key} off by {float(size):.3g} (relative)")
+    return warnings, failures
