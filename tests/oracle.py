@@ -76,7 +76,12 @@ def routh(bar: Bar, u, touch: Touch):
     jn, jt = touch.rows()
     w = [[sum(a[i] * bar.inverse[i] * b[i] for i in range(3)) for b in (jn, jt)]
          for a in (jn, jt)]
-    vn, vt = dot(jn, u), dot(jt, u)
+    return routh_w(w, dot(jn, u), dot(jt, u), touch)
+
+
+def routh_w(w, vn, vt, touch):
+    """Routh's method from the contact's 2x2 W (normal, tangent) and its velocities
+    before; `touch` gives mu, e and the law."""
     start = vn
     if vn >= 0:
         return mp.mpf(0), mp.mpf(0)

@@ -20,6 +20,7 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
     from rigidimpact.laws.contact import Contact as Contact
+    from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
     from rigidimpact.laws.law import Equation as Equation
     from rigidimpact.model.bodies import Body as Body
     from rigidimpact.model.bodies import join as join
@@ -53,6 +54,7 @@ _PUBLIC = {
     "InputError": "errors",
     # solving
     "Impact": "solve.impact", "Equation": "laws.law", "Solution": "solve.solution",
+    "RESTITUTION_LAWS": "laws.law",
     "symbol": "symbolic.notation", "PROBLEMS": "paper.problems",
     "Derivation": "solve.derivation", "derive": "paper.problems",
     # several contacts: the collision, its rules and what they give

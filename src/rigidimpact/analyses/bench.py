@@ -55,7 +55,7 @@ from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
-from rigidimpact.solve.collision import Collision, chain, cluster
+from rigidimpact.solve.collision import Collision, chain, cluster, fan
 from rigidimpact.symbolic.notation import symbol
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
@@ -702,6 +702,26 @@ def _pymunk_cluster_seconds(side: int) -> float | None:
     return time.perf_counter() - begin
 
 
+def _fraction_elimination_seconds(problem: Collision) -> float:
+    """The exact step as it was before the saddle-point elimination: the acting block
+    of W (every contact of a fan acts) eliminated over Python's Fractions, timed alone
+    (forming W is not counted)."""
+    from fractions import Fraction
+
+    from rigidimpact.solve.lcp import confirm
+
+    n = len(problem.contacts)
+    v = problem.velocity_before
+    target = [-c.restitution * min(v[i], 0) for i, c in enumerate(problem.contacts)]
+    rows: dict[int, dict[int, Fraction]] = {i: {} for i in range(n)}
+    for (i, j), x in problem.W.todok().items():
+        rows[i][j] = Fraction(int(x.p), int(x.q))
+    q = [Fraction(int(x.p), int(x.q)) for x in (v[i] - target[i] for i in range(n))]
+    begin = time.perf_counter()
+    confirm(rows, q, range(n))
+    return time.perf_counter() - begin
+
+
 def _measure(solve: Callable[[], Any], memory: bool) -> tuple[float, float | None]:
     """Seconds of one run, and with `memory` the peak of Python allocations (MiB) in a
     second run under tracemalloc (which slows it, so it is not the timed one)."""
@@ -727,29 +747,35 @@ def _rules(case: str, size: int, make: Callable[[], Collision],
                                                                     dict[str, Any]]]:
     """The rules timed on one problem, each with its baselines' seconds."""
     order = tuple(t.name for t in make().contacts)
+    exact_step = {"fraction_elimination_s": baseline(  # W dense: the exact step by
+        "fraction elimination", lambda: _fraction_elimination_seconds(make()))} \
+        if case == "fan" else {  # elimination over W
+            "enumeration_s": baseline(f"{case} enumeration", lambda: enumeration(make()))}
     rules: list[tuple[str, Callable[[], Any], dict[str, Any]]] = [
-        ("simultaneous", lambda: make().simultaneous(), {
-            "enumeration_s": baseline(f"{case} enumeration", lambda: enumeration(make()))}),
-        ("sequential", lambda: make().sequential(order), {})]
+        ("simultaneous", lambda: make().simultaneous(), exact_step)]
+    if case != "fan":  # the fan is here for its dense W, which only acting together sees
+        rules.append(("sequential", lambda: make().sequential(order), {}))
     if case == "cradle":
         rules.append(("compliant (Hertz)", lambda: make().compliant(1.0, hertz=True), {
             "dense_solve_ivp_s": baseline("dense", lambda: _dense_chain_seconds(size + 1))}))
-    else:
+    elif case == "cluster":
         rules.append(("compliant", lambda: make().compliant(1.0), {
             "pymunk_s": baseline("pymunk", lambda: _pymunk_cluster_seconds(size))}))
     return rules
 
 
-def contacts_family(quick: bool = False, limit: float = 60.0,
-                    memory: bool = True) -> dict[str, Any]:
-    """Each rule against the number of contacts, on a cradle (a chain of n + 1 balls)
-    and a hexagonal cluster of discs struck by one ball, with side by side baselines:
+def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = True,
+                    shapes: Iterable[str] = ("cradle", "cluster", "fan")) -> dict[str, Any]:
+    """Each rule against the number of contacts, on a cradle (a chain of n + 1 balls),
+    a hexagonal cluster of discs struck by one ball and a fan (one striker touching k
+    discs at once: W dense; the simultaneous rule only), with side by side baselines:
     trying every set of acting contacts (the simultaneous rule's method before Lemke's,
     while it finishes within `limit` seconds), a plain dense solve_ivp of the same Hertz
-    chain (the compliant rule's baseline, likewise), and pymunk on the same cluster (if
-    installed). One run each. Rows: case, rule, n, seconds, peak MiB, the baselines'
-    seconds (None: not run, past the limit or not installed); and the exponent of a
-    power law fitted to each curve."""
+    chain (the compliant rule's baseline, likewise), pymunk on the same cluster (if
+    installed), and for the fan the exact step by elimination over W in Fractions. One
+    run each. Rows: case, rule, n, seconds, peak MiB, the baselines' seconds (None: not
+    run, past the limit or not installed); and the exponent of a power law fitted to
+    each curve. `shapes` picks the cases."""
     chains: tuple[int, ...] = (8, 32, 128) if quick else (2, 4, 8, 16, 32, 64, 128, 256,
                                                           512, 1024)
     sides: tuple[int, ...] = (2, 4, 8) if quick else CLUSTER_SIDES
@@ -775,8 +801,11 @@ def contacts_family(quick: bool = False, limit: float = 60.0,
         problem._complementarity(v, target)
         return time.perf_counter() - begin
 
+    fans: tuple[int, ...] = (16, 64) if quick else (16, 32, 64, 128, 256, 512, 1000)
     cases = [("cradle", n, lambda n=n: chain(n + 1)) for n in chains]
     cases += [("cluster", side, lambda side=side: cluster(side, side)) for side in sides]
+    cases += [("fan", k, lambda k=k: fan(k)) for k in fans]
+    cases = [c for c in cases if c[0] in set(shapes)]
     for case, size, make in cases:
         for rule, solve, baselines in _rules(case, size, make, baseline, enumeration):
             seconds, peak = _measure(solve, memory)
@@ -920,7 +949,8 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                   "| case | rule | contacts | seconds | peak MiB | baseline | baseline (s) |",
                   "|---|---|---|---|---|---|---|"]
         for r in family["rows"]:
-            key = next((k for k in ("enumeration_s", "dense_solve_ivp_s", "pymunk_s")
+            key = next((k for k in ("enumeration_s", "dense_solve_ivp_s", "pymunk_s",
+                                    "fraction_elimination_s")
                         if k in r), None)
             shown = "" if key is None or r[key] is None else f"{r[key]:.3f}"
             peak = "" if r["peak_mib"] is None else f"{r['peak_mib']:.1f}"

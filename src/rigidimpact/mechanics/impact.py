@@ -50,6 +50,7 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
+import mpmath
 import sympy as sp
 import sympy.physics.mechanics as me
 from sympy.polys.matrices import DomainMatrix
@@ -60,6 +61,8 @@ from rigidimpact.laws.law import Equation
 from rigidimpact.solve.collision import Rule, Sequential, Simultaneous, sequential_passes
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.solution import Solution
+
+FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
 
@@ -127,6 +130,9 @@ class SystemImpact:
     # dependent speeds (a nonholonomic system): every speed, independent first, and T
     # with u_all = T u (the velocity constraints solved for the dependent ones)
     fold: tuple[tuple[Any, ...], sp.ImmutableMatrix] | None = None
+    # at numbers out of the rationals (sin(3/10), sqrt(2)): every number as a Float of
+    # this many digits, chosen before any case analysis (None: exact)
+    digits: int | None = None
 
     @property
     def u_before(self) -> sp.Matrix:
@@ -323,6 +329,8 @@ class SystemImpact:
         rows = [sp.fraction(sp.together(sp.expand(r)))[0] for r in rows]
         A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
+        if self.digits is not None and not gens:
+            return self._floating(A, b, acting, n, k, M, u)
         ring = sp.QQ[tuple(gens)] if gens else sp.QQ
         dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
         notes: tuple[str, ...] = ()
@@ -361,6 +369,43 @@ class SystemImpact:
             solution = replace(solution, conditions=tuple(
                 c for c in conditions if c is not sp.true))
         return solution
+
+    def _floating(self, A: sp.Matrix, b: sp.Matrix, acting: Sequence[int], n: int, k: int,
+                  M: sp.Matrix, u: sp.Matrix) -> Solution:
+        """The linear system at numbers in floating point (:attr:`digits`): the
+        least-norm solution by mpmath's SVD, singular values below 1e-40 of the largest
+        taken as zero (dependent conditions: the motion fixed, the impulses not), with
+        the residual of the system in a note; None-consistent systems refused."""
+        digits = self.digits or FLOAT_DIGITS
+        with mpmath.workdps(digits + 10):
+            A_ = mpmath.matrix([[mpmath.mpf(sp.N(x, digits)._to_mpmath(mpmath.mp.prec))
+                                 for x in A.row(i)] for i in range(A.rows)])
+            b_ = mpmath.matrix([mpmath.mpf(sp.N(x, digits)._to_mpmath(mpmath.mp.prec))
+                                for x in b])
+            U, S, V = mpmath.svd_r(A_)
+            cut = max(S) * mpmath.mpf(10) ** -40
+            rank = sum(1 for s in S if s > cut)
+            x = mpmath.matrix(A_.cols, 1)
+            for j in range(rank):
+                coefficient = sum(U[i, j] * b_[i] for i in range(A_.rows)) / S[j]
+                for i in range(A_.cols):
+                    x[i] += coefficient * V[j, i]
+            error = mpmath.norm(A_ * x - b_) / max(mpmath.norm(b_), mpmath.mpf(1))
+        if error > mpmath.mpf(10) ** -30:
+            raise InputError("contacts", "the contacts' conditions contradict one another "
+                             f"(more conditions than the system has freedoms; residual "
+                             f"{float(error):.1e})")
+        solved = sp.Matrix([sp.Float(x[i], digits) for i in range(A_.cols)])
+        u_after, impulse = solved[:n, :], solved[n:, :]
+        twice = (u.T * M * u - u_after.T * M * u_after)[0]
+        courses = {c.name: c.laws.laws[1].name if i in acting else "released"
+                   for i, c in enumerate(self.contacts)}
+        notes = (f"solved in {digits}-digit floating point (the numbers are out of the "
+                 f"rationals): the system's residual is {float(error):.1e} of its size",)
+        if rank < A_.cols:
+            notes += ("more contact conditions than freedoms: the motion after is unique "
+                      "but the impulses are not; shown: the least-norm impulses",)
+        return replace(self._map(u_after, impulse, courses, twice / 2), notes=notes)
 
     def _by_regimes(self) -> Solution:
         """One contact whose law picks its course from the numbers (Coulomb by Routh's
@@ -464,8 +509,24 @@ class SystemImpact:
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
                          for c in self.contacts)
         fold = None if self.fold is None else (self.fold[0], self.fold[1].xreplace(put))
-        return SystemImpact(self.frame, self.q, self.u, self.M.xreplace(put), contacts,
-                            speeds, self.J.xreplace(put), fold)
+        M, J = self.M.xreplace(put), self.J.xreplace(put)
+        numbers = [*M, *J, *speeds]
+        digits = None
+        if all(sp.sympify(x).is_number for x in numbers) and not _exact_enough(numbers):
+            # the arithmetic is chosen here, before any course or acting set is tried:
+            # exact algebra over sines of numbers (or nested roots) costs minutes where
+            # 50-digit floats cost milliseconds; the residuals say what they lose
+            digits = FLOAT_DIGITS
+
+            def num(x: Any) -> Any:
+                return sp.N(x, digits)
+
+            M, J = M.applyfunc(num), J.applyfunc(num)
+            speeds = tuple(num(x) for x in speeds)
+            if fold is not None:
+                fold = (fold[0], fold[1].applyfunc(num))
+        return SystemImpact(self.frame, self.q, self.u, M, contacts, speeds, J, fold,
+                            digits)
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
                    normal: dict[str, sp.Expr], along: dict[str, sp.Expr],
@@ -515,6 +576,23 @@ class SystemImpact:
                 found.append(f"{name} would pull (normal impulse {float(normal):.6g}): "
                              "the model cannot honour a push-only contact here")
         return tuple(found)
+
+
+def _exact_enough(numbers: Sequence[Any]) -> bool:
+    """Whether numbers are solved exactly: rationals, or rationals with one square root
+    (sqrt(3) of a 60 degree angle) adjoined; sines of other numbers, pi, or several
+    roots (whose fields cost seconds to build and nest at each step) are not."""
+    radicals: set[sp.Basic] = set()
+    for x in numbers:
+        x = sp.sympify(x)
+        if x.is_Rational:
+            continue
+        if x.atoms(sp.Function, sp.NumberSymbol, sp.Float):
+            return False
+        radicals |= {p for p in x.atoms(sp.Pow) if p.base.is_Rational
+                     and p.exp.is_Rational and not p.exp.is_Integer}
+    return len({sp.sqrt(r.base).as_coeff_Mul()[1] for r in radicals
+                if r.exp.q == 2}) <= 1 and all(r.exp.q == 2 for r in radicals)
 
 
 def _no_tan(expr: Any) -> sp.Expr:

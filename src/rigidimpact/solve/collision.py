@@ -80,8 +80,9 @@ __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
 
 RULES = ("simultaneous", "sequential", "compliant")
 FLOAT_DIGITS = 60  # where exact algebra would nest roots: floating point at this precision
-# a sequential run still going after this long is refused (a Routh step with numbers
-# takes 5 to 60 ms here: two contacts ringing for 1000 passes took 50 to 115 s)
+# a sequential run still going after this long (and as much again per 100 contacts) is
+# refused (a Routh step with numbers takes 5 to 60 ms here: two contacts ringing for
+# 1000 passes took 50 to 115 s; a 1009-contact cluster settles in about 8 s)
 MAX_SEQUENTIAL_SECONDS = 10.0
 MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 # a sequence of one-at-a-time impacts can go on forever while converging (inelastic
@@ -1535,12 +1536,13 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
     """
     steps: list[tuple[int, sp.Expr, sp.Expr, str | None]] = []
     count, acted = 0, True
-    deadline = time.perf_counter() + MAX_SEQUENTIAL_SECONDS
+    deadline = time.perf_counter() + MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100)
     while acted:  # a pass in which no contact acted ends the rule
         if count == MAX_PASSES or time.perf_counter() > deadline:
             raise InputError("impact.rule", f"the sequential rule did not settle in "
                              f"{count} passes ({len(steps)} impacts, "
-                             f"{MAX_SEQUENTIAL_SECONDS:g} s at most): the contacts keep "
+                             f"{MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100):g} s at "
+                             "most): the contacts keep "
                              "closing again after each other's impacts (with e = 1 they "
                              "can ring for ever); try the simultaneous rule")
         count, acted = count + 1, False

@@ -313,6 +313,23 @@ class Impact:
                 laws.pair_tangential_momentum(first, first_after, second, second_after))
         return linear, angular
 
+    def diagram(self, values: dict) -> Any:
+        """Routh's diagram of this frictional impact at `values` (exact numbers for its
+        symbols): the course taken and the impulse at each of its events, for
+        :func:`rigidimpact.outputs.plots.routh_diagram`.
+
+        Examples
+        --------
+        >>> ball = Body.particle(1, (1, 1), "ball")
+        >>> found = Impact(ball, Body.fixed("floor"), Contact(
+        ...     restitution=1, tangential="coulomb", friction=sp.Rational(1, 4))).diagram({})
+        >>> found.regime.name, found.regime.path[-1]
+        ('slip', (2, 1/2))
+        """
+        from rigidimpact.laws import routh
+
+        return routh.diagram(self, values)
+
     def solve(self) -> Solution:
         """Solve for the impulse at O in the generalized-impulse core, then the motion.
 

@@ -1,0 +1,113 @@
+"""The mechanics bridge at numbers out of the rationals (angles such as pi/6 or 3/10):
+solved in 50-digit floating point, chosen before any course or acting set is tried,
+against a double pendulum's impact derived by hand here (M and the contact rows of two
+point masses on massless links) and Routh's method written apart (tests/oracle.py)."""
+
+from __future__ import annotations
+
+import time
+
+import mpmath as mp
+import pytest
+import sympy as sp
+import sympy.physics.mechanics as me
+
+import oracle
+import rigidimpact as ri
+
+q1, q2, u1, u2 = me.dynamicsymbols("q1 q2 u1 u2")
+m1, m2, l1, l2, g, e, mu = sp.symbols("m1 m2 l1 l2 g e mu", positive=True)
+
+
+def _kane():
+    N = me.ReferenceFrame("N")
+    A = N.orientnew("A", "Axis", [q1, N.z])
+    B = N.orientnew("B", "Axis", [q2, N.z])
+    A.set_ang_vel(N, u1 * N.z)
+    B.set_ang_vel(N, u2 * N.z)
+    hinge = me.Point("O")
+    hinge.set_vel(N, 0)
+    P1 = hinge.locatenew("P1", -l1 * A.y)
+    P1.v2pt_theory(hinge, N, A)
+    P2 = P1.locatenew("P2", -l2 * B.y)
+    P2.v2pt_theory(P1, N, B)
+    kane = me.KanesMethod(N, [q1, q2], [u1, u2], [q1.diff() - u1, q2.diff() - u2])
+    kane.kanes_equations([me.Particle("p1", P1, m1), me.Particle("p2", P2, m2)],
+                         [(P1, -m1 * g * N.y), (P2, -m2 * g * N.y)])
+    return kane, N, P1, P2
+
+
+KANE, N, P1, P2 = _kane()
+V = {m1: 1, m2: 1, l1: 1, l2: 1, e: sp.Rational(1, 2), q1: sp.Rational(3, 10),
+     q2: -sp.Rational(1, 2), u1: 1, u2: 2}
+
+
+def _tip(**kw):
+    kw.setdefault("restitution", e)
+    kw.setdefault("name", "tip")
+    return ri.mechanics.impact(KANE, [ri.mechanics.contact(P2, -N.x, **kw)], frame=N)
+
+
+def _by_hand(a, b):
+    """M of two unit masses on unit links at angles a, b, and the tip's rows along -x
+    (normal) and -y (tangent): P2' = (cos a u1 + cos b u2, sin a u1 + sin b u2)."""
+    M = mp.matrix([[2, mp.cos(a - b)], [mp.cos(a - b), 1]])
+    jn = mp.matrix([[-mp.cos(a), -mp.cos(b)]])
+    jt = mp.matrix([[-mp.sin(a), -mp.sin(b)]])
+    return M, jn, jt
+
+
+def _newton(a, b, u, e_):
+    M, jn, _ = _by_hand(a, b)
+    Minv_j = mp.inverse(M) * jn.T
+    closing = (jn * u)[0]
+    return u - (1 + e_) * closing / (jn * Minv_j)[0] * Minv_j
+
+
+def test_angles_with_two_roots_are_solved_not_crashed():
+    # q = pi/6, pi/4: sqrt(2) and sqrt(6) in M and J (once SymPy's CoercionFailed)
+    solution = _tip().at({**V, q1: sp.pi / 6, q2: sp.pi / 4}).solve()
+    mp.mp.dps = 50
+    expected = _newton(mp.pi / 6, mp.pi / 4, mp.matrix([1, 2]), mp.mpf(1) / 2)
+    got = [mp.mpf(str(x)) for x in solution.speeds_after]
+    assert max(abs(got[i] - expected[i]) for i in range(2)) < mp.mpf(10) ** -40
+    assert "50-digit floating point" in solution.notes[0]
+
+
+def test_dependent_sticking_rows_at_any_angle_exact_and_float():
+    # both points stick with e = 0 at q1 = q2: four conditions on two speeds, consistent
+    # (both points at rest fixes u+ = 0); the least-norm impulses are shown
+    both = ri.mechanics.impact(KANE, [
+        ri.mechanics.contact(P1, -N.x, restitution=0, tangential="stick", name="elbow"),
+        ri.mechanics.contact(P2, -N.x, restitution=0, tangential="stick", name="tip")],
+        frame=N)
+    for angle in (sp.Rational(1, 5), sp.Float(0.2), 0):
+        values = {**V, q1: angle, q2: angle, u1: 1, u2: 1, e: 0}
+        solution = both.at(values).solve()
+        assert all(abs(x) < 1e-40 for x in solution.speeds_after), angle
+        assert any("least-norm" in n for n in solution.notes)
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_friction_at_numbers_is_quick_and_gives_numbers(law):
+    start = time.perf_counter()
+    solution = _tip(law=law, tangential="coulomb", friction=mu).at(
+        {**V, mu: sp.Rational(1, 2)}).solve()
+    assert time.perf_counter() - start < 15  # the energetic law took minutes
+    before, lost, fraction = solution.energies
+    assert all(isinstance(x, sp.Float) for x in (before, lost, fraction))
+    # Routh's method written apart, on the 2x2 W of the hand-derived M and rows
+    mp.mp.dps = 50
+    a, b = mp.mpf(3) / 10, -mp.mpf(1) / 2
+    M, jn, jt = _by_hand(a, b)
+    Minv = mp.inverse(M)
+    rows = [jn, jt]
+    w = [[(r * Minv * s.T)[0] for s in rows] for r in rows]
+    u = mp.matrix([1, 2])
+    touch = oracle.Touch("tip", (0, 0), (1, 0), mp.mpf(1) / 2, mp.mpf(1) / 2, law)
+    p_n, p_t = oracle.routh_w(w, (jn * u)[0], (jt * u)[0], touch)
+    expected = u + Minv * (jn.T * p_n + jt.T * p_t)
+    got = [mp.mpf(str(x)) for x in solution.speeds_after]
+    assert max(abs(got[i] - expected[i]) for i in range(2)) < mp.mpf(10) ** -30
+    if law != "newton":  # Poisson's and the energetic law never create energy
+        assert lost > 0
