@@ -400,9 +400,9 @@ class SystemImpact:
         twice = (u.T * M * u - u_after.T * M * u_after)[0]
         courses = {c.name: c.laws.laws[1].name if i in acting else "released"
                    for i, c in enumerate(self.contacts)}
-        notes: tuple[str, ...] = (f"solved in {digits}-digit floating point (the numbers "
-                                  "are out of the "
-                 f"rationals): the system's residual is {float(error):.1e} of its size",)
+        notes: tuple[str, ...] = (
+            f"solved in {digits}-digit floating point (the numbers are out of the "
+            f"rationals): the system's residual is {float(error):.1e} of its size",)
         if rank < A_.cols:
             notes += ("more contact conditions than freedoms: the motion after is unique "
                       "but the impulses are not; shown: the least-norm impulses",)
