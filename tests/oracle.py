@@ -22,9 +22,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-import mpmath as mp
+import mpmath
 
-mp.mp.dps = 50
+# a context of its own at 50 digits: mpmath's global precision is left as it is
+mp = mpmath.MPContext()
+mp.dps = 50
 TINY = mp.mpf(10) ** -35
 
 

@@ -19,10 +19,9 @@ import tomllib
 from fractions import Fraction
 from pathlib import Path
 
-import mpmath as mp
-
 sys.path.insert(0, str(Path(__file__).parent))
 import oracle  # noqa: E402
+from oracle import mp  # noqa: E402
 
 LAWS = ("newton", "poisson", "energetic")
 

@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import time
 
-import mpmath as mp
 import pytest
 import sympy as sp
 import sympy.physics.mechanics as me
 
 import oracle
 import rigidimpact as ri
+from oracle import mp
 
 q1, q2, u1, u2 = me.dynamicsymbols("q1 q2 u1 u2")
 m1, m2, l1, l2, g, e, mu = sp.symbols("m1 m2 l1 l2 g e mu", positive=True)
@@ -67,7 +67,6 @@ def _newton(a, b, u, e_):
 def test_angles_with_two_roots_are_solved_not_crashed():
     # q = pi/6, pi/4: sqrt(2) and sqrt(6) in M and J (once SymPy's CoercionFailed)
     solution = _tip().at({**V, q1: sp.pi / 6, q2: sp.pi / 4}).solve()
-    mp.mp.dps = 50
     expected = _newton(mp.pi / 6, mp.pi / 4, mp.matrix([1, 2]), mp.mpf(1) / 2)
     got = [mp.mpf(str(x)) for x in solution.speeds_after]
     assert max(abs(got[i] - expected[i]) for i in range(2)) < mp.mpf(10) ** -40
@@ -97,7 +96,6 @@ def test_friction_at_numbers_is_quick_and_gives_numbers(law):
     before, lost, fraction = solution.energies
     assert all(isinstance(x, sp.Float) for x in (before, lost, fraction))
     # Routh's method written apart, on the 2x2 W of the hand-derived M and rows
-    mp.mp.dps = 50
     a, b = mp.mpf(3) / 10, -mp.mpf(1) / 2
     M, jn, jt = _by_hand(a, b)
     Minv = mp.inverse(M)

@@ -241,7 +241,8 @@ class Scene:
             return Sequential(self.order)
         return Simultaneous()
 
-    def derivation(self, values: Mapping[sp.Symbol, Any] | None = None) -> Derivation:
+    def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
+                   printed: bool = True) -> Derivation:
         """Solve the scene's impact: symbolically, or at `values` when given (several
         contacts at the scene's ``[values]`` unless other values are given; with none
         they are solved over their symbols where the rule has closed forms).
@@ -249,7 +250,8 @@ class Scene:
         One path for one contact and for several: the scene's collision and its rule
         give :class:`~rigidimpact.solve.solution.Solution` values (one contact: its own
         exact answer by the two-body core, whatever the rule), and the equations printed
-        are the ones solved.
+        are the ones solved (with `printed` False they are not written out: numbers
+        need none, and at a thousand contacts they cost more than the solve).
 
         Examples
         --------
@@ -279,7 +281,8 @@ class Scene:
         first = outcomes[0]
         # the momentum balance holds under every rule; a contact's own law only where
         # one outcome is reported (each case or order imposes its own)
-        equations = first.equations or collision.equations(first)
+        # the labelled equations are for reading (derive, LaTeX); numbers need none
+        equations = first.equations or (collision.equations(first) if printed else ())
         if len(outcomes) > 1:
             equations = tuple(eq for eq in equations if eq.law == "momentum")
         setup = tuple(_described(b) for b in self.bodies)
@@ -321,7 +324,7 @@ class Scene:
         if len(self.contacts) == 1:
             return self.derivation().evaluate(settings, dps, sources)
         exact = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
-        derivation = self.derivation(exact)
+        derivation = self.derivation(exact, printed=False)
         numbers = derivation.evaluate({}, dps).numbers
         outcomes = derivation.outcomes
         extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}

@@ -1266,7 +1266,8 @@ class Collision:
                              f"{type(rule).__name__} {rule!r}")
         if len(self.contacts) == 1:  # every rule gives the one contact's own answer
             return (self.alone(),)
-        return tuple(replace(o, pivot_reactions=self._pivot_reactions(o))
+        return tuple(replace(o, pivot_reactions=reactions)
+                     if (reactions := self._pivot_reactions(o)) else o
                      for o in rule.outcomes(self))
 
     def alone(self) -> Solution:
