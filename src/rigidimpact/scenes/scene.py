@@ -37,6 +37,7 @@ from rigidimpact.model.bodies import Body
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.model.shapes import SHAPES, Fields
 from rigidimpact.solve.collision import (
+    MAX_BUILT_CONTACTS,
     MAX_SAMPLED_ORDERS,
     Collision,
     Compliant,
@@ -659,6 +660,14 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     InputError
         For malformed TOML or any bad field, naming the field.
     """
+    # a scene far past the budget is refused before its TOML is read (100,000 tables
+    # take seconds to read); the exact count is checked again once it is
+    tables = max(text.count("[[contacts]]"), text.count("[[bodies]]"))
+    if tables > 2 * MAX_BUILT_CONTACTS:
+        raise InputError("contacts", f"about {tables} [[bodies]] or [[contacts]] tables: "
+                         f"past the budget of {MAX_BUILT_CONTACTS} (each body and contact is "
+                         "a SymPy object, a few milliseconds each); split the scene or use "
+                         "fewer contacts")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -676,7 +685,9 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
 
     by_name = _body_tables(data)
     simulate = _table(data, "simulate", "settings")
-    contacts = _contacts(_contact_tables(data), by_name, symbols)
+    tables = _contact_tables(data)
+    _names_first(tables, by_name)
+    contacts = _contacts(tables, by_name, symbols)
     impact_table = _table(data, "impact", "settings")
     rule, order = _impact_table(impact_table, [c.name for c in contacts])
     sample = _sample(impact_table)
@@ -687,6 +698,26 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
                   compliance=compliance)
     _check_scene(scene)
     return scene
+
+
+def _names_first(tables: list[tuple[dict[str, Any], str]],
+                 by_name: Mapping[str, Any]) -> None:
+    """The scene's size against its budget, and every contact's bodies by name, before
+    any number is read or any body built (each costs milliseconds: a misspelt name in
+    the last of ten thousand contacts is said at once, not after them all)."""
+    size = max(len(tables), len(by_name))
+    if size > MAX_BUILT_CONTACTS:
+        raise InputError("contacts" if len(tables) >= len(by_name) else "bodies",
+                         f"{len(tables)} contacts and {len(by_name)} bodies: past the budget "
+                         f"of {MAX_BUILT_CONTACTS} (each body and contact is a SymPy "
+                         "object, a few milliseconds each, and the rules' work grows "
+                         "with them); split the scene or use fewer contacts")
+    for table, place in tables:
+        pair = table.get("bodies")
+        if isinstance(pair, list):
+            for side in pair:
+                if isinstance(side, str) and side not in by_name:
+                    raise InputError(f"{place}.bodies", f"no body named {side!r}")
 
 
 def _check_scene(scene: Scene) -> None:
