@@ -26,6 +26,7 @@ quarter of the one before, so the bounces come at t = sqrt(2) (1 + 1 + 1/2 + ...
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -71,6 +72,24 @@ def flow_of(system: Any, constants: dict) -> Callable:
     return rhs
 
 
+ZENO_RATIO = 1e-6  # intervals this small next to the first are a pile-up, not a gait
+
+
+def _piling_up(times: Sequence[float]) -> float | None:
+    """The time impacts accumulate at, when the last five intervals between them shrink
+    by one ratio r < 1 (to 1 per cent) and have fallen below 1e-6 of the first: the
+    remaining intervals sum to ``dt r / (1 - r)``. None otherwise."""
+    if len(times) < 7:
+        return None
+    gaps = np.diff(times)
+    ratios = gaps[-5:] / gaps[-6:-1]
+    r = float(np.median(ratios))
+    if not 0 < r < 0.999 or np.any(np.abs(ratios - r) > 0.01 * r) or \
+            gaps[-1] > ZENO_RATIO * gaps[0]:
+        return None
+    return float(times[-1] + gaps[-1] * r / (1 - r))
+
+
 @dataclass
 class Walk:
     """A simulated run: its trajectory and, at each impact, the time and the states just
@@ -81,7 +100,8 @@ class Walk:
     impact_times: list[float] = field(default_factory=list)
     before: list[State] = field(default_factory=list)
     after: list[State] = field(default_factory=list)
-    stopped: str = ""
+    stopped: str = ""  # "impacts", "time", "fell", "zeno" or "budget"
+    accumulation: float | None = None  # with "zeno": the time the impacts pile up at
 
 
 @dataclass(frozen=True)
@@ -153,10 +173,40 @@ class Hybrid:
             start = t + 1e-9  # a crossing that is no impact (a foot scuffing): go on
             x = solve_ivp(self.rhs, (t, start), x, rtol=self.rtol, atol=self.atol).y[:, -1]
 
-    def simulate(self, x0: State, impacts: int = 10, until: float = np.inf) -> Walk:
-        """Flow and jump until `impacts` impacts, the time `until`, or a fall."""
-        walk, x, t = Walk(), np.asarray(x0, float), 0.0
+    def simulate(self, x0: State, impacts: int = 10, until: float = np.inf,
+                 seconds: float = 60.0) -> Walk:
+        """Flow and jump until `impacts` impacts, the time `until`, a fall, impacts that
+        pile up at one time (Zeno: the intervals between them shrinking geometrically;
+        `accumulation` is that time, by the geometric series), or `seconds` of work.
+
+        Examples
+        --------
+        A ball dropped onto a floor with e = 1/2 bounces infinitely often before
+        t = sqrt(2) (1 + 2 (1/2) / (1 - 1/2)) = 3 sqrt(2):
+
+        >>> ball = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
+        ...               lambda x: np.array([0.0, -0.5 * x[1]]))
+        >>> walk = ball.simulate(np.array([1.0, 0.0]), impacts=10**6)
+        >>> walk.stopped, round(walk.accumulation, 6), round(3 * 2 ** 0.5, 6)
+        ('zeno', 4.242641, 4.242641)
+        """
+        from rigidimpact.solve.collision import whole_number
+
+        whole_number("impacts", impacts, 1)
+        if not (isinstance(until, (int, float)) and until > 0) or np.isnan(until):
+            raise InputError("until", f"must be a positive time (or inf), not {until!r}")
+        if not (isinstance(seconds, (int, float)) and 0 < seconds < np.inf):
+            raise InputError("seconds", f"must be a positive number of seconds, not "
+                             f"{seconds!r}")
+        x = np.asarray(x0, float)
+        if x.ndim != 1 or not np.all(np.isfinite(x)):
+            raise InputError("x0", "must be a state of finite numbers")
+        walk, t = Walk(), 0.0
+        deadline = time.perf_counter() + seconds
         for _ in range(impacts):
+            if time.perf_counter() > deadline:
+                walk.stopped = "budget"
+                return walk
             t_hit, before, pieces = self.step(x, t)
             for run in pieces:
                 walk.times.append(run.t)
@@ -171,6 +221,10 @@ class Hybrid:
             walk.impact_times.append(t_hit)
             walk.before.append(before)
             walk.after.append(x)
+            piling = _piling_up(walk.impact_times)
+            if piling is not None:
+                walk.stopped, walk.accumulation = "zeno", piling
+                return walk
         walk.stopped = "impacts"
         return walk
 
@@ -205,11 +259,16 @@ class Hybrid:
             return np.array(columns).T
 
         z, iterations = np.asarray(guess, float)[free], 0
+        first = self.step(full(z))[0]
         while np.max(np.abs(r := g(z) - z)) >= tol:
             if iterations == max_iterations:
                 raise InputError("fixed_point", f"Newton's method did not converge in "
                                  f"{max_iterations} iterations (residual "
                                  f"{np.max(np.abs(r)):.3g})")
             z, iterations = z - np.linalg.solve(jacobian(z) - np.eye(len(z)), r), iterations + 1
+        if self.step(full(z))[0] < ZENO_RATIO * first:
+            raise InputError("fixed_point", "Newton's method went to a state with no flight "
+                             "between impacts (the impacts pile up: Zeno's limit), where the "
+                             "map is not smooth; that is no fixed point of the motion")
         return FixedPoint(full(z), np.linalg.eigvals(jacobian(z)), float(np.max(np.abs(r))),
                           iterations)

@@ -105,6 +105,17 @@ def contact(point: Any, normal: Any, *, other: Any = None, restitution: Any = 0,
     >>> contact(me.Point("foot"), N.y, restitution=0, tangential="stick").laws
     Contact(normal=(1, 0), restitution=0, tangential='stick', law='newton')
     """
+    if not isinstance(name, str) or not name:
+        raise InputError("name", f"must be a contact's name (text), not {name!r}")
+    for what, value in (("point", point), ("other", other)):
+        if (value is not None or what == "point") and not isinstance(value, me.Point):
+            raise InputError(f"{name}.{what}", "must be a sympy.physics.mechanics Point, "
+                             f"not {type(value).__name__} {value!r}")
+    if not isinstance(normal, me.Vector):
+        raise InputError(f"{name}.normal", "must be a sympy.physics.mechanics Vector (such "
+                         f"as N.y), not {type(normal).__name__} {normal!r}")
+    if normal == me.Vector(0):
+        raise InputError(f"{name}.normal", "must not be the zero vector")
     laws = Contact(restitution=restitution, tangential=tangential, law=law, name=name,
                    friction=friction, tangential_restitution=tangential_restitution)
     return PointContact(point, normal, laws, other)
@@ -173,6 +184,14 @@ class SystemImpact:
             raise InputError(f"{c.name}.point", "its velocity has a part that is not linear "
                              "in the speeds (a driven or moving constraint): not supported")
         n, t = self._unit(c)
+        if c.laws.laws[1].grips:  # friction or stick acts along t: the point must not
+            across = n.cross(t)   # be able to slide across the plane of n and t
+            if any(sp.trigsimp(p.dot(across)) != 0 for p in partials):
+                raise InputError(f"{c.name}.tangential", "the point can slide in two "
+                                 "directions across this normal (a tangent plane, not a "
+                                 "line): friction and stick act along one tangent here, "
+                                 "so they are refused; make the contact smooth, or give a "
+                                 "normal in the plane of the motion")
         rows = sp.Matrix([[p.dot(n) for p in partials], [p.dot(t) for p in partials]])
         if self.fold is not None:  # along the independent speeds: v = J_all T u
             rows = rows * self.fold[1]
@@ -243,6 +262,9 @@ class SystemImpact:
           time, each its own impact under its own laws (Routh's and Walton's too), in
           passes until none approaches; numbers needed.
         """
+        if rule is not None and not isinstance(rule, Rule):
+            raise InputError("rule", "must be a rule object (ri.Simultaneous() or "
+                             f"ri.Sequential(order)), not {type(rule).__name__} {rule!r}")
         v = self.J * self.u_before
         normals = [v[2 * i] for i in range(len(self.contacts))]
         if all(x.is_number and x >= 0 for x in normals):
@@ -504,6 +526,11 @@ class SystemImpact:
     def at(self, values: dict) -> SystemImpact:
         """The same impact with numbers (or expressions) for q, the constants and (keyed
         by the speeds) the speeds before."""
+        if not isinstance(values, dict):
+            raise InputError("values", "must be a dict of symbols (q, the constants, the "
+                             f"speeds) to numbers, not {type(values).__name__}")
+        for key, value in values.items():
+            _check_value(key, value)
         put = {k: v for k, v in values.items() if k not in self.u}
         speeds = tuple(sp.sympify(values.get(s, b)) for s, b in
                        zip(self.u, self.u_before, strict=True))
@@ -579,6 +606,26 @@ class SystemImpact:
         return tuple(found)
 
 
+def _check_value(key: Any, value: Any) -> None:
+    """One value for :meth:`SystemImpact.at`: a finite real number (or an expression),
+    positive where its symbol is declared positive (a mass, a length)."""
+    where = f"values.{key}"
+    if isinstance(value, bool) or not isinstance(value, (int, float, sp.Basic)):
+        raise InputError(where, f"must be a number or a SymPy expression, not "
+                         f"{type(value).__name__} {value!r}")
+    value = sp.sympify(value)
+    if value.is_number:
+        if value.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or not value.is_finite:
+            raise InputError(where, f"must be finite, not {value}")
+        if value.is_real is False:
+            raise InputError(where, f"must be real, not {value}")
+        if getattr(key, "is_positive", None) and not value.is_positive:
+            raise InputError(where, f"must be positive (the symbol is declared positive), "
+                             f"not {value}")
+        if getattr(key, "is_nonnegative", None) and value.is_negative:
+            raise InputError(where, f"must not be negative, not {value}")
+
+
 def _exact_enough(numbers: Sequence[Any]) -> bool:
     """Whether numbers are solved exactly: rationals, or rationals with one square root
     (sqrt(3) of a 60 degree angle) adjoined; sines of other numbers, pi, or several
@@ -638,8 +685,22 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
     fold = None
     if dependent is not None and len(dependent):
         M, u, fold = _folded(M, u, tuple(dependent))
-    if not contacts:
-        raise InputError("contacts", "give at least one contact")
+    if isinstance(contacts, PointContact) or not isinstance(contacts, (list, tuple)) \
+            or not contacts:
+        raise InputError("contacts", "give a list of contacts made by "
+                         "ri.mechanics.contact(point, normal, ...)")
+    for k, c in enumerate(contacts):
+        if not isinstance(c, PointContact):
+            raise InputError(f"contacts[{k}]", "must be made by ri.mechanics.contact(point, "
+                             f"normal, ...), not {type(c).__name__} {c!r}")
+    names = [c.name for c in contacts]
+    if len(set(names)) != len(names):
+        twice = next(n for n in names if names.count(n) > 1)
+        raise InputError("contacts", f"two contacts are named {twice!r}: give each its own "
+                         "name (name=...), or their impulses are reported as one")
+    if frame is not None and not isinstance(frame, me.ReferenceFrame):
+        raise InputError("frame", "must be a sympy.physics.mechanics ReferenceFrame, not "
+                         f"{type(frame).__name__}")
     if frame is None:
         frame = getattr(system, "frame", None)
     if frame is None:

@@ -662,9 +662,9 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     """
     # a scene far past the budget is refused before its TOML is read (100,000 tables
     # take seconds to read); the exact count is checked again once it is
-    tables = max(text.count("[[contacts]]"), text.count("[[bodies]]"))
-    if tables > 2 * MAX_BUILT_CONTACTS:
-        raise InputError("contacts", f"about {tables} [[bodies]] or [[contacts]] tables: "
+    headers = max(text.count("[[contacts]]"), text.count("[[bodies]]"))
+    if headers > 2 * MAX_BUILT_CONTACTS:
+        raise InputError("contacts", f"about {headers} [[bodies]] or [[contacts]] tables: "
                          f"past the budget of {MAX_BUILT_CONTACTS} (each body and contact is "
                          "a SymPy object, a few milliseconds each); split the scene or use "
                          "fewer contacts")

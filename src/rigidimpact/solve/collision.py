@@ -90,6 +90,7 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 SETTLED = sp.Rational(1, 10**40)
 MAX_ORDERS = 720  # every order of up to six contacts
 MAX_SAMPLED_ORDERS = 10000
+MAX_SAMPLE_SECONDS = 60.0  # a sample of orders estimated to take longer is refused
 # the simultaneous rule with symbols: a case (signs before x acting contacts) that can
 # hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
 # past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
@@ -1249,7 +1250,15 @@ class Collision:
             order = names[:]
             draw.shuffle(order)
             orders.append(tuple(order))
-        return tuple(self.sequential(order) for order in orders)
+        # a cost budget, not only a count: the first order's time says what all cost
+        start = time.perf_counter()
+        found = [self.sequential(orders[0])]
+        estimate = (time.perf_counter() - start) * count
+        if estimate > MAX_SAMPLE_SECONDS:
+            raise InputError("impact.orders", f"{count} orders would take about "
+                             f"{estimate:.0f} s (one took {estimate / count:.2g} s), past "
+                             f"the budget of {MAX_SAMPLE_SECONDS:g} s: ask for fewer")
+        return tuple(found + [self.sequential(order) for order in orders[1:]])
 
     def solve(self, rule: Rule) -> tuple[Solution, ...]:
         """What `rule` makes of the collision (see :class:`Rule`): the model is built once

@@ -1,0 +1,122 @@
+"""Every public entry validates at its boundary: one InputError naming the argument, not
+a raw error from SymPy, NumPy or Python, and no run without end."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+import sympy as sp
+import sympy.physics.mechanics as me
+
+import rigidimpact as ri
+from rigidimpact.errors import InputError
+from rigidimpact.mechanics.hybrid import Hybrid
+
+q, u = me.dynamicsymbols("q u")
+m, ell, e = sp.symbols("m l e", positive=True)
+
+
+def _pendulum():
+    N = me.ReferenceFrame("N")
+    A = N.orientnew("A", "Axis", [q, N.z])
+    A.set_ang_vel(N, u * N.z)
+    hinge = me.Point("O")
+    hinge.set_vel(N, 0)
+    bob = hinge.locatenew("P", -ell * A.y)
+    bob.v2pt_theory(hinge, N, A)
+    kane = me.KanesMethod(N, [q], [u], [q.diff() - u])
+    kane.kanes_equations([me.Particle("p", bob, m)], [])
+    return kane, N, bob
+
+
+KANE, N, BOB = _pendulum()
+C = ri.mechanics.contact
+
+
+@pytest.mark.parametrize("call, needle", [
+    (lambda: C(BOB, 0), "contact.normal: must be a sympy.physics.mechanics Vector"),
+    (lambda: C("P2", -N.x), "contact.point: must be a sympy.physics.mechanics Point"),
+    (lambda: C(BOB, 0 * N.x), "must not be the zero vector"),
+    (lambda: ri.mechanics.impact(KANE, [1, 2]), "contacts[0]: must be made by"),
+    (lambda: ri.mechanics.impact(KANE, C(BOB, -N.x)), "give a list of contacts"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, -N.x), C(BOB, N.y)]),
+     "two contacts are named 'contact'"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, -N.x, restitution=e)], frame=N).at(
+        {m: -1, ell: 1, e: 1, q: 0, u: 1}), "values.m: must be positive"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, -N.x, restitution=e)], frame=N).at(
+        {m: 1, ell: 1, e: 1, q: 0, u: sp.nan}), "values.u(t): must be finite"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, -N.x, restitution=e)], frame=N).at(
+        {m: 1, ell: 1, e: 1, q: 0, u: float("inf")}), "must be finite"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, -N.x, restitution=e)], frame=N).at(
+        {m: 1, ell: 1, e: 1, q: 0, u: 1}).solve("simultaneous"), "rule: must be a rule"),
+])
+def test_the_mechanics_bridge_refuses_in_one_line(call, needle):
+    with pytest.raises(InputError) as info:
+        call()
+    assert needle in str(info.value)
+
+
+def test_friction_across_a_tangent_plane_is_refused_until_3d_friction():
+    # a point that can move in three directions meets a floor: its tangent plane has two
+    # directions, and friction along one of them only would be a wrong number
+    x, y, z, vx, vy, vz = me.dynamicsymbols("x y z vx vy vz")
+    N3 = me.ReferenceFrame("N3")
+    point = me.Point("ball")
+    point.set_vel(N3, vx * N3.x + vy * N3.y + vz * N3.z)
+    kane = me.KanesMethod(N3, [x, y, z], [vx, vy, vz],
+                          [x.diff() - vx, y.diff() - vy, z.diff() - vz])
+    kane.kanes_equations([me.Particle("b", point, 1)], [])
+    with pytest.raises(InputError, match="two directions"):
+        ri.mechanics.impact(kane, [C(point, N3.y, restitution=sp.Rational(1, 2),
+                                     tangential="coulomb", friction=sp.Rational(1, 10))],
+                            frame=N3).solve()
+    smooth = ri.mechanics.impact(kane, [C(point, N3.y, restitution=sp.Rational(1, 2))],
+                                 frame=N3).at({vx: 0, vy: -1, vz: 1}).solve()
+    assert list(smooth.speeds_after) == [0, sp.Rational(1, 2), 1]  # by Newton's law
+
+
+BALL = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
+              lambda x: np.array([0.0, -0.5 * x[1]]))
+
+
+def test_a_zeno_run_stops_at_its_accumulation_time():
+    # e = 1/2, g = 1, dropped from 1: bounces at sqrt(2) (1 + 1 + 1/2 + ...) = 3 sqrt(2)
+    start = time.perf_counter()
+    walk = BALL.simulate(np.array([1.0, 0.0]), impacts=10**6)
+    assert time.perf_counter() - start < 15
+    assert walk.stopped == "zeno"
+    assert walk.accumulation == pytest.approx(3 * np.sqrt(2), rel=1e-12)
+
+
+def test_an_elastic_run_is_stopped_by_its_budget():
+    elastic = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
+                     lambda x: np.array([0.0, -x[1]]))
+    walk = elastic.simulate(np.array([1.0, 0.0]), impacts=10**5, seconds=1.0)
+    assert walk.stopped == "budget" and len(walk.impact_times) < 10**5
+
+
+def test_fixed_point_refuses_the_zeno_state():
+    # the map v -> v/2 (the bounce speed halves) has no fixed point but v = 0, where the
+    # flight between impacts vanishes; Newton's method once "converged" there
+    with pytest.raises(InputError, match="Zeno"):
+        BALL.fixed_point(np.array([0.0, 1.0]), [1])
+
+
+@pytest.mark.parametrize("kwargs, needle", [
+    ({"impacts": -1}, "impacts: must be at least 1"),
+    ({"impacts": 2.5}, "impacts: must be a whole number"),
+    ({"until": -1}, "until: must be a positive time"),
+    ({"until": float("nan")}, "until: must be a positive time"),
+])
+def test_hybrid_simulate_checks_its_arguments(kwargs, needle):
+    with pytest.raises(InputError, match=needle):
+        BALL.simulate(np.array([1.0, 0.0]), **kwargs)
+
+
+def test_a_sample_of_orders_past_its_cost_budget_is_refused_early():
+    start = time.perf_counter()
+    with pytest.raises(InputError, match="past the budget"):
+        ri.chain(40).sampled_orders(10_000, 0)
+    assert time.perf_counter() - start < 15
