@@ -295,7 +295,14 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             print(f"{key} = {literal(value)}")
         if result.regime is not None:
             print(f"regime = {result.regime}")
-        if result.extra:
+        if result.extra and len(result.extra.get("orders", ())) > 1:
+            count = len(result.extra["orders"])
+            shown = result.extra["rule"].split(" ", 1)[-1]
+            print(f"rule = sequential in {count} orders (every order, or the sample "
+                  f"asked for; the numbers above are the first order's, {shown}: see "
+                  f"--json \"orders\" for each); contacts that acted there: "
+                  f"{', '.join(result.extra['acted']) or 'none'}")
+        elif result.extra:
             print(f"rule = {result.extra['rule']}; contacts that acted: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
         if result.extra.get("checks"):
@@ -611,7 +618,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             last[0] = percent
             _progress_bar(done, count, "parameter sets")
 
-    summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress)
+    summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress,
+                        kept=chosen if args.keys else None)
     for warning in summary["warnings"]:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:

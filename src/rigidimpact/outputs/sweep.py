@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import tempfile
 import time
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -78,8 +79,11 @@ def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[s
 
 def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
               fixed: Mapping[str, float], folder: Path, backend: str = "numpy",
-              progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+              progress: Callable[[int, int], None] | None = None,
+              kept: Sequence[str] | None = None) -> dict[str, Any]:
     """Evaluate `results` over `grid` into ``folder/KEY.npy`` files; return the summary.
+    With `kept`, only those keys are written; the others are evaluated for their
+    statistics and warnings only (in a scratch folder removed at the end).
 
     Raises
     ------
@@ -109,10 +113,15 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
                          "or fewer --keys")
     summary: dict[str, Any] = {}
 
+    written = [k for k in kernel.keys if kept is None or k in kept]
+    scratch = tempfile.TemporaryDirectory(prefix="sweep-") if len(written) < len(
+        kernel.keys) else None
+
     def fill(staging: Path) -> list[str]:
-        outputs = {k: np.lib.format.open_memmap(staging / f"{k}.npy", mode="w+",
-                                                dtype=np.float64, shape=(total,))
-                   for k in kernel.keys}
+        outputs = {k: np.lib.format.open_memmap(
+            (staging if k in written or scratch is None else Path(scratch.name))
+            / f"{k}.npy", mode="w+", dtype=np.float64, shape=(total,))
+            for k in kernel.keys}
         start = time.perf_counter()
         grid_or_point = dict(grid) if grid else {}
         if grid_or_point:
@@ -136,9 +145,13 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
         del outputs
         (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
                                               encoding="utf-8")
-        return [f"{k}.npy" for k in kernel.keys] + ["summary.json"]
+        return [f"{k}.npy" for k in written] + ["summary.json"]
 
-    replace_folder(Path(folder), fill, (".npy", ".json"))
+    try:
+        replace_folder(Path(folder), fill, (".npy", ".json"))
+    finally:
+        if scratch is not None:
+            scratch.cleanup()
     return summary
 
 
