@@ -103,8 +103,8 @@ def test_poisson_acting_together_that_leaves_a_contact_closing_says_so():
     rng, checked = random.Random(11), 0
     for _ in range(200):
         collision, _ = random_cluster(rng)
-        if collision is None or len(collision.contacts) < 2 or collision.contacts[0].law != "poisson" or \
-                collision.frictional:
+        if collision is None or len(collision.contacts) < 2 or \
+                collision.contacts[0].law != "poisson" or collision.frictional:
             continue
         try:
             [solution] = collision.solve(ri.Simultaneous())
