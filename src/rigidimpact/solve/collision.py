@@ -1307,8 +1307,12 @@ class Collision:
             return replace(s, before=self.bodies,
                            after=tuple(after.get(b.name, b) for b in self.bodies))
 
-        return replace(world(solution), regimes=tuple(
+        solved = replace(world(solution), regimes=tuple(
             (name, conditions, world(r)) for name, conditions, r in solution.regimes))
+        if self.symbols:  # closed forms: checked where they are derived (verify, tests)
+            return solved
+        pushed = sp.sympify(solved.impulses[c.name])
+        return certified(replace(solved, acted=(c.name,) if pushed > 0 else ()))
 
     def _pivot_reactions(self, outcome: Solution) -> dict[str, tuple[sp.Expr, sp.Expr]]:
         """What each pivot gives its body: the body's change of linear momentum less the
