@@ -56,6 +56,7 @@ from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
 from rigidimpact.solve.collision import Collision, chain, cluster, fan
+from rigidimpact.solve.lcp import confirm
 from rigidimpact.symbolic.notation import symbol
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
@@ -707,8 +708,6 @@ def _fraction_elimination_seconds(problem: Collision) -> float:
     of W (every contact of a fan acts) eliminated over Python's Fractions, timed alone
     (forming W is not counted)."""
     from fractions import Fraction
-
-    from rigidimpact.solve.lcp import confirm
 
     n = len(problem.contacts)
     v = problem.velocity_before

@@ -36,6 +36,7 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from rigidimpact.errors import InputError
+from rigidimpact.solve.collision import whole_number
 
 __all__ = ["Hybrid", "Walk", "flow_of", "FixedPoint"]
 
@@ -190,8 +191,6 @@ class Hybrid:
         >>> walk.stopped, round(walk.accumulation, 6), round(3 * 2 ** 0.5, 6)
         ('zeno', 4.242641, 4.242641)
         """
-        from rigidimpact.solve.collision import whole_number
-
         whole_number("impacts", impacts, 1)
         if not (isinstance(until, (int, float)) and until > 0) or np.isnan(until):
             raise InputError("until", f"must be a positive time (or inf), not {until!r}")

@@ -63,6 +63,10 @@ from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.solution import Solution
 
 FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
+# a residual of the checks beyond this (relative to the largest speed or impulse) is a
+# wrong answer: the exact paths give zero, the floating ones about 1e-45
+CHECK_TOLERANCE = 1e-30
+SETTLING = 1e-12  # the sequential rule's passes end once no contact closes faster
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
 
@@ -508,7 +512,8 @@ class SystemImpact:
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
-        return Solution(
+        checks = self._checks(back(after), P, before, lost)
+        solution = Solution(
             before=(), after=(), impulses=normal, tangential=along,
             contacts=tuple(c.laws for c in self.contacts),
             acted=tuple(n for n, p in normal.items() if p != 0), equations=equations,
@@ -516,7 +521,58 @@ class SystemImpact:
             courses=tuple(f"{n}: {c}" for n, c in courses.items()),
             energies=(before, lost, lost / before), warnings=warnings,
             speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
-            speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)))
+            speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)),
+            given_checks=checks)
+        if checks is None:
+            return solution
+        failures = [k for k, v in checks.items() if k != "energy" and
+                    not k.startswith("_") and v > CHECK_TOLERANCE * checks["_scale"]]
+        if failures:
+            raise InputError("impact", "the answer fails its own check ("
+                             + "; ".join(f"{k} off by {float(checks[k]):.3g}"
+                                         for k in failures[:3])
+                             + "): it is not given; please report the system")
+        return solution
+
+    def _checks(self, u_after: sp.Matrix, P: sp.Matrix, before: sp.Expr,
+                lost: sp.Expr) -> dict[str, Any] | None:
+        """The residuals of the laws in the system's own coordinates, apart from the
+        path that solved them: ``M (u+ - u-) - J^T P``, each contact's push-only impulse,
+        its normal velocity after (none closing beyond the sequential rule's settling),
+        Coulomb's cone, a sticking contact's slip; and the energy created. None with
+        symbols left (the closed forms are checked in the tests)."""
+        numbers = [*u_after, *P, *self.u_before, *self.M, *self.J]
+        if not all(sp.sympify(x).is_number for x in numbers):
+            return None
+        with mpmath.workdps(FLOAT_DIGITS):
+            def num(x: Any) -> Any:
+                return mpmath.mpf(sp.N(x, FLOAT_DIGITS + 10)._to_mpmath(mpmath.mp.prec))
+
+            M = mpmath.matrix([[num(x) for x in self.M.row(i)] for i in range(self.M.rows)])
+            J = mpmath.matrix([[num(x) for x in self.J.row(i)] for i in range(self.J.rows)])
+            du = mpmath.matrix([num(a) - num(b) for a, b in zip(u_after, self.u_before,
+                                                                strict=True)])
+            p = mpmath.matrix([num(x) for x in P])
+            balance = M * du - J.T * p
+            v = J * mpmath.matrix([num(x) for x in u_after])
+            v0 = J * mpmath.matrix([num(x) for x in self.u_before])
+            scale = max([abs(x) for x in v0] + [abs(x) for x in p] + [mpmath.mpf(1e-300)])
+            out: dict[str, Any] = {"momentum": max(abs(x) for x in balance)}
+            for i, c in enumerate(self.contacts):
+                tangential = c.laws.laws[1]
+                out[f"{c.name}.pushes"] = max(0, -p[2 * i])
+                out[f"{c.name}.opens"] = max(0, -v[2 * i] - SETTLING * scale)
+                mu = tangential.cone()
+                if not tangential.grips:
+                    out[f"{c.name}.smooth"] = abs(p[2 * i + 1])
+                elif mu is not None:
+                    out[f"{c.name}.cone"] = max(0, abs(p[2 * i + 1]) - num(mu) * p[2 * i])
+                if tangential.unknown_tangential and p[2 * i] > 0:
+                    out[f"{c.name}.sticks"] = abs(v[2 * i + 1])
+            out["energy"] = max(0, -num(lost))
+            out["_scale"] = scale
+            out["_kinetic"] = num(before)
+        return out
 
     def _all(self, independent: sp.Matrix) -> sp.Matrix:
         """Every speed from the independent ones (the dependent ones by the velocity
@@ -529,8 +585,12 @@ class SystemImpact:
         if not isinstance(values, dict):
             raise InputError("values", "must be a dict of symbols (q, the constants, the "
                              f"speeds) to numbers, not {type(values).__name__}")
+        used = self.M.free_symbols | self.J.free_symbols | set(self.u) | set().union(
+            *(sp.Tuple(c.laws.restitution, c.laws.friction or 0,
+                       c.laws.tangential_restitution or 0).free_symbols
+              for c in self.contacts))
         for key, value in values.items():
-            _check_value(key, value)
+            _check_value(key, value, key in used)
         put = {k: v for k, v in values.items() if k not in self.u}
         speeds = tuple(sp.sympify(values.get(s, b)) for s, b in
                        zip(self.u, self.u_before, strict=True))
@@ -606,9 +666,9 @@ class SystemImpact:
         return tuple(found)
 
 
-def _check_value(key: Any, value: Any) -> None:
+def _check_value(key: Any, value: Any, used: bool = True) -> None:
     """One value for :meth:`SystemImpact.at`: a finite real number (or an expression),
-    positive where its symbol is declared positive (a mass, a length)."""
+    positive where its symbol is declared positive (a mass, a length) and used."""
     where = f"values.{key}"
     if isinstance(value, bool) or not isinstance(value, (int, float, sp.Basic)):
         raise InputError(where, f"must be a number or a SymPy expression, not "
@@ -619,10 +679,10 @@ def _check_value(key: Any, value: Any) -> None:
             raise InputError(where, f"must be finite, not {value}")
         if value.is_real is False:
             raise InputError(where, f"must be real, not {value}")
-        if getattr(key, "is_positive", None) and not value.is_positive:
+        if used and getattr(key, "is_positive", None) and not value.is_positive:
             raise InputError(where, f"must be positive (the symbol is declared positive), "
                              f"not {value}")
-        if getattr(key, "is_nonnegative", None) and value.is_negative:
+        if used and getattr(key, "is_nonnegative", None) and value.is_negative:
             raise InputError(where, f"must not be negative, not {value}")
 
 

@@ -25,6 +25,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws import law as laws
+from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impulse import ImpulseProblem
@@ -326,8 +327,6 @@ class Impact:
         >>> found.regime.name, found.regime.path[-1]
         ('slip', (2, 1/2))
         """
-        from rigidimpact.laws import routh
-
         return routh.diagram(self, values)
 
     def solve(self) -> Solution:
