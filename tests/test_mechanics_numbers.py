@@ -109,3 +109,34 @@ def test_friction_at_numbers_is_quick_and_gives_numbers(law):
     assert max(abs(got[i] - expected[i]) for i in range(2)) < mp.mpf(10) ** -30
     if law != "newton":  # Poisson's and the energetic law never create energy
         assert lost > 0
+
+
+def test_a_mechanics_solution_checks_itself_over_random_states():
+    # a seeded sample of the double pendulum striking the wall with its tip, every law,
+    # smooth and rough, exact and floating angles: each answer's residuals (taken from
+    # M, J and the impulses, apart from the solve) hold, or its warnings say what not
+    import random
+
+    rng = random.Random(37)
+    seen = 0
+    for _ in range(12):
+        law = rng.choice(["newton", "poisson", "energetic"])
+        friction = rng.choice([None, sp.Rational(rng.randint(1, 8), 8)])
+        kw = {"law": law} if friction is None else {
+            "law": law, "tangential": "coulomb", "friction": friction}
+        values = {**V, q1: sp.Rational(rng.randint(-8, 8), 10),
+                  q2: sp.Rational(rng.randint(-8, 8), 10) if rng.random() < 0.5
+                  else sp.pi / rng.randint(3, 8),
+                  u1: rng.randint(1, 4), u2: rng.randint(1, 4), e: sp.Rational(1, 2)}
+        try:
+            solution = _tip(**kw).at(values).solve()
+        except ri.InputError as error:  # not approaching: one line
+            assert "no contact is approaching" in str(error)
+            continue
+        seen += 1
+        checks = solution.checks
+        assert checks["momentum"] < 1e-40
+        assert checks["tip.pushes"] == 0 and checks["tip.opens"] == 0
+        if checks["energy"] > 0:
+            assert any("created kinetic energy" in w for w in solution.warnings)
+    assert seen >= 6
