@@ -206,3 +206,17 @@ def test_a_check_that_fails_is_never_an_answer():
     assert wrong.checks["ball0.momentum_x"] == 1
     with pytest.raises(InputError, match="fails its own check"):
         certified(wrong)
+
+
+def test_derive_prints_and_gives_each_outcome_checks(tmp_path, capsys):
+    import json
+
+    path = tmp_path / "discs.toml"
+    path.write_text(FOUR_DISCS)
+    assert main(["derive", str(path), "--json"]) == 0
+    [outcome] = json.loads(capsys.readouterr().out)["outcomes"]
+    assert outcome["checks"]["k0.restitution"] == "0"
+    assert outcome["checks"]["energy"] != "0"
+    assert any("kinetic energy is created" in w for w in outcome["warnings"])
+    assert main(["derive", str(path)]) == 0
+    assert "largest residual 0.247 (energy)" in capsys.readouterr().out

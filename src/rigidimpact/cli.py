@@ -99,6 +99,15 @@ def _print_regimes(d: Any) -> None:
         print(f"      P_n = {sol.normal_impulse}\n      P_t = {sol.tangential_impulse}")
 
 
+def _checks_line(checks: dict[str, Any]) -> str:
+    """One line saying how an answer's own checks came out (see Solution.checks)."""
+    worst = max(checks, key=lambda k: checks[k])
+    return (f"checks: {len(checks)} conditions (momentum, each contact's laws, energy) "
+            "from the bodies and impulses alone; " + (
+                "every residual is zero" if checks[worst] == 0 else
+                f"largest residual {float(checks[worst]):.3g} ({worst})"))
+
+
 def _cmd_derive(args: argparse.Namespace) -> int:
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
 
@@ -121,6 +130,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
             **({"outcomes": [{"rule": o.rule, "order": list(o.order), "acted": list(o.acted),
                               "results": {k: _expr_json(v) for k, v in o.results().items()},
+                              **({"checks": {k: str(v) for k, v in o.checks.items()},
+                                  "warnings": list(o.warnings)} if o.checks else {}),
                               **({"conditions": [str(c) for c in o.conditions]}
                                  if o.conditions else {})}
                              for o in d.outcomes]} if d.outcomes else {}),
@@ -160,6 +171,10 @@ def _cmd_derive(args: argparse.Namespace) -> int:
                 print("  when " + " and ".join(map(str, outcome.conditions)))
             for key, value in outcome.results().items():
                 print(f"  {key} = {value}")
+            if outcome.checks:
+                print("  " + _checks_line(outcome.checks))
+            for warning in outcome.warnings:
+                print(f"  warning: {warning}")
         print(f"\n({d.seconds:.2f} s)")
         return 0
     numbered = any(eq.paper for eq in d.equations)
@@ -306,12 +321,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             print(f"rule = {result.extra['rule']}; contacts that acted: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
         if result.extra.get("checks"):
-            checks = result.extra["checks"]
-            worst = max(checks, key=lambda k: checks[k])
-            print(f"checks: {len(checks)} conditions (momentum, each contact's laws, "
-                  "energy) from the bodies and impulses alone; " + (
-                      "every residual is zero" if checks[worst] == 0 else
-                      f"largest residual {checks[worst]:.3g} ({worst})"))
+            print(_checks_line(result.extra["checks"]))
             if "courses" in result.extra:
                 print(f"courses: {'; '.join(result.extra['courses'])}")
             if "sample" in result.extra:
