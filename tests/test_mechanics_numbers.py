@@ -140,3 +140,15 @@ def test_a_mechanics_solution_checks_itself_over_random_states():
         if checks["energy"] > 0:
             assert any("created kinetic energy" in w for w in solution.warnings)
     assert seen >= 6
+
+
+def test_a_mechanics_answer_breaking_its_checks_is_refused():
+    from dataclasses import replace
+
+    from rigidimpact.solve.collision import certified
+
+    solution = _tip().at({**V, q1: sp.pi / 6, q2: sp.pi / 4}).solve()
+    assert solution.checks["momentum"] < 1e-40
+    broken = replace(solution, given_checks={**solution.given_checks, "momentum": 1})
+    with pytest.raises(ri.InputError, match="fails its own check"):
+        certified(broken, limits=False)

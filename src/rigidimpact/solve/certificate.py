@@ -241,22 +241,25 @@ def _scale(bodies, later, impulses, num, zero) -> Any:
     return max([zero, *sizes])
 
 
-def assess(checks: Mapping[str, Any], rule: str, contacts: Sequence[Any],
-           floating: bool = False) -> tuple[list[str], list[str]]:
+def assess(checks: Mapping[str, Any], rule: str,
+           contacts: Sequence[Any]) -> tuple[list[str], list[str]]:
     """(warnings, failures): the physical limits the model shows here, and the
     conditions the answer breaks beyond its arithmetic's tolerance (an answer with any
-    failure is wrong and must not be given). `floating`: the answer was found in
-    floating point (exact rationals must then be zero, irrational exact answers hold to
-    1e-35 of their size at 50 digits)."""
+    failure is wrong and must not be given). The tolerance, relative to the largest
+    speed or impulse: zero for rationals, 1e-35 for irrational exact answers at 50
+    digits, FLOAT_TOLERANCE for floats, or the checks' own ``_tolerance`` (a model that
+    computed its residuals itself)."""
     if not checks:
         return [], []
     scale = checks["_scale"] or 1
     kinetic = checks["_kinetic"] or 1
-    if rule == "compliant":
-        tolerance: Any = 1e-6
+    if "_tolerance" in checks:
+        tolerance: Any = checks["_tolerance"]
+    elif rule == "compliant":
+        tolerance = 1e-6
     elif checks["_exact"]:
         tolerance = 0
-    elif floating or checks["_floats"]:
+    elif checks["_floats"]:
         tolerance = FLOAT_TOLERANCE
     else:
         tolerance = ROUNDED_TOLERANCE

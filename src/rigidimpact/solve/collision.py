@@ -74,7 +74,7 @@ from rigidimpact.symbolic.geometry import perp
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Collision", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES", "chain",
-           "sequential_passes",
+           "sequential_passes", "certified", "whole_number",
            "Rule", "Simultaneous", "Sequential", "Compliant", "RULE_TYPES",
            "rule_laws"]
 
@@ -791,7 +791,7 @@ class Collision:
                     # the arithmetic is chosen before the next case analysis: a state
                     # out of the rationals (an energetic step's square root) would
                     # nest a root in every later step, so from here on every step
-                    # starts from the state rounded to FLOAT_DIGITS-digit rationals
+                    # starts from the state as FLOAT_DIGITS-digit Floats
                     floating.append(self.contacts[k].name)
                 if floating:
                     u[:] = [_rounded(x) for x in u]
@@ -1569,22 +1569,26 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
     return count - 1, steps
 
 
-def certified(solution: Solution) -> Solution:
-    """`solution` with the physical limits its checks show among its warnings, or one
-    line refusing it when it breaks a condition its rule imposed (a numerical failure:
-    the answer would be wrong)."""
+def certified(solution: Solution, limits: bool = True) -> Solution:
+    """`solution` with the physical limits its checks show among its warnings (unless
+    `limits` is False: a model that words its own), or one line refusing it when it
+    breaks a condition its rule imposed (a numerical failure: the answer would be
+    wrong)."""
     warnings, failures = solution.assessed()
     if failures:
         raise InputError("impact", f"the {solution.rule} rule's answer fails its own "
                          f"check ({'; '.join(failures[:3])}): it is not given; please "
                          "report the scene")
+    if not limits:
+        return solution
     new = tuple(w for w in warnings if w not in solution.warnings)
     return replace(solution, warnings=solution.warnings + new) if new else solution
 
 
 def _rounded(x: sp.Expr) -> sp.Expr:
-    """A number as the rational of its first FLOAT_DIGITS significant digits (exact
-    numbers that are rational already stay as they are)."""
+    """A number as a Float of FLOAT_DIGITS significant digits (a Float stays as it is):
+    SymPy's polynomial arithmetic keeps a Float's precision, and unlike a rational of
+    that many digits it puts no large integer under the next square root."""
     x = sp.sympify(x)
     if x.is_Float:
         return x
