@@ -152,3 +152,10 @@ def test_a_mechanics_answer_breaking_its_checks_is_refused():
     broken = replace(solution, given_checks={**solution.given_checks, "momentum": 1})
     with pytest.raises(ri.InputError, match="fails its own check"):
         certified(broken, limits=False)
+
+
+def test_friction_in_floating_point_says_so():
+    solution = _tip(tangential="coulomb", friction=mu).at(
+        {**V, mu: sp.Rational(1, 2)}).solve()
+    assert solution.notes == ("solved in 50-digit floating point (the numbers are out of "
+                              "the rationals)",)

@@ -525,7 +525,9 @@ class SystemImpact:
             acted=tuple(n for n, p in normal.items() if p != 0), equations=equations,
             unknowns=unknowns, regime=next(iter(courses.values())) if one else None,
             courses=tuple(f"{n}: {c}" for n, c in courses.items()),
-            energies=(before, lost, lost / before), warnings=warnings,
+            energies=(before, lost, lost / before), warnings=warnings, notes=(
+                f"solved in {self.digits}-digit floating point (the numbers are out of the "
+                "rationals)",) if self.digits else (),
             speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
             speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)),
             given_checks=checks)
