@@ -106,7 +106,7 @@ def _spring_rod():
     scene = ri.load_scene(HERE / "spring-rod.toml")
     track = ri.run(scene).trajectory
     return plots.trajectories(track.t, track.points(), scene.title,
-                              ("sphere A", track.contact_velocity("barbell")))
+                              ("sphere A", track.contact_velocity("barbell")), relative=True)
 
 
 def _accuracy_vs_time():

@@ -159,3 +159,43 @@ def test_friction_in_floating_point_says_so():
         {**V, mu: sp.Rational(1, 2)}).solve()
     assert solution.notes == ("solved in 50-digit floating point (the numbers are out of "
                               "the rationals)",)
+
+
+def test_a_pendulum_that_locks_against_the_floor_in_floats():
+    # a bob (mass 1/2) on a rod of length 1/2 at q = 3/10, turning at 7/4 up into a
+    # floor above it (Coulomb mu = 3/4, e = 1/4): its point can only move across the
+    # rod, so the normal velocity and the slip stop together and the restitution impulse
+    # along the cone's other edge would drive it in: the contact locks, u+ = 0. By hand,
+    # the angular impulse about the hinge, -P_n (sin q + 3/4 cos q) / 2, takes away
+    # m l^2 u = 7/32, so P_n = 7 / (16 (sin q + 3/4 cos q)). At 50 digits W's
+    # determinant is rounding, not zero: the one-freedom course must still be found,
+    # through the bridge's sequential rule (it gave NaN) and the built-in shapes
+    # (refused: its check asked restitution's law of a locked contact).
+    q, u = me.dynamicsymbols("q u")
+    frame = me.ReferenceFrame("N")
+    arm = frame.orientnew("A", "Axis", [q, frame.z])
+    arm.set_ang_vel(frame, u * frame.z)
+    hinge = me.Point("O")
+    hinge.set_vel(frame, 0)
+    bob = hinge.locatenew("P", -arm.y / 2)
+    bob.v2pt_theory(hinge, frame, arm)
+    kane = me.KanesMethod(frame, [q], [u], [q.diff() - u])
+    kane.kanes_equations([me.Particle("b", bob, sp.Rational(1, 2))], [])
+    angle = mp.mpf(3) / 10
+    expected = 7 / (16 * (mp.sin(angle) + mp.mpf(3) / 4 * mp.cos(angle)))
+    contacts = [ri.mechanics.contact(bob, -frame.y, restitution=sp.Rational(1, 4),
+                                     tangential="coulomb", friction=sp.Rational(3, 4),
+                                     name=name) for name in ("c0", "c1")]
+    bridge = ri.mechanics.impact(kane, contacts, frame=frame).at(
+        {q: sp.Rational(3, 10), u: sp.Rational(7, 4)}).solve(ri.Sequential(("c1", "c0")))
+    assert abs(bridge.impulses["c0"] + bridge.impulses["c1"] - expected) < 1e-40
+    assert abs(bridge.speeds_after[0]) < 1e-40
+    at = (sp.sin(sp.Rational(3, 10)) / 2, -sp.cos(sp.Rational(3, 10)) / 2)
+    body = ri.Body.rigid(sp.Rational(1, 2), 0, at, (sp.cos(sp.Rational(3, 10)) * 7 / 8,
+                                                    sp.sin(sp.Rational(3, 10)) * 7 / 8),
+                         sp.Rational(7, 4), name="bob", pivot=(0, 0))
+    built = ri.Collision((body, ri.Body.fixed("floor")), (ri.Contact(
+        normal=(0, 1), restitution=sp.Rational(1, 4), tangential="coulomb",
+        friction=sp.Rational(3, 4), bodies=("bob", "floor"), point=at),)).simultaneous()
+    assert built.courses == ("contact: slip-lock",) and built.after[0].spin == 0
+    assert abs(built.impulses["contact"] - expected) < 1e-40

@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 
 import sympy as sp
 
+from rigidimpact.errors import InputError
 from rigidimpact.laws import routh
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross
@@ -355,6 +356,13 @@ class ContactLaw:
         matrix, rhs = sp.linear_eq_to_matrix(
             self.linear_conditions(v_before, after, P, restitution.leaving(v_before[0])),
             list(P))
+        if sp.cancel(matrix.det()).is_zero:
+            raise InputError("tangential", "the touching points have one degree of "
+                             "freedom here (a body that can only turn, against a fixed "
+                             "one), so they cannot both stop slipping and leave by the "
+                             "restitution law; tangential = \"coulomb\" follows them "
+                             "(Routh's method)" if self.grips else "the contact laws do "
+                             "not fix the impulse here")
         solved = matrix.LUsolve(rhs)
         return solved[0], solved[1], self.name
 

@@ -135,7 +135,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
     W = sp.Matrix(W).applyfunc(sp.cancel)
     v_n, v_t = (sp.cancel(c) for c in v_before)
     mu, e = sp.sympify(mu), sp.sympify(law.e)
-    if sp.cancel(W.det()).is_zero:
+    if _singular(W):
         return _one_freedom(W, v_n, v_t, mu, e, law)
     if v_t.is_zero:
         return _from_rest(W, v_n, mu, e, law)
@@ -149,6 +149,18 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
         raise InputError("contact", "no course of the impact fits these values: the "
                          "contact jams (the normal velocity would fall while slipping)")
     return tuple(decided)
+
+
+def _singular(W: sp.Matrix) -> bool:
+    """Whether W is singular: exactly, or, in floating point (a system solved at 50
+    digits), to within the rounding of its entries (a determinant below 1e-35 of the
+    product of its diagonal, which is where a rank-one W's lands)."""
+    det = sp.cancel(W.det())
+    if det.is_zero:
+        return True
+    if W.has(sp.Float) and det.is_number and (W[0, 0] * W[1, 1]).is_number:
+        return bool(abs(det) <= sp.Float(1e-35) * abs(W[0, 0] * W[1, 1]))
+    return False
 
 
 def _one_freedom(W, v_n, v_t, mu, e, law) -> tuple[Regime, ...]:

@@ -477,8 +477,12 @@ class SystemImpact:
         def step(i: int, _: sp.Expr) -> tuple[sp.Expr, sp.Expr, str]:
             pair = slice(2 * i, 2 * i + 2)
             restitution, tangential = self.contacts[i].laws.laws
-            normal, along, course = tangential.alone(self.W[pair, pair],
-                                                     self.J[pair, :] * state["u"], restitution)
+            try:
+                normal, along, course = tangential.alone(
+                    self.W[pair, pair], self.J[pair, :] * state["u"], restitution)
+            except InputError as error:  # the law's own words, at this contact
+                raise InputError(f"{self.contacts[i].name}.tangential",
+                                 error.message) from None
             state["u"] = state["u"] + self._M_inv_JT[:, pair] * sp.Matrix([normal, along])
             return normal, along, course
 

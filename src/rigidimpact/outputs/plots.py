@@ -136,36 +136,57 @@ def restrike_map(degrees: np.ndarray, e_values: np.ndarray,
 
 
 def strobe(frames: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], title: str) -> Figure:
-    """Snapshots of the ball and barbell in the lab frame, from the impact onward.
+    """Snapshots of the ball and barbell from the impact onward: above, in the lab frame;
+    below, the same snapshots seen from the barbell's centre, where its turn and the
+    ball closing on the B half show. Colour runs from the impact (dark) to the last
+    snapshot (light).
 
-    Each frame is ``(ball, sphere_a, sphere_b)`` positions; later frames are darker.
+    Each frame is ``(ball, sphere_a, sphere_b)`` positions.
 
     Examples
     --------
     >>> f = [(np.zeros(2), np.zeros(2), np.ones(2))] * 3
-    >>> strobe(f, "demo").axes[0].get_aspect()
-    1.0
+    >>> [ax.get_aspect() for ax in strobe(f, "demo").axes[:2]]
+    [1.0, 1.0]
     """
-    fig, ax = plt.subplots(figsize=(FIGSIZE[0], 0.6 * FIGSIZE[1]), dpi=DPI)
+    fig, (lab, centre) = plt.subplots(2, 1, figsize=(FIGSIZE[0], 1.5 * FIGSIZE[1]), dpi=DPI,
+                                      gridspec_kw={"height_ratios": (1, 2.2)})
     shades = plt.cm.viridis(np.linspace(0.0, 0.9, len(frames)))
-    for (ball, a, b), colour in zip(frames, shades, strict=True):
-        ax.plot([a[0], b[0]], [a[1], b[1]], "-", color=colour, lw=1.0)
-        ax.plot([a[0]], [a[1]], "o", color=colour, ms=5, mfc="white")
-        ax.plot([b[0]], [b[1]], "o", color=colour, ms=5)
-        ax.plot([ball[0]], [ball[1]], "s", color=colour, ms=4)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x / L")
-    ax.set_ylabel("y / L")
-    ax.set_title(title, fontsize="medium")
-    ax.grid(alpha=0.3)
+    for ax, moving in ((lab, False), (centre, True)):
+        for (ball, a, b), colour in zip(frames, shades, strict=True):
+            origin = (a + b) / 2 if moving else np.zeros(2)
+            ball, a, b = ball - origin, a - origin, b - origin
+            ax.plot([a[0], b[0]], [a[1], b[1]], "-", color=colour, lw=1.0)
+            ax.plot([a[0]], [a[1]], "o", color=colour, ms=5, mfc="white")
+            ax.plot([b[0]], [b[1]], "o", color=colour, ms=5)
+            ax.plot([ball[0]], [ball[1]], "s", color=colour, ms=4)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(alpha=0.3)
+    lab.set_xlabel("x / L (lab frame)")
+    lab.set_ylabel("y / L")
+    centre.set_xlabel("x / L, from the barbell's centre")
+    centre.set_ylabel("y / L")
+    lab.set_title(title, fontsize="medium")
+    grey = "0.3"
+    handles = [plt.Line2D([], [], ls="none", marker="s", color=grey, ms=4, label="ball"),
+               plt.Line2D([], [], ls="none", marker="o", color=grey, mfc="white", ms=5,
+                          label="sphere A (struck)"),
+               plt.Line2D([], [], ls="none", marker="o", color=grey, ms=5, label="sphere B"),
+               plt.Line2D([], [], color=shades[0], lw=2, label="at the impact"),
+               plt.Line2D([], [], color=shades[-1], lw=2, label="last snapshot")]
+    centre.legend(handles=handles, fontsize="small", loc="best")
     fig.tight_layout()
     return fig
 
 
 def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
                  velocity: tuple[str, np.ndarray] | None = None,
-                 outlines: tuple[Sequence, Sequence[tuple]] | None = None) -> Figure:
+                 outlines: tuple[Sequence, Sequence[tuple]] | None = None,
+                 relative: bool = False) -> Figure:
     """Paths of the tracked points in the plane; optionally one point's velocity in time.
+    Each path starts at a dot (one legend entry says so). With `relative`, each point's
+    displacement from where it was at the start, in mm, so that motions small against
+    the bodies' size (a spring rod's) are seen, each from the same origin.
 
     Examples
     --------
@@ -179,11 +200,16 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
     ax = axes[0][0]
     styles = ("-", "--", ":", "-.")
     for k, (name, xy) in enumerate(points.items()):
+        if relative:
+            xy = 1e3 * (xy - xy[:1])
         # the first body (the striker) is drawn on top, dashed ones beneath: tracks that
         # start at the same point stay visible
+        still = not np.ptp(xy, axis=0).any()  # a point at rest: a marker, said so
         ax.plot(xy[:, 0], xy[:, 1], styles[k % len(styles)], lw=2.2 if k == 0 else 1.4,
-                zorder=3 if k == 0 else 2, label=name)
-        ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4, zorder=4)
+                zorder=3 if k == 0 else 2, label=f"{name} (at rest)" if still else name,
+                marker="o" if still else None, mfc="none", ms=9)
+        ax.plot(xy[:1, 0], xy[:1, 1], "k.", ms=4, zorder=4,
+                label="start (t = 0)" if k == len(points) - 1 else None)
     if outlines is not None:  # the bodies as they were at the impact, faint
         bodies, contacts = outlines
         drawn = len(ax.lines)
@@ -191,8 +217,12 @@ def trajectories(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         for artist in [*ax.patches, *ax.lines[drawn:]]:
             artist.set_alpha(0.35)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
+    if relative:
+        ax.set_xlabel("displacement in x from the start (mm)")
+        ax.set_ylabel("displacement in y (mm)")
+    else:
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)
     if velocity is not None:

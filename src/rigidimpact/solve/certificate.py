@@ -25,9 +25,10 @@ as they are) where the answer is exact, mpmath at 50 digits where it holds float
 
 Which violations are a model's physical limits and which a numerical failure depends on
 the rule and laws, so :func:`assess` sorts them: energy created (Newton's law at
-coupled contacts, or with friction) and a contact still closing under Poisson's law
-acting together are limits the model has, said in ``warnings``; any other residual
-above the tolerance means the answer is wrong, and it is never given as an answer.
+coupled contacts, or with friction), a contact still closing under Poisson's law acting
+together, and a sticking contact whose law needs a pull are limits the model has, said
+in ``warnings``; any other residual above the tolerance means the answer is wrong, and
+it is never given as an answer.
 
 Examples
 --------
@@ -56,7 +57,7 @@ DIGITS = 50
 # between steps, to 1e-40 (the sequential rule's settling threshold)
 FLOAT_TOLERANCE = 1e-9
 ROUNDED_TOLERANCE = mpmath.mpf(10) ** -35
-PHYSICAL_LIMITS = ("energy", "opens")
+PHYSICAL_LIMITS = ("energy", "opens", "pushes")
 SETTLED = 1e-40  # the sequential rule stops once every closing speed is below this
 
 
@@ -81,9 +82,12 @@ def _arithmetic(numbers: Sequence[Any]) -> str:
 
 def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[Any],
               impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
-              acted: Sequence[str]) -> dict[str, Any]:
+              acted: Sequence[str], locked: Sequence[str] = ()) -> dict[str, Any]:
     """Each condition's residual (see the module's notes) as a number (exact, or an
-    mpmath number) or, with symbols left, a SymPy expression."""
+    mpmath number) or, with symbols left, a SymPy expression. `locked` names the
+    contacts whose impact ended locked at rest (Routh's method where the touching points
+    have one degree of freedom and the restitution impulse would drive them together):
+    their law is a normal velocity of zero after, not restitution's."""
     bodies = {b.name: b for b in before}
     later = {b.name: b for b in after}
     data: list[Any] = []
@@ -128,13 +132,13 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
 
     with mpmath.workdps(DIGITS):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
-                           root, how)
+                           root, how, locked)
     found["_floats"] = floats
     return found
 
 
 def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, root,
-               how) -> dict[str, Any]:
+               how, locked) -> dict[str, Any]:
     zero = num(0)
     received: dict[str, list[Any]] = {name: [zero, zero, zero] for name in bodies}
     out: dict[str, Any] = {}
@@ -179,7 +183,9 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             out[f"{c.name}.cone"] = max(zero, abs(p_t) - num(mu) * p_n)
         if friction.unknown_tangential and c.name in acted:
             out[f"{c.name}.sticks"] = abs(slip)
-        if rule == "simultaneous" and restitution.together == "velocity":
+        if c.name in locked:  # the course's own law: at rest along the normal after
+            out[f"{c.name}.restitution"] = abs(v_after)
+        elif rule == "simultaneous" and restitution.together == "velocity":
             # the law's own normal velocity after, from the closing one (a new law is
             # one class: the check asks it, as the rule does)
             target = num(restitution.leaving(as_sympy(min(v_before, zero))))
@@ -265,6 +271,10 @@ def assess(checks: Mapping[str, Any], rule: str,
         tolerance = ROUNDED_TOLERANCE
     poisson_together = rule == "simultaneous" and len(contacts) > 1 and any(
         c.laws[0].together == "impulse" for c in contacts)
+    # a sticking law (no cone) fixes the normal impulse with the tangential one, and
+    # with strong coupling that normal impulse pulls: the law's limit, not the solver's
+    sticking = {c.name for c in contacts
+                if c.laws[1].unknown_tangential and c.laws[1].cone() is None}
     warnings, failures = [], []
     for key, value in checks.items():
         if key.startswith("_"):
@@ -282,6 +292,11 @@ def assess(checks: Mapping[str, Any], rule: str,
             name = key.rsplit(".", 1)[0]
             warnings.append(f"{name} still approaches after the impact (normal velocity "
                             f"{-float(value):.6g}): the bodies would pass into each other")
+        elif key.endswith(".pushes") and key.rsplit(".", 1)[0] in sticking:
+            name = key.rsplit(".", 1)[0]
+            warnings.append(f"{name} would pull (normal impulse {-float(value):.6g}): "
+                            "sticking cannot be held by a push here; tangential = "
+                            "\"coulomb\" follows the slip instead (Routh's method)")
         else:
             failures.append(f"{key} off by {float(size):.3g} (relative)")
     return warnings, failures

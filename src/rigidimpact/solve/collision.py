@@ -69,7 +69,7 @@ from rigidimpact.solve.lcp import (
     proximal,
     residual,
 )
-from rigidimpact.solve.solution import Solution
+from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import perp
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -1304,7 +1304,7 @@ class Collision:
 
         def world(s: Solution) -> Solution:
             after = {b.name: b.shifted(point) for b in s.after}
-            return replace(s, before=self.bodies,
+            return replace(s, before=self.bodies, contacts=(c,),
                            after=tuple(after.get(b.name, b) for b in self.bodies))
 
         solved = replace(world(solution), regimes=tuple(
@@ -1567,22 +1567,6 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
             steps.append((k, *step(k, now)))
             acted = True
     return count - 1, steps
-
-
-def certified(solution: Solution, limits: bool = True) -> Solution:
-    """`solution` with the physical limits its checks show among its warnings (unless
-    `limits` is False: a model that words its own), or one line refusing it when it
-    breaks a condition its rule imposed (a numerical failure: the answer would be
-    wrong)."""
-    warnings, failures = solution.assessed()
-    if failures:
-        raise InputError("impact", f"the {solution.rule} rule's answer fails its own "
-                         f"check ({'; '.join(failures[:3])}): it is not given; please "
-                         "report the scene")
-    if not limits:
-        return solution
-    new = tuple(w for w in warnings if w not in solution.warnings)
-    return replace(solution, warnings=solution.warnings + new) if new else solution
 
 
 def _rounded(x: sp.Expr) -> sp.Expr:

@@ -29,7 +29,7 @@ from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impulse import ImpulseProblem
-from rigidimpact.solve.solution import Solution
+from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import make_symbol
 from rigidimpact.symbolic.rewrite import tidy
@@ -330,7 +330,10 @@ class Impact:
         return routh.diagram(self, values)
 
     def solve(self) -> Solution:
-        """Solve for the impulse at O in the generalized-impulse core, then the motion.
+        """Solve for the impulse at O in the generalized-impulse core, then the motion;
+        at numbers the answer is certified (see :func:`~rigidimpact.solve.solution.certified`):
+        its physical limits are among its warnings, and one that fails its own laws'
+        check is refused in one line, never returned.
 
         The core (:class:`~rigidimpact.solve.impulse.ImpulseProblem`) gives each body's motion
         after an impulse P at O: ``u+ = u- + M^-1 J^T P``. The contact's laws, imposed
@@ -351,6 +354,9 @@ class Impact:
         >>> sol.results()["b.vx"]
         1/2
         """
+        return certified(self._solve())
+
+    def _solve(self) -> Solution:
         before = self.before
         core = ImpulseProblem(before)
         if self.contact.frictional:
@@ -463,9 +469,13 @@ class Impact:
         fraction = lost / energy_before if stand_ins else tidy(lost / energy_before)
         normal, along = (x.xreplace(stand_ins) for x in local_impulse)
         name = self.contact.name
+        # the impulse acts at O, the origin of the bodies' positions, whatever point the
+        # contact names (a collision's core is handed its bodies shifted to that point)
+        at_o = self.contact if all(x == 0 for x in self.contact.point) else \
+            replace(self.contact, point=(0, 0))
         return Solution(
             before=(self.first, self.second), after=(finals[0], finals[1]),
-            impulses={name: normal}, tangential={name: along}, contacts=(self.contact,),
+            impulses={name: normal}, tangential={name: along}, contacts=(at_o,),
             acted=(name,), frame=self.frame, equations=self.equations(),
             unknowns=self.unknowns,
             values={u: x.xreplace(stand_ins) for u, x in values.items()},

@@ -23,12 +23,13 @@ Matrix([[1, 0]])
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
 import sympy as sp
 
+from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.bodies import Body
@@ -36,7 +37,7 @@ from rigidimpact.solve.certificate import as_sympy, assess, residuals
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Solution"]
+__all__ = ["Solution", "certified"]
 
 EYE = sp.ImmutableMatrix.eye(2)
 
@@ -131,10 +132,13 @@ class Solution:
     def _certificate(self) -> dict[str, Any]:
         if self.given_checks is not None:
             return {**self.given_checks, "_exact": False, "_floats": True}
-        if self.speeds_after is not None or self.frame != EYE or not self.contacts:
-            return {}  # a mechanics system's, or a tilt kept symbolic: its own frame
+        if self.speeds_after is not None or not self.contacts:
+            return {}  # a mechanics system's: its own coordinates
+        locked = {c.split(":")[0] for c in self.courses if "lock" in c}
+        if self.regime and "lock" in self.regime:
+            locked |= set(self.acted)
         return residuals(self.before, self.after, self.contacts, self.impulses,
-                         self.tangential, self.rule, self.acted)
+                         self.tangential, self.rule, self.acted, tuple(locked))
 
     @property
     def checks(self) -> dict[str, Any]:
@@ -383,3 +387,19 @@ class Solution:
                 results[f"{body.name}.pivot_impulse_x"] = reaction[0]
                 results[f"{body.name}.pivot_impulse_y"] = reaction[1]
         return results
+
+
+def certified(solution: Solution, limits: bool = True) -> Solution:
+    """`solution` with the physical limits its checks show among its warnings (unless
+    `limits` is False: a model that words its own), or one line refusing it when it
+    breaks a condition its rule imposed (a numerical failure: the answer would be
+    wrong)."""
+    warnings, failures = solution.assessed()
+    if failures:
+        raise InputError("impact", f"the {solution.rule} rule's answer fails its own "
+                         f"check ({'; '.join(failures[:3])}): it is not given; please "
+                         "report the scene")
+    if not limits:
+        return solution
+    new = tuple(w for w in warnings if w not in solution.warnings)
+    return replace(solution, warnings=solution.warnings + new) if new else solution
