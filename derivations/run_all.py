@@ -31,8 +31,8 @@ import rigidimpact as ri  # noqa: E402
 from rigidimpact.analyses import restrike  # noqa: E402
 from rigidimpact.analyses.bench import FLOOR, pareto  # noqa: E402
 from rigidimpact.outputs import latex, plots  # noqa: E402
-from rigidimpact.outputs.numeric import Kernel  # noqa: E402
 from rigidimpact.simulate.runner import rigid_limit  # noqa: E402
+from rigidimpact.symbolic.numeric import Kernel  # noqa: E402
 
 
 def _figures():

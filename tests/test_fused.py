@@ -9,8 +9,8 @@ import pytest
 
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
-from rigidimpact.outputs.numeric import fused, has_numba, kernels
 from rigidimpact.paper.problems import derive
+from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 BACKENDS = ["numpy"] + (["numba"] if has_numba() else [])
 

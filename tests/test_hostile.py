@@ -178,7 +178,7 @@ def test_results_beyond_float64_steps_are_right(capsys):
 
 def test_results_outside_float64_are_printed_as_valid_json():
     big = {"V_1ix": sp.Integer(10) ** 100, "V_2ix": 0, "V_1iy": 0, "V_2iy": 0, "e": 1}
-    from rigidimpact.outputs.numeric import evaluate
+    from rigidimpact.symbolic.numeric import evaluate
     value = evaluate({"x": derive("discs").results["V_2fx"] ** 4}, big)["x"]
     assert abs(value / mpmath.mpf(10) ** 400 - 1) < 1e-30
     literal = mpmath.nstr(value, 17)
@@ -196,7 +196,7 @@ def test_sticking_with_exact_irrational_huge_masses(tmp_path, capsys):
 
 
 def test_a_result_undefined_at_the_values_is_refused():
-    from rigidimpact.outputs.numeric import evaluate
+    from rigidimpact.symbolic.numeric import evaluate
     with pytest.raises(InputError, match="undefined"):
         evaluate({"q": 1 / (SYMBOLS["m"] - 1)}, {"m": sp.Integer(1)})
 

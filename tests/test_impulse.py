@@ -11,8 +11,8 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import NewtonRestitution, Stick
 from rigidimpact.model.bodies import Body
+from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.impulse import ImpulseProblem
 from rigidimpact.symbolic.notation import symbol
 
 SEED = 20261122

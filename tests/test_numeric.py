@@ -10,9 +10,9 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rigidimpact.outputs.numeric import Kernel, evaluate, magnitude, stable_form
 from rigidimpact.paper.problems import derive
 from rigidimpact.symbolic.notation import symbol
+from rigidimpact.symbolic.numeric import Kernel, evaluate, magnitude, stable_form
 
 m, M, L, theta, e, v = (symbol(n) for n in ("m", "M", "L", "theta", "e", "v_ix"))
 KERNELS = {k: Kernel.from_expr(x) for k, x in derive("barbell").results.items()}

@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import pytest
 import sympy as sp
+import sympy.physics.mechanics as me
 
+import rigidimpact as ri
 from rigidimpact.errors import InputError
 from rigidimpact.laws import law as law_module
 from rigidimpact.laws.contact import Contact
@@ -243,3 +245,41 @@ def test_a_new_restitution_law_is_one_class(monkeypatch):
     # the compliant rule has no form for it, and says so
     with pytest.raises(InputError, match="threshold law has no spring-dashpot form"):
         _balls((1, 0), "threshold").compliant()
+
+
+def test_a_mechanics_system_prints_the_restitution_its_law_solved(monkeypatch):
+    # a bob (mass 1, rod 1) hanging straight down and swinging at 1/4 into a wall: the
+    # threshold law is plastic below a closing speed of 1/2, so u+ = 0; the printed
+    # restitution must say so (it used to print Newton's -e v = 1/8 beside u+ = 0)
+    monkeypatch.setitem(law_module.RESTITUTION_LAWS, "threshold", Threshold)
+    q, u = me.dynamicsymbols("q u")
+    frame = me.ReferenceFrame("N")
+    arm = frame.orientnew("A", "Axis", [q, frame.z])
+    arm.set_ang_vel(frame, u * frame.z)
+    hinge = me.Point("O")
+    hinge.set_vel(frame, 0)
+    bob = hinge.locatenew("P", -arm.y)
+    bob.v2pt_theory(hinge, frame, arm)
+    kane = me.KanesMethod(frame, [q], [u], [q.diff() - u])
+    kane.kanes_equations([me.Particle("b", bob, 1)], [])
+    # the normal (-x) velocity after is -u+: plastic 0 at 1/4, e = 1/2 of 1 at 1
+    for speed, after, leaving in ((sp.Rational(1, 4), 0, 0), (1, -HALF, HALF)):
+        solution = ri.mechanics.impact(kane, [ri.mechanics.contact(
+            bob, -frame.x, restitution=HALF, law="threshold", name="wall")],
+            frame=frame).at({q: 0, u: speed}).solve()
+        assert solution.speeds_after[0] == after
+        [printed] = [eq for eq in solution.equations if eq.law == "restitution"]
+        assert printed.rhs == leaving
+        speeds = dict(zip(solution.unknowns, solution.speeds_after, strict=False))
+        assert printed.lhs.subs(speeds) == leaving
+
+
+def test_one_contact_reports_the_rule_it_was_asked_for():
+    # one contact's answer is its own under every rule, but it is reported under the
+    # rule asked for (it used to say "simultaneous" whatever the rule)
+    pair = _balls((1, 0), "newton")
+    (together,) = pair.solve(Simultaneous())
+    (in_turn,) = pair.solve(Sequential(("c0",)))
+    assert (together.rule, in_turn.rule, in_turn.order) == ("simultaneous", "sequential",
+                                                            ("c0",))
+    assert together.results() == in_turn.results()

@@ -19,9 +19,9 @@ from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import RESTITUTION_LAWS
 from rigidimpact.model.bodies import Body
+from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.paper.problems import derive
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.impulse import ImpulseProblem
 from rigidimpact.symbolic.notation import symbol
 
 SEED = 1305

@@ -40,8 +40,8 @@ def test_v_fx_at_e_zero_is_relatively_accurate():
     import mpmath
 
     from rigidimpact.analyses.stability import ANGLES, LENGTHS, RATIOS
-    from rigidimpact.outputs.numeric import Kernel
     from rigidimpact.paper.problems import derive
+    from rigidimpact.symbolic.numeric import Kernel
 
     kernel = Kernel.from_expr(derive("barbell").results["v_fx"])
     for M, L, theta in itertools.product(RATIOS, LENGTHS, ANGLES):

@@ -48,7 +48,6 @@ import sympy as sp
 from rigidimpact.analyses import restrike
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import write_file
-from rigidimpact.outputs.numeric import fused, has_numba, kernels
 from rigidimpact.outputs.plots import accuracy_vs_time
 from rigidimpact.paper.problems import derive
 from rigidimpact.scenes.scene import parse_scene
@@ -58,6 +57,7 @@ from rigidimpact.simulate.outcome import flyer
 from rigidimpact.solve.collision import Collision, chain, cluster, fan
 from rigidimpact.solve.lcp import confirm
 from rigidimpact.symbolic.notation import symbol
+from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
            "verify_against_plain", "ladder_scene", "FAMILIES", "FLOOR"]

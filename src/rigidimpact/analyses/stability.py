@@ -32,9 +32,9 @@ from pathlib import Path
 import mpmath
 import numpy as np
 
-from rigidimpact.outputs.numeric import Kernel, fused, has_numba, kernels
 from rigidimpact.paper.problems import derive
 from rigidimpact.scenes.scene import load_scene
+from rigidimpact.symbolic.numeric import Kernel, fused, has_numba, kernels
 
 __all__ = ["Case", "CASES", "run_suite", "BOUND", "available_backends"]
 

@@ -1,7 +1,7 @@
 """Coulomb friction at one contact, exactly: Routh's method in impulse space.
 
 During an impact the contact's relative velocity is linear in the impulse,
-``v(p) = v- + W p`` (see :mod:`rigidimpact.solve.impulse`), so taking the normal impulse p_n
+``v(p) = v- + W p`` (see :mod:`rigidimpact.model.impulse`), so taking the normal impulse p_n
 as the clock, the velocity is piecewise linear in it: while the touching points slip in
 direction s (the sign of the tangential velocity) the tangential impulse grows at
 ``-mu s`` per unit normal impulse; when they stick it grows at ``-W_tn / W_tt``, which
@@ -40,7 +40,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.solve.impulse import ImpulseProblem
+from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",

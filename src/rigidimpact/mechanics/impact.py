@@ -53,6 +53,7 @@ from typing import Any
 import mpmath
 import sympy as sp
 import sympy.physics.mechanics as me
+from sympy.polys.constructor import construct_domain
 from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.errors import InputError
@@ -363,12 +364,15 @@ class SystemImpact:
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
         if self.digits is not None and not gens:
             return self._floating(A, b, acting, n, k, M, u)
-        ring = sp.QQ[tuple(gens)] if gens else sp.QQ
+        # numbers alone: the rationals, with the one square root _exact_enough allows
+        # adjoined where the data hold it (sqrt(3) of a 60 degree angle)
+        ring = sp.QQ[tuple(gens)] if gens else construct_domain(
+            [*A, *b], extension=True)[0]
         dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
         notes: tuple[str, ...] = ()
         if dA.det() != ring.zero:
             numerators, denominator = dA.solve_den(db)
-            field = ring.get_field() if gens else sp.QQ
+            field = ring.get_field()
             x = [field.convert_from(numerators[i, 0].element, ring)
                  / field.convert_from(denominator, ring) for i in range(n + 2 * k)]
             solved = sp.Matrix([field.to_sympy(v) for v in x])
@@ -646,9 +650,14 @@ class SystemImpact:
                                    law="rule")]
                 continue
             if not tangential.solved_by_regimes or course == "stick":
+                # the law's own target, as the solve asked it (a law whose e depends on
+                # the closing speed prints the e it used)
+                closing = v[2 * i]
+                if closing.is_number:
+                    closing = min(closing, 0)
                 found.append(Equation(f"restitution at {c.name} ({restitution.name}'s law "
                                       "on a straight impulse path)", "", v_after[2 * i],
-                                      -restitution.e * v[2 * i], law="restitution"))
+                                      restitution.leaving(closing), law="restitution"))
             if course == "stick":
                 found.append(Equation(f"{c.name} sticks: no slip after", "",
                                       v_after[2 * i + 1], 0, law="tangential"))

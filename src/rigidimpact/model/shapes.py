@@ -103,15 +103,26 @@ class Barbell(Shape):
 
 
 class Rod(Shape):
-    """A uniform thin rod struck at ``struck_at`` from its centre."""
+    """A uniform thin rod struck at ``struck_at`` from its centre, or with its centre at
+    ``position`` (from O: a rod of a linkage that no contact places)."""
 
     name, segment = "rod", True
-    fields = required = ("mass", "length", "angle", "struck_at")
+    fields = ("mass", "length", "angle", "struck_at", "position")
+    required = ("mass", "length", "angle")
 
     @classmethod
     def build(cls, given: Fields) -> Body:
-        return Body.rod(given.expr("mass"), given.expr("length"), given.expr("angle"),
-                        given.expr("struck_at"), given.velocity, given.spin, given.name)
+        placed = [k for k in ("struck_at", "position") if k in given.table]
+        if len(placed) != 1:
+            raise InputError(f"{given.name}.struck_at", "give a rod exactly one of "
+                             "struck_at (its centre from the contact point, along the rod) "
+                             "and position (its centre from O)")
+        if placed == ["struck_at"]:
+            return Body.rod(given.expr("mass"), given.expr("length"), given.expr("angle"),
+                            given.expr("struck_at"), given.velocity, given.spin, given.name)
+        body = Body.rod(given.expr("mass"), given.expr("length"), given.expr("angle"), 0,
+                        given.velocity, given.spin, given.name)
+        return replace(body, position=sp.ImmutableMatrix(given.vector("position")))
 
 
 class Rigid(Shape):

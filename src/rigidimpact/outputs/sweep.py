@@ -3,7 +3,7 @@
 ``rigidimpact sweep`` evaluates a derivation's results at every point of a grid: the
 product of ranges such as ``theta=0:pi/2:10000`` and ``M=0.1:10:10000`` (10^8 sets), the
 other symbols fixed by ``--set`` or the scene's ``[values]``. The fused kernel
-(:class:`rigidimpact.outputs.numeric.Fused`) runs one chunk at a time: the inputs of a chunk are
+(:class:`rigidimpact.symbolic.numeric.Fused`) runs one chunk at a time: the inputs of a chunk are
 made from its indices (the grid itself is never built), and each result is written
 into a memory-mapped ``.npy`` file, so memory stays bounded however many sets there are.
 The folder is written whole or not at all, with ``summary.json`` (the grid, each
@@ -32,8 +32,8 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import replace_folder
-from rigidimpact.outputs.numeric import fused
 from rigidimpact.symbolic.expr import parse_expression
+from rigidimpact.symbolic.numeric import fused
 
 __all__ = ["parse_grid", "run_sweep", "MAX_SETS"]
 

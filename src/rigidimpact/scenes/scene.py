@@ -34,6 +34,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
+from rigidimpact.model.joints import Joint
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.model.shapes import SHAPES, Fields
 from rigidimpact.solve.collision import (
@@ -120,6 +121,7 @@ class Scene:
     order: tuple[str, ...] | None = None
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
     sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
+    joints: tuple[Joint, ...] = ()  # [[joints]]: bodies pinned together
 
     @property
     def roles(self) -> tuple[Role, ...]:
@@ -158,6 +160,9 @@ class Scene:
 
     def impact(self) -> Impact:
         """The scene's impact (one contact)."""
+        if self.joints:
+            raise InputError("joints", "this scene has joints: derive and evaluate solve "
+                             "it; this command follows one contact of two bodies")
         if len(self.contacts) > 1:
             raise InputError("contacts", "this scene has several contacts: derive and "
                              "evaluate solve it; this command follows one contact")
@@ -182,6 +187,8 @@ class Scene:
         for c in self.contacts or (self.contact,):
             found |= sp.Tuple(c.restitution, *c.normal, *c.point, c.friction or 0,
                               c.tangential_restitution or 0).free_symbols
+        for j in self.joints:
+            found |= sp.Tuple(*j.point).free_symbols
         return {s.name: s for s in sorted(found, key=lambda s: s.name)}
 
     def with_values(self, settings: Mapping[str, Any], sources: Mapping[str, str]) -> Scene:
@@ -221,8 +228,8 @@ class Scene:
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
         """The scene's bodies and contacts (with numbers for its symbols when given)."""
         if values is None:
-            return Collision(self.bodies, self.contacts)
-        return Collision.from_values(self.bodies, self.contacts, dict(values))
+            return Collision(self.bodies, self.contacts, self.joints)
+        return Collision.from_values(self.bodies, self.contacts, dict(values), self.joints)
 
     def outcomes(self, values: Mapping[sp.Symbol, Any] | None = None) -> tuple[Solution, ...]:
         """What the scene's rule makes of its contacts at `values` (the scene's
@@ -274,8 +281,8 @@ class Scene:
         v_ix*(e + 1)/2
         """
         start = time.perf_counter()
-        several = len(self.contacts) > 1
-        if values is None and several:  # several contacts: at the scene's [values]
+        several = len(self.contacts) > 1 or bool(self.joints)
+        if values is None and several:  # several contacts, joints: at the [values]
             values = self.values
         collision = self.collision(values)
         outcomes = collision.solve(self.impact_rule)
@@ -288,6 +295,9 @@ class Scene:
             equations = tuple(eq for eq in equations if eq.law == "momentum")
         setup = tuple(_described(b) for b in self.bodies)
         setup += tuple(_contact_line(c) for c in self.contacts)
+        setup += tuple(f"joint {j.name}: {j.first} and {j.second} pinned at "
+                       f"({j.point[0]}, {j.point[1]}), a frictionless hinge"
+                       for j in self.joints)
         if several:
             setup += (f"rule: {self.rule}" + ("" if self.order is None
                                               else f", order {', '.join(self.order)}"),)
@@ -322,7 +332,7 @@ class Scene:
         >>> out.numbers["last.vx"], out.extra["rule"]
         (1.0, 'sequential left, right')
         """
-        if len(self.contacts) == 1:
+        if len(self.contacts) == 1 and not self.joints:
             return self.derivation().evaluate(settings, dps, sources)
         exact = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
         derivation = self.derivation(exact, printed=False)
@@ -583,12 +593,14 @@ def _contact_tables(data: Mapping[str, Any]) -> list[tuple[dict[str, Any], str]]
 
 
 def _contacts(tables: list[tuple[dict[str, Any], str]], by_name: Mapping[str, Any],
-              symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, ...]:
-    """Every contact with its two bodies named and its point (from the origin O)."""
-    several = len(tables) > 1
+              symbols: Mapping[str, sp.Symbol], joined: bool = False) -> tuple[Contact, ...]:
+    """Every contact with its two bodies named and its point (from the origin O). One
+    contact without joints is between exactly two bodies; with joints (`joined`) it
+    names its two among the linkage's."""
+    several = len(tables) > 1 or joined
     if not several and len(by_name) != 2:
         raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
-                         "contact")
+                         "contact (or [[joints]] that pin more bodies together)")
     contacts: list[Contact] = []
     for table, place in tables:
         if several and "name" not in table:
@@ -673,7 +685,7 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", f"malformed TOML: {exc}") from None
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate"}
+               "simulate", "joints"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section; expected {', '.join(sorted(allowed))}")
@@ -687,15 +699,16 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     simulate = _table(data, "simulate", "settings")
     tables = _contact_tables(data)
     _names_first(tables, by_name)
-    contacts = _contacts(tables, by_name, symbols)
+    contacts = _contacts(tables, by_name, symbols, joined=bool(data.get("joints")))
     impact_table = _table(data, "impact", "settings")
     rule, order = _impact_table(impact_table, [c.name for c in contacts])
     sample = _sample(impact_table)
     compliance = _compliance(impact_table, len(contacts))
+    joints = _joints(data, by_name, symbols)
     bodies = tuple(_placed(table, index, contacts, symbols) for index, table in by_name.values())
     scene = Scene(title, symbols, values, bodies, contacts[0], simulate, name,
                   contacts=contacts, rule=rule, order=order, sample=sample,
-                  compliance=compliance)
+                  compliance=compliance, joints=joints)
     _check_scene(scene)
     return scene
 
@@ -720,10 +733,53 @@ def _names_first(tables: list[tuple[dict[str, Any], str]],
                     raise InputError(f"{place}.bodies", f"no body named {side!r}")
 
 
+def _joints(data: Mapping[str, Any], by_name: Mapping[str, Any],
+            symbols: Mapping[str, sp.Symbol]) -> tuple[Joint, ...]:
+    """The ``[[joints]]`` entries: each a `name`, the two `bodies` it pins together and
+    the `point` (from O) where it pins them."""
+    entries = data.get("joints", [])
+    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+        raise InputError("joints", "must be [[joints]] tables, each with name, bodies and "
+                         "point")
+    found: list[Joint] = []
+    for k, entry in enumerate(entries):
+        place = f"joints[{k}]"
+        for key in entry:
+            if key not in ("name", "bodies", "point"):
+                raise InputError(f"{place}.{key}", "not a field of a joint; allowed: "
+                                 "bodies, name, point")
+        for key in ("name", "bodies", "point"):
+            if key not in entry:
+                raise InputError(f"{place}.{key}", "required for a joint")
+        name, pair = entry["name"], entry["bodies"]
+        if not isinstance(name, str) or not name.isidentifier():
+            raise InputError(f"{place}.name", f"must be an identifier, not {name!r}")
+        if any(j.name == name for j in found):
+            raise InputError(f"{place}.name", f"two joints are named {name!r}")
+        if not (isinstance(pair, list) and len(pair) == 2 and
+                all(isinstance(b, str) for b in pair)):
+            raise InputError(f"{place}.bodies", "must name two bodies, such as "
+                             "[\"upper\", \"lower\"]")
+        for side in pair:
+            if side not in by_name:
+                raise InputError(f"{place}.bodies", f"no body named {side!r}")
+        point = _vector(entry["point"], f"{place}.point", symbols)
+        try:
+            found.append(Joint(name, tuple(pair), point))
+        except InputError as exc:
+            raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
+    return tuple(found)
+
+
 def _check_scene(scene: Scene) -> None:
     """Checks that need the whole scene: roles and approach with the given values."""
     # geometry first (a normal pointing the wrong way also makes the bodies recede)
     check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
+    if scene.joints:  # each joint on its bodies, holding them together before
+        scene.collision()
+        if scene.values:
+            scene.collision(scene.values)
+        return
     if len(scene.contacts) > 1:  # the collision refuses contacts none of which approach
         return
     impact = scene.impact()  # refuses bodies known not to approach

@@ -94,6 +94,10 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
+    if scene.joints:
+        raise InputError("simulate", "a scene with joints is not simulated yet (the bodies' "
+                         "flight would have to keep the joints together): derive and "
+                         "evaluate solve its impact")
     if len(scene.contacts) > 1:
         return run_several(scene)
     start = time.perf_counter()

@@ -82,12 +82,16 @@ def _arithmetic(numbers: Sequence[Any]) -> str:
 
 def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[Any],
               impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
-              acted: Sequence[str], locked: Sequence[str] = ()) -> dict[str, Any]:
+              acted: Sequence[str], locked: Sequence[str] = (), joints: Sequence[Any] = (),
+              joint_impulses: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Each condition's residual (see the module's notes) as a number (exact, or an
     mpmath number) or, with symbols left, a SymPy expression. `locked` names the
     contacts whose impact ended locked at rest (Routh's method where the touching points
     have one degree of freedom and the restitution impulse would drive them together):
-    their law is a normal velocity of zero after, not restitution's."""
+    their law is a normal velocity of zero after, not restitution's. `joints` and their
+    `joint_impulses` (x, y, given to the second body) enter the momentum balances, and
+    each joint's two points must move together after (``JOINT.holds``)."""
+    joint_impulses = joint_impulses or {}
     bodies = {b.name: b for b in before}
     later = {b.name: b for b in after}
     data: list[Any] = []
@@ -98,6 +102,8 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
         data += [b.mass, b.inertia, *b.position, *b.velocity, b.spin, *a.velocity, a.spin]
         if b.support == "pivot":
             data += list(b.pivot)
+    for j in joints:
+        data += [*j.point, *joint_impulses[j.name]]
     for c in contacts:
         data += [*c.point, *c.normal, impulses[c.name], tangential.get(c.name, 0),
                  c.restitution]
@@ -132,13 +138,13 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
 
     with mpmath.workdps(DIGITS):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
-                           root, how, locked)
+                           root, how, locked, joints, joint_impulses)
     found["_floats"] = floats
     return found
 
 
 def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, root,
-               how, locked) -> dict[str, Any]:
+               how, locked, joints, joint_impulses) -> dict[str, Any]:
     zero = num(0)
     received: dict[str, list[Any]] = {name: [zero, zero, zero] for name in bodies}
     out: dict[str, Any] = {}
@@ -194,6 +200,22 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             else:
                 out[f"{c.name}.released"] = max(zero, target - v_after)
             out[f"{c.name}.complementarity"] = abs(p_n * (v_after - target))
+    for j in joints:  # a hinge between two bodies: its impulse, any sign; no gap after
+        push = [num(x) for x in joint_impulses[j.name]]
+        point = [num(x) for x in j.point]
+        for name, sign in ((j.second, 1), (j.first, -1)):
+            body = bodies[name]
+            if body.support == "fixed":
+                continue
+            axis = body.pivot if body.support == "pivot" else body.position
+            arm = [point[k] - num(axis[k]) for k in range(2)]
+            received[name][0] += sign * push[0]
+            received[name][1] += sign * push[1]
+            received[name][2] += sign * _cross(arm, push)
+        gap = [a - b for a, b in zip(velocity(bodies[j.second], later[j.second], j.point),
+                                     velocity(bodies[j.first], later[j.first], j.point),
+                                     strict=True)]
+        out[f"{j.name}.holds"] = max(abs(gap[0]), abs(gap[1]))
     kinetic = [zero, zero]
     for name, body in bodies.items():
         if body.support == "fixed":

@@ -57,8 +57,9 @@ from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation, NewtonRestitution
 from rigidimpact.model.bodies import Body
+from rigidimpact.model.impulse import Coordinate, coordinates_of, jacobian, moving
+from rigidimpact.model.joints import Joint, off_body
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.impulse import Coordinate, coordinates_of, jacobian, moving
 from rigidimpact.solve.lcp import (
     NoSolution,
     confirm,
@@ -153,10 +154,15 @@ class Collision:
         Positions (and pivots) from the world origin.
     contacts : tuple of Contact
         Each with its two `bodies` named and its `point` (world frame).
+    joints : tuple of Joint
+        Bodies pinned together (:mod:`rigidimpact.model.joints`): each adds two
+        bilateral rows, eliminated by the projected inverse mass (:attr:`M_inverse`),
+        and its impulse is reported.
     """
 
     bodies: tuple[Body, ...]
     contacts: tuple[Contact, ...]
+    joints: tuple[Joint, ...] = ()
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -180,15 +186,112 @@ class Collision:
                         any(not c.is_zero for c in body.position - touch.point):
                     raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
                                      "contact must be where it is")
+                why = off_body(body, touch.point)
+                if why:
+                    raise InputError(f"{touch.name}.point", f"not on {side}: {why}")
+        if self.joints:
+            self._check_joints(names)
         # in numbers (a closing speed may hold a sine: compared at 30 digits)
         if not self.symbols and all(sp.N(v, 30) >= 0 for v in self._velocity_before):
             raise InputError("bodies", "no contact is approaching: there is no impact")
+
+    def _check_joints(self, names: list[str]) -> None:
+        """Each joint names two bodies of the collision, at least one movable; its
+        point is on both (where their shapes say where they are); its name is its own;
+        the two bodies move together there before the impact; and the joints together
+        leave the bodies some freedom (their rows are independent)."""
+        taken = set(names) | {t.name for t in self.contacts}
+        seen: set[str] = set()
+        for j in self.joints:
+            if not isinstance(j, Joint):
+                raise InputError("joints", f"each must be a Joint, not {type(j).__name__}")
+            if j.name in taken or j.name in seen:
+                raise InputError(f"{j.name}.name", "a joint's name must differ from every "
+                                 "body's, contact's and other joint's")
+            seen.add(j.name)
+            for side in j.bodies:
+                if side not in names:
+                    raise InputError(f"{j.name}.bodies", f"no body named {side!r}")
+                why = off_body(self._body(side), j.point)
+                if why:
+                    raise InputError(f"{j.name}.point", f"not on {side}: {why}")
+            if all(self._body(side).support == "fixed" for side in j.bodies):
+                raise InputError(f"{j.name}.bodies", "a joint between two fixed bodies "
+                                 "holds nothing: at least one must move")
+        if len(self.contacts) > MAX_ENUMERATED:
+            raise InputError("joints", f"joints are solved with at most {MAX_ENUMERATED} "
+                             f"contacts (this collision has {len(self.contacts)})")
+        # with symbols, at two seeded random points (an identity that holds there
+        # holds everywhere but on a set of measure zero); exactly at numbers
+        drift = sp.Matrix(self.G) * self.u_before
+        S = self._joint_S
+        for point in _sample_points(drift.free_symbols | S.free_symbols
+                                    | self.u_before.free_symbols):
+            gap = [sp.N(x.xreplace(point), 30) for x in drift]
+            for k, j in enumerate(self.joints):
+                here = gap[2 * k:2 * k + 2]
+                if any(abs(x) > 1e-20 * (1 + max(abs(sp.N(u.xreplace(point), 30))
+                                                 for u in self.u_before)) for x in here):
+                    first, second = j.bodies
+                    moved = [tidy(x) for x in drift[2 * k:2 * k + 2]]
+                    raise InputError(f"{j.name}", f"its two bodies do not move together "
+                                     f"at ({j.point[0]}, {j.point[1]}) before the impact: "
+                                     f"{second}'s point moves at ({moved[0]}, {moved[1]}) "
+                                     f"relative to {first}'s; give velocities and spins "
+                                     "that keep the joint together")
+            if abs(sp.N(S.xreplace(point).det(), 30)) < 1e-20:
+                raise InputError("joints", "the joints are not independent (a closed loop "
+                                 "or a body pinned twice over): their impulses are not "
+                                 "fixed")
+
+    @cached_property
+    def G(self) -> sp.Matrix:
+        """Two rows per joint: the velocity of its second body's point less its first's,
+        along x then y, as a function of u (zero before and after the impact)."""
+        x, y = sp.ImmutableMatrix([1, 0]), sp.ImmutableMatrix([0, 1])
+        return jacobian(self.bodies, self.coordinates,
+                        [(j.first, j.second, j.point, d) for j in self.joints
+                         for d in (x, y)])
+
+    @cached_property
+    def _free_M_inverse(self) -> sp.Matrix:
+        """M^-1 of the bodies as if no joint held them (diagonal)."""
+        n = len(self.coordinates)
+        return sp.SparseMatrix(n, n, dict(((j, j), x)
+                                          for j, x in enumerate(self._inverse_inertia)))
+
+    @cached_property
+    def _joint_S(self) -> sp.Matrix:
+        """``G M^-1 G^T``: how the joints' impulses open their joints."""
+        G = sp.Matrix(self.G)
+        return (G * sp.Matrix(self._free_M_inverse) * G.T).applyfunc(tidy)
+
+    @cached_property
+    def _joint_map(self) -> sp.Matrix:
+        """``S^-1 G M^-1``: the joints' impulses are ``-S^-1 G M^-1 F`` for the contacts'
+        generalized impulse F (so that the joints stay together)."""
+        G = sp.Matrix(self.G)
+        return (self._joint_S.inv() * G * sp.Matrix(self._free_M_inverse)).applyfunc(tidy)
+
+    def _joint_impulses(self, impulses: dict[str, sp.Expr],
+                        tangential: dict[str, sp.Expr]) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """Each joint's impulse (x, y) on its second body, from the contacts' impulses
+        along their unit normals and tangents."""
+        if not self.joints:
+            return {}
+        P_n = sp.Matrix([impulses[t.name] for t in self.contacts])
+        P_t = sp.Matrix([tangential.get(t.name, 0) for t in self.contacts])
+        force = self.J.T * P_n + (self.J_t.T * P_t if any(P_t) else sp.zeros(
+            len(self.coordinates), 1))
+        lam = (-self._joint_map * force).applyfunc(tidy)
+        return {j.name: (lam[2 * k], lam[2 * k + 1]) for k, j in enumerate(self.joints)}
 
     @cached_property
     def symbols(self) -> frozenset[sp.Symbol]:
         """The symbols left in the collision (none: every rule runs; some: the
         simultaneous and one-pass sequential formulas, each with its conditions)."""
-        return frozenset(self._J.free_symbols | self.M_inverse.free_symbols
+        return frozenset(self._J.free_symbols | self._free_M_inverse.free_symbols
+                         | (self.G.free_symbols if self.joints else set())
                          | self.u_before.free_symbols
                          | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
                                                   t.tangential_restitution or 0).free_symbols
@@ -212,7 +315,7 @@ class Collision:
 
     @classmethod
     def from_values(cls, bodies: Sequence[Body], contacts: Sequence[Contact],
-                    values: dict) -> Collision:
+                    values: dict, joints: Sequence[Joint] = ()) -> Collision:
         """The collision with numbers put in for its symbols.
 
         Examples
@@ -234,7 +337,8 @@ class Collision:
             b, mass=number(b.mass), inertia=number(b.inertia), position=vector(b.position),
             velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
             for b in bodies)
-        return cls(bodies, tuple(c.at(values) for c in contacts))
+        return cls(bodies, tuple(c.at(values) for c in contacts),
+                   tuple(j.at(values) for j in joints))
 
     def _body(self, name: str) -> Body:
         return self._by_body_name[name]
@@ -245,7 +349,7 @@ class Collision:
 
     @cached_property
     def coordinates(self) -> tuple[Coordinate, ...]:
-        """The generalized velocities (see :func:`rigidimpact.solve.impulse.coordinates_of`)."""
+        """The generalized velocities (see :func:`rigidimpact.model.impulse.coordinates_of`)."""
         return coordinates_of(self.bodies)
 
     @cached_property
@@ -310,9 +414,13 @@ class Collision:
 
     @cached_property
     def M_inverse(self) -> sp.Matrix:
-        n = len(self.coordinates)
-        return sp.SparseMatrix(n, n, dict(((j, j), x)
-                                          for j, x in enumerate(self._inverse_inertia)))
+        """M^-1 (diagonal for free and pivoted bodies); with joints, the projected
+        ``M^-1 - M^-1 G^T (G M^-1 G^T)^-1 G M^-1``: the velocity change an impulse gives
+        the bodies while every joint holds."""
+        if not self.joints:
+            return self._free_M_inverse
+        free = sp.Matrix(self._free_M_inverse)
+        return (free - free * sp.Matrix(self.G).T * self._joint_map).applyfunc(tidy)
 
     @cached_property
     def W(self) -> sp.Matrix:
@@ -381,12 +489,18 @@ class Collision:
         """The one :class:`Solution` a rule gives: the bodies moving with `u` after,
         certified (see :mod:`rigidimpact.solve.certificate`): a physical limit of the
         model here goes into its warnings; a broken condition is never an answer."""
+        joined: dict[str, Any] = {"joints": self.joints, "joint_impulses":
+                                  self._joint_impulses(impulses, more.get("tangential") or {})
+                                  } if self.joints else {}
         solution = Solution(before=self.bodies, after=self._after(u), impulses=impulses,
                             contacts=self.contacts, rule=rule, order=tuple(order),
-                            acted=tuple(acted), passes=passes, **more)
+                            acted=tuple(acted), passes=passes, **joined, **more)
         return certified(solution)
 
     def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        if self.joints:  # the joints spread each impulse over every joined body
+            return (sp.Matrix(u) + self.M_inverse * (self._J.T * sp.Matrix(impulses))
+                    ).applyfunc(tidy)
         change: dict[int, sp.Expr] = {}
         for i, row in enumerate(self._J_rows):
             if impulses[i] != 0:
@@ -672,7 +786,8 @@ class Collision:
     @cached_property
     def _rational_rows(self) -> bool:
         """Whether J's rows and M^-1 are rational (then so is W)."""
-        return all(isinstance(x, sp.Rational) for row in self._J_rows for _, x in row) and \
+        return not self.joints and \
+            all(isinstance(x, sp.Rational) for row in self._J_rows for _, x in row) and \
             all(isinstance(x, sp.Rational) for x in self._inverse_inertia)
 
     @cached_property
@@ -769,6 +884,11 @@ class Collision:
         """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
         (only the two bodies' coordinates the contact moves)."""
         impulse = tidy((self._leaving(k, closing) - closing) / self._W[k, k])
+        if self.joints:
+            change = self.M_inverse * self._J[k, :].T * impulse
+            for j in range(len(u)):
+                u[j] = tidy(u[j] + change[j])
+            return impulse
         for j, value in self._J_rows[k]:
             u[j] = tidy(u[j] + value * impulse * self._inverse_inertia[j])
         return impulse
@@ -869,6 +989,9 @@ class Collision:
         >>> round(float(out.results()["ball1.vx"]), 6)
         1.0
         """
+        if self.joints:
+            raise InputError("impact.rule", "the compliant rule does not take joints yet: "
+                             "use the simultaneous or the sequential rule")
         import math
 
         import numpy as np
@@ -1273,8 +1396,12 @@ class Collision:
             raise InputError("rule", "must be a rule object (Simultaneous(), "
                              "Sequential(order) or Compliant()), not "
                              f"{type(rule).__name__} {rule!r}")
-        if len(self.contacts) == 1:  # every rule gives the one contact's own answer
-            return (self.alone(),)
+        if len(self.contacts) == 1 and not self.joints:  # every rule: its own answer,
+            solved = self.alone()  # reported under the rule that was asked
+            if solved.rule != rule.name:
+                solved = replace(solved, rule=rule.name, order=(
+                    (self.contacts[0].name,) if rule.name == "sequential" else ()))
+            return (solved,)
         return tuple(replace(o, pivot_reactions=reactions)
                      if (reactions := self._pivot_reactions(o)) else o
                      for o in rule.outcomes(self))
@@ -1329,6 +1456,10 @@ class Collision:
                 push = outcome.impulses[t.name] * t.unit_normal + \
                     outcome.tangential.get(t.name, sp.Integer(0)) * t.tangent
                 received += push if before.name == t.second else -push
+            for j in self.joints:
+                if before.name in j.bodies:
+                    push = sp.Matrix(outcome.joint_impulses[j.name])
+                    received += push if before.name == j.second else -push
             reaction = before.mass * (after.velocity - before.velocity) - received
             found[before.name] = (tidy(reaction[0]), tidy(reaction[1]))
         return found
@@ -1343,6 +1474,8 @@ class Collision:
         pushes = [sp.Symbol(f"Pn_{t.name}", real=True) for t in self.contacts]
         if self.frictional:
             pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
+        pushes += [sp.Symbol(f"J{axis}_{j.name}", real=True) for j in self.joints
+                   for axis in "xy"]
         return tuple(speeds + pushes)
 
     def equations(self, outcome: Solution) -> tuple[Equation, ...]:
@@ -1361,9 +1494,13 @@ class Collision:
         n, size = len(self.contacts), len(self.coordinates)
         symbols = self.unknowns()
         u_after, P_n = sp.Matrix(symbols[:size]), sp.Matrix(symbols[size:size + n])
-        P_t = sp.Matrix(symbols[size + n:]) if self.frictional else sp.zeros(n, 1)
+        pinned = 2 * len(self.joints)
+        rest = symbols[size + n:len(symbols) - pinned]
+        P_t = sp.Matrix(rest) if self.frictional else sp.zeros(n, 1)
         J, J_t = self.J, self.J_t
         push = J.T * P_n + J_t.T * P_t
+        if self.joints:
+            push += sp.Matrix(self.G).T * sp.Matrix(symbols[len(symbols) - pinned:])
         v_before = J * self.u_before
         found = []
         for i, c in enumerate(self.coordinates):
@@ -1371,9 +1508,15 @@ class Collision:
             what = {"vx": f"x momentum of {c.body}", "vy": f"y momentum of {c.body}"}.get(
                 c.kind) or f"angular momentum of {c.body} about its " + (
                 "pivot" if body.support == "pivot" else "centre")
-            found.append(Equation(f"{what}: its change is the contacts' impulse", "",
-                                  c.inertia * (u_after[i] - c.before), tidy(push[i]),
-                                  law="momentum"))
+            found.append(Equation(f"{what}: its change is the contacts' impulse" + (
+                " and the joints'" if self.joints else ""), "",
+                c.inertia * (u_after[i] - c.before), tidy(push[i]), law="momentum"))
+        held = sp.Matrix(self.G) * u_after if self.joints else sp.zeros(0, 1)
+        for k, j in enumerate(self.joints):
+            for axis, row in (("x", held[2 * k]), ("y", held[2 * k + 1])):
+                found.append(Equation(f"{j.name} holds: {j.second} and {j.first} move "
+                                      f"together at it, along {axis}", "", tidy(row), 0,
+                                      law="joint"))
         u = self._u_of(outcome)
         routh = outcome.rule == "simultaneous" and len(outcome.acted) == 1 and \
             self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
@@ -1448,6 +1591,10 @@ class Collision:
         if self.frictional:
             values.update({symbols[size + n + k]: outcome.tangential.get(t.name, 0)
                            for k, t in enumerate(self.contacts)})
+        for k, j in enumerate(self.joints):
+            start = len(symbols) - 2 * len(self.joints) + 2 * k
+            x, y = outcome.joint_impulses[j.name]
+            values.update({symbols[start]: x, symbols[start + 1]: y})
         return values
 
     def _by_name(self, name: str) -> Contact:
@@ -1610,6 +1757,23 @@ def _conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
             isinstance(joint, sp.And) and any(isinstance(a, sp.Eq) for a in joint.args)):
         return (sp.false,)
     return tuple(joint.args) if isinstance(joint, sp.And) else (joint,)
+
+
+def _sample_points(symbols: set[sp.Symbol]) -> list[dict[sp.Symbol, sp.Expr]]:
+    """Points at which to test an identity in `symbols`: none needed (one empty point)
+    without symbols, else two seeded random rational points that respect each symbol's
+    sign assumptions."""
+    if not symbols:
+        return [{}]
+    rng = random.Random(32)
+    points = []
+    for _ in range(2):
+        point = {}
+        for s in sorted(symbols, key=str):
+            x = sp.Rational(rng.randint(101, 997), 311)
+            point[s] = -x if s.is_negative else x
+        points.append(point)
+    return points
 
 
 # the builders' budget: bodies are made one SymPy object at a time, a few ms each (a

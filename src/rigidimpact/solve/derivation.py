@@ -24,12 +24,12 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
-from rigidimpact.outputs.numeric import evaluate
 from rigidimpact.solve.collision import Collision
 from rigidimpact.solve.impact import NUMERIC_DIGITS, Impact
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
+from rigidimpact.symbolic.numeric import evaluate
 
 __all__ = [
     "Derivation",

@@ -28,7 +28,7 @@ from rigidimpact.laws import law as laws
 from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
-from rigidimpact.solve.impulse import ImpulseProblem
+from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import make_symbol
@@ -335,7 +335,7 @@ class Impact:
         its physical limits are among its warnings, and one that fails its own laws'
         check is refused in one line, never returned.
 
-        The core (:class:`~rigidimpact.solve.impulse.ImpulseProblem`) gives each body's motion
+        The core (:class:`~rigidimpact.model.impulse.ImpulseProblem`) gives each body's motion
         after an impulse P at O: ``u+ = u- + M^-1 J^T P``. The contact's laws, imposed
         on those motions exactly as they are printed, are linear in P (one equation for
         the normal impulse, one for the tangential); solving them and substituting back

@@ -118,6 +118,11 @@ class Solution:
     energies: tuple[sp.Expr, sp.Expr, sp.Expr] | None = field(default=None, repr=False)
     pivot_reactions: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
                                                                    repr=False)
+    # joints (bodies pinned together): each one, and the impulse (x, y) it gave its
+    # second body in the scene frame (the first received the opposite)
+    joints: tuple[Any, ...] = field(default=(), repr=False)
+    joint_impulses: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+                                                                  repr=False)
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     speeds_before: tuple[Any, ...] = ()
@@ -138,7 +143,8 @@ class Solution:
         if self.regime and "lock" in self.regime:
             locked |= set(self.acted)
         return residuals(self.before, self.after, self.contacts, self.impulses,
-                         self.tangential, self.rule, self.acted, tuple(locked))
+                         self.tangential, self.rule, self.acted, tuple(locked),
+                         self.joints, self.joint_impulses)
 
     @property
     def checks(self) -> dict[str, Any]:
@@ -350,7 +356,8 @@ class Solution:
         (not for a fixed body), ``impulse`` (the first contact's normal impulse) and
         ``energy_loss_fraction`` (and ``impulse_t`` when one contact sticks),
         ``CONTACT.normal_impulse`` and ``CONTACT.tangential_impulse`` for every contact,
-        and ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body.
+        ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body, and
+        ``JOINT.impulse_x``, ``JOINT.impulse_y`` for a joint (what it gave its second body).
 
         Examples
         --------
@@ -386,6 +393,8 @@ class Solution:
                 reaction = self.pivot_impulse(body)
                 results[f"{body.name}.pivot_impulse_x"] = reaction[0]
                 results[f"{body.name}.pivot_impulse_y"] = reaction[1]
+        for name, (x, y) in self.joint_impulses.items():
+            results[f"{name}.impulse_x"], results[f"{name}.impulse_y"] = x, y
         return results
 
 

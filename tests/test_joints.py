@@ -1,0 +1,241 @@
+"""Joints: bodies pinned together in scene files and in Python, solved by the same rules
+as every contact (the joints' impulses eliminated by the projected inverse mass).
+
+Checked against derivations written apart: the double pendulum of
+derivations/double-pendulum-wall.toml against the same two rods built in
+sympy.physics.mechanics (KanesMethod, its own M and contact rows) under every law, and
+the hinged chain of derivations/hinged-chain.toml against Newton-Euler equations of the
+two rods written by hand here."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+import sympy as sp
+import sympy.physics.mechanics as me
+
+import rigidimpact as ri
+from rigidimpact.cli import main
+from rigidimpact.errors import InputError
+from rigidimpact.model.joints import Joint
+
+ROOT = Path(__file__).resolve().parents[1]
+PENDULUM = (ROOT / "derivations" / "double-pendulum-wall.toml").read_text()
+CHAIN = (ROOT / "derivations" / "hinged-chain.toml").read_text()
+HALF = sp.Rational(1, 2)
+
+
+def _bridge(law: str, tangential: str, friction=None):
+    """The double pendulum of the scene as a sympy.physics.mechanics system: two uniform
+    rods (mass 1, length 1) at q1 = 30 deg, q2 = 60 deg from the downward vertical,
+    turning at 1 and 2, the lower rod's tip striking a wall on its right."""
+    q1, q2, u1, u2 = me.dynamicsymbols("q1 q2 u1 u2")
+    N = me.ReferenceFrame("N")
+    A = N.orientnew("A", "Axis", [q1, N.z])
+    B = N.orientnew("B", "Axis", [q2, N.z])
+    A.set_ang_vel(N, u1 * N.z)
+    B.set_ang_vel(N, u2 * N.z)
+    hinge = me.Point("O")
+    hinge.set_vel(N, 0)
+    upper_c = hinge.locatenew("Cu", -A.y / 2)
+    knee = hinge.locatenew("K", -A.y)
+    lower_c = knee.locatenew("Cl", -B.y / 2)
+    tip = knee.locatenew("T", -B.y)
+    for point, frame, base in ((upper_c, A, hinge), (knee, A, hinge), (lower_c, B, knee),
+                               (tip, B, knee)):
+        point.v2pt_theory(base, N, frame)
+    rods = [me.RigidBody("upper", upper_c, A, 1, (me.inertia(A, 0, 0, sp.Rational(1, 12)),
+                                                  upper_c)),
+            me.RigidBody("lower", lower_c, B, 1, (me.inertia(B, 0, 0, sp.Rational(1, 12)),
+                                                  lower_c))]
+    kane = me.KanesMethod(N, [q1, q2], [u1, u2], [q1.diff() - u1, q2.diff() - u2])
+    kane.kanes_equations(rods, [])
+    extra = {"friction": friction} if friction is not None else {}
+    contact = ri.mechanics.contact(tip, -N.x, restitution=HALF, law=law,
+                                   tangential=tangential, name="tip", **extra)
+    return ri.mechanics.impact(kane, [contact], frame=N).at(
+        {q1: sp.pi / 6, q2: sp.pi / 3, u1: 1, u2: 2}).solve()
+
+
+def _pendulum(law: str, tangential: str, friction=None) -> ri.Solution:
+    text = PENDULUM.replace('tangential = "smooth"', f'tangential = "{tangential}"\n'
+                            f'law = "{law}"' + (f'\nfriction = "{friction}"'
+                                                if friction is not None else ""))
+    scene = ri.parse_scene(text, "pendulum")
+    [solution] = scene.outcomes()
+    return solution
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+@pytest.mark.parametrize("tangential,friction", [("smooth", None),
+                                                 ("coulomb", sp.Rational(1, 5)),
+                                                 ("coulomb", sp.Rational(3, 2))])
+def test_the_double_pendulum_scene_is_its_mechanics_twin(law, tangential, friction):
+    built = _pendulum(law, tangential, friction)
+    twin = _bridge(law, tangential, friction)
+    after = {b.name: b for b in built.after}
+    for mine, theirs in ((after["upper"].spin, twin.speeds_after[0]),
+                         (after["lower"].spin, twin.speeds_after[1]),
+                         (built.impulses["tip"], twin.impulses["tip"])):
+        assert abs(sp.N(mine - theirs, 40)) < 1e-30, (mine, theirs)
+    assert abs(sp.N(built.tangential.get("tip", 0)) ** 2 -
+               sp.N(twin.tangential.get("tip", 0)) ** 2) < 1e-30
+    assert max(built.checks.values()) < 1e-40  # momentum, the law, the joint holding
+
+
+def test_the_double_pendulum_by_hand():
+    # both rods hanging straight down (q1 = q2 = 0), unit masses and lengths: M about
+    # the hinge angles is [[1/3 + 1, 1/2], [1/2, 1/3]] and the tip's x velocity is
+    # u1 + u2, so its effective inverse mass is J M^-1 J^T = (4/3 - 1 + 1/3)/(4/9 -
+    # 1/4) = 24/7, and with e = 1/2 and a closing speed 1 + 2 the tip takes the impulse
+    # (3/2)(3)/(24/7) = 21/16
+    text = PENDULUM.replace('theta_1 = "30 deg"', "theta_1 = 0").replace(
+        'theta_2 = "60 deg"', "theta_2 = 0")
+    [solution] = ri.parse_scene(text, "hanging").outcomes()
+    assert solution.impulses["tip"] == sp.Rational(21, 16)
+    after = {b.name: b for b in solution.after}
+    tip_after = after["upper"].spin + after["lower"].spin  # each length 1
+    assert tip_after == -HALF * 3
+
+
+def _chain_by_hand():
+    """The chain of two rods (mass M, length l, along y from O) struck at its lower end
+    along x: Newton-Euler for each rod with the hinge impulse J (on the upper rod; the
+    lower gets -J), a point at height y of a rod turning at w moving by -w (y - y_c)."""
+    M, length, P = sp.symbols("M l P", positive=True)
+    J = sp.Symbol("J")
+    v1, w1, v2, w2 = sp.symbols("v1 w1 v2 w2")
+    inertia = M * length ** 2 / 12
+    half = length / 2
+    solved = sp.solve([M * v1 - (P - J), inertia * w1 - (P + J) * half,
+                       M * v2 - J, inertia * w2 - J * half,
+                       (v1 - w1 * half) - (v2 + w2 * half)], [v1, w1, v2, w2, J], dict=True)
+    (s,) = solved
+    end = (s[v1] + s[w1] * half) / P  # the struck end's speed per unit impulse
+    return sp.simplify(1 / end), M
+
+
+def test_the_hinged_chain_answers_like_its_effective_mass():
+    effective, M = _chain_by_hand()
+    assert sp.simplify(effective - 2 * M / 7) == 0
+    m, e, v = sp.symbols("m e v_ix", positive=True)
+    scene = ri.parse_scene(CHAIN, "chain")
+    closed = scene.derivation({}).results  # no values: over the symbols
+    ball = sp.Symbol("v_ix") * (7 * sp.Symbol("m") - 2 * sp.Symbol("M") * sp.Symbol("e")) / (
+        7 * sp.Symbol("m") + 2 * sp.Symbol("M"))
+    got = closed["ball.vx"].subs({s: sp.Symbol(s.name) for s in closed["ball.vx"].free_symbols})
+    assert sp.simplify(got - ball) == 0
+    numbers = scene.derivation().results  # at the scene's [values]: m 1, M 2, e 1/2
+    assert numbers["ball.vx"] == sp.Rational(7 - 2, 7 + 4)
+    assert numbers["hinge.impulse_y"] == 0
+    assert max(scene.outcomes()[0].checks.values()) == 0
+
+
+@pytest.mark.parametrize("text", [PENDULUM, CHAIN])
+def test_the_printed_equations_hold_at_the_solution(text):
+    scene = ri.parse_scene(text, "linked")
+    collision = scene.collision(scene.values)
+    for rule in (ri.Simultaneous(), ri.Sequential((scene.contacts[0].name,))):
+        [solution] = collision.solve(rule)
+        values = collision.solved_values(solution)
+        equations = collision.equations(solution)
+        assert any(eq.law == "joint" for eq in equations)
+        for eq in equations:
+            assert sp.N(eq.residual.xreplace(values), 40) == 0 or \
+                abs(sp.N(eq.residual.xreplace(values), 40)) < 1e-35, eq
+
+
+def test_a_joint_is_checked_where_it_is_stated():
+    ball = ri.Body.particle(1, (1, 0), "ball")
+    rod = ri.Body.rigid(2, sp.Rational(1, 6), (0, HALF), name="rod")
+    lump = ri.Body.rigid(1, 0, (0, 1), name="lump")
+    hit = ri.Contact(restitution=HALF, bodies=("ball", "rod"), name="hit")
+    with pytest.raises(InputError, match="not on lump: a point mass"):
+        ri.Collision((ball, rod, lump), (hit,), (Joint("pin", ("rod", "lump"), (0, 2)),))
+    moving = ri.Body.rigid(1, 0, (0, 1), (1, 0), name="lump")
+    with pytest.raises(InputError, match="do not move together"):
+        ri.Collision((ball, rod, moving), (hit,), (Joint("pin", ("rod", "lump"), (0, 1)),))
+    with pytest.raises(InputError, match="no body named"):
+        ri.Collision((ball, rod, lump), (hit,), (Joint("pin", ("rod", "lamp"), (0, 1)),))
+    with pytest.raises(InputError, match="must differ"):
+        ri.Collision((ball, rod, lump), (hit,), (Joint("hit", ("rod", "lump"), (0, 1)),))
+    with pytest.raises(InputError, match="not independent"):
+        ri.Collision((ball, rod, lump), (hit,), (Joint("a", ("rod", "lump"), (0, 1)),
+                                                 Joint("b", ("rod", "lump"), (0, 1))))
+    rod_shape = ri.Body.rod(2, 1, sp.pi / 2, HALF, name="rod")  # from O up to (0, 1)
+    with pytest.raises(InputError, match="from the centre of a rod"):
+        ri.Collision((ball, rod_shape, lump), (hit,), (Joint("pin", ("rod", "lump"),
+                                                             (0, 2)),))
+
+
+def test_a_bad_joint_in_a_scene_file_is_one_line(tmp_path, capsys):
+    cases = {
+        "far": CHAIN.replace('point = ["0", "l"]', 'point = ["0", "3*l"]'),
+        "nameless": CHAIN.replace('name = "hinge"\n', ""),
+        "stranger": CHAIN.replace('bodies = ["lower", "upper"]', 'bodies = ["lower", "x"]'),
+        "extra": CHAIN.replace('point = ["0", "l"]', 'point = ["0", "l"]\nspring = 1'),
+        "apart": CHAIN.replace('position = ["0", "3*l/2"]',
+                               'position = ["0", "3*l/2"]\nvelocity = ["1", "0"]'),
+    }
+    for name, text in cases.items():
+        path = tmp_path / f"{name}.toml"
+        path.write_text(text)
+        assert main(["evaluate", str(path)]) == 2, name
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "Traceback" not in err, (name, err)
+    path = tmp_path / "chain.toml"
+    path.write_text(CHAIN)
+    assert main(["simulate", str(path)]) == 2
+    assert "joints is not simulated" in capsys.readouterr().err
+
+
+def _compass_gait():
+    spec = importlib.util.spec_from_file_location("compass_gait",
+                                                  ROOT / "derivations" / "compass_gait.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_compass_gait_heel_strike_scene_is_the_published_walkers_map():
+    # derivations/compass_gait.py's floating biped (its own legs(), its heel contact) at
+    # the scene's numbers, alpha = asin(7/25): where its old stance foot lifts, the
+    # scene releases its toe and the legs' rates after and the foot's velocity are
+    # compass_gait.py's exactly (two independent states pin the linear map); where that
+    # foot would sink into the slope, the floating model does not hold (compass_gait.py
+    # refuses such a state), and the scene's toe acts instead
+    cg = _compass_gait()
+    kane, frame, swing, _, _ = cg.legs(floating=True)
+    strike = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        swing, frame.y, restitution=0, tangential="stick", name="heel")], frame=frame)
+    x, y, st, sw = kane.q
+    ux, uy, w_st, w_sw = kane.u
+    alpha = sp.asin(sp.Rational(7, 25))
+    numbers = {cg.m: 5, cg.m_H: 10, cg.a: HALF, cg.b: HALF, cg.g: sp.Rational(49, 5),
+               cg.gamma: 0}
+    scene = ri.load_scene(ROOT / "derivations" / "compass-gait-heel-strike.toml")
+    lifted, sunk = [], []
+    for before in ((sp.Rational(-11, 10), sp.Rational(-2, 5)), (-1, sp.Rational(-1, 2)),
+                   (sp.Rational(-3, 2), sp.Rational(-1, 5)), (sp.Rational(-1, 5), -2)):
+        theirs = strike.at({**numbers, x: 0, y: 0, st: -alpha, sw: alpha, ux: 0, uy: 0,
+                            w_st: before[0], w_sw: before[1]}).solve()
+        lift = sp.nsimplify(theirs.speeds_after[1])
+        values = {**scene.values, scene.symbols["omega_st"]: before[0],
+                  scene.symbols["omega_sw"]: before[1]}
+        [mine] = scene.outcomes(values)
+        if lift < 0:
+            assert "toe" in mine.acted
+            sunk.append(before)
+            continue
+        assert mine.acted == ("heel",)
+        after = {b.name: b for b in mine.after}
+        assert after["stance"].spin == sp.nsimplify(theirs.speeds_after[2])
+        assert after["swing"].spin == sp.nsimplify(theirs.speeds_after[3])
+        stance = after["stance"]
+        foot = stance.velocity + stance.spin * sp.Matrix([stance.position[1],
+                                                          -stance.position[0]])
+        assert list(foot) == [sp.nsimplify(v) for v in theirs.speeds_after[:2]]
+        lifted.append(before)
+    assert len(lifted) >= 2 and sp.Matrix(lifted).rank() == 2 and sunk
