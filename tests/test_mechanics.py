@@ -474,8 +474,13 @@ def test_coulomb_at_several_mechanics_contacts_in_sequence():
         assert list(ours.speeds_after) == [r["rod.vx"], r["rod.vy"], r["rod.omega"]]
         assert [ours.tangential[n] for n in order] == \
             [r[f"{n}.tangential_impulse"] for n in order]
-    with pytest.raises(InputError, match="left.tangential: the coulomb law .* Sequential"):
-        strike.solve()
+    # acting together (it used to be refused): the built-in rule itself, Coulomb
+    # friction at the velocity level, as for the built-in rod
+    ours = strike.solve()
+    (theirs,) = collision.solve(ri.Simultaneous())
+    r = theirs.results()
+    assert list(ours.speeds_after) == [r["rod.vx"], r["rod.vy"], r["rod.omega"]]
+    assert ours.impulses == {n: r[f"{n}.normal_impulse"] for n in ("left", "right")}
 
 
 def test_several_mechanics_contacts_with_symbols_state_when_all_act():

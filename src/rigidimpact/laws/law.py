@@ -356,7 +356,7 @@ class ContactLaw:
         matrix, rhs = sp.linear_eq_to_matrix(
             self.linear_conditions(v_before, after, P, restitution.leaving(v_before[0])),
             list(P))
-        if sp.cancel(matrix.det()).is_zero:
+        if routh.singular(matrix):
             raise InputError("tangential", "the touching points have one degree of "
                              "freedom here (a body that can only turn, against a fixed "
                              "one), so they cannot both stop slipping and leave by the "

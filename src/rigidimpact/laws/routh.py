@@ -43,7 +43,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Regime", "regimes", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
+__all__ = ["Regime", "regimes", "singular", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
            "REVERSAL"]
 
 LAWS = ("newton", "poisson", "energetic")
@@ -135,7 +135,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
     W = sp.Matrix(W).applyfunc(sp.cancel)
     v_n, v_t = (sp.cancel(c) for c in v_before)
     mu, e = sp.sympify(mu), sp.sympify(law.e)
-    if _singular(W):
+    if singular(W):
         return _one_freedom(W, v_n, v_t, mu, e, law)
     if v_t.is_zero:
         return _from_rest(W, v_n, mu, e, law)
@@ -151,7 +151,7 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
     return tuple(decided)
 
 
-def _singular(W: sp.Matrix) -> bool:
+def singular(W: sp.Matrix) -> bool:
     """Whether W is singular: exactly, or, in floating point (a system solved at 50
     digits), to within the rounding of its entries (a determinant below 1e-35 of the
     product of its diagonal, which is where a rank-one W's lands)."""

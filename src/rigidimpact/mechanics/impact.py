@@ -44,7 +44,6 @@ l*u(t)*A.x
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -59,12 +58,13 @@ from sympy.polys.matrices import DomainMatrix
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
+from rigidimpact.model.impulse import Coordinate
 from rigidimpact.solve.collision import (
+    MAX_ENUMERATED,
+    Collision,
     Rule,
-    Sequential,
     Simultaneous,
     certified,
-    sequential_passes,
 )
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.solution import Solution
@@ -261,17 +261,13 @@ class SystemImpact:
 
         One contact: its own exact answer under its laws (Routh's method for Coulomb,
         Walton's for rough; with symbols a friction law's course must be decided by
-        numbers), whatever the rule. Several contacts, by `rule`:
-
-        - :class:`~rigidimpact.solve.collision.Simultaneous` (the default): all act
-          together, each under a linear law (smooth, or stick, with Newton's
-          restitution). With symbols, the case in which every contact acts, with the
-          conditions (each normal impulse >= 0) under which it is the answer; with
-          numbers, the sets of acting contacts are tried from the largest down and the
-          first in which no contact pulls and no released contact closes is the answer.
-        - :class:`~rigidimpact.solve.collision.Sequential` with an order: one contact at a
-          time, each its own impact under its own laws (Routh's and Walton's too), in
-          passes until none approaches; numbers needed.
+        numbers), whatever the rule. Several contacts at numbers: `rule` itself, the
+        one implementation the built-in shapes use (see :meth:`outcomes`): the
+        simultaneous rule (the default) under every restitution law, with Coulomb
+        friction at the velocity level; the sequential rule in an order, each contact
+        its own impact under its own laws. With symbols, the simultaneous rule's case in
+        which every contact acts (smooth or sticking, Newton's law), with the conditions
+        (each normal impulse >= 0) under which it is the answer.
         """
         if rule is not None and not isinstance(rule, Rule):
             raise InputError("rule", "must be a rule object (ri.Simultaneous() or "
@@ -288,50 +284,47 @@ class SystemImpact:
                 return self._by_regimes()
             return self._linear()
         rule = Simultaneous() if rule is None else rule
-        if isinstance(rule, Sequential):
-            if rule.order is None:
-                raise InputError("rule", "give the sequential rule its order of contacts, "
-                                 "e.g. ri.Sequential((\"left\", \"right\"))")
-            return self._sequential(tuple(rule.order))
+        if self._numbers and all(x.is_number for x in self.u_before):
+            found = self.outcomes(rule)
+            if len(found) > 1:
+                raise InputError("rule", f"the {rule.name} rule gives {len(found)} outcomes "
+                                 "here (every order, or a sample of them): ask "
+                                 "SystemImpact.outcomes(rule) for all of them")
+            return found[0]
         if not isinstance(rule, Simultaneous):
-            raise InputError("rule", f"the {rule.name} rule is not offered for a mechanics "
-                             "system: use Simultaneous() or Sequential(order)")
+            raise InputError("rule", f"the {rule.name} rule at a mechanics system needs "
+                             "numbers: SystemImpact.at(...) with q, the speeds and the "
+                             "constants")
         for c, (restitution, tangential) in zip(self.contacts, laws, strict=True):
             if tangential.solved_by_regimes:
                 raise InputError(f"{c.name}.tangential", f"the {tangential.name} law "
-                                 "(by regimes) has no form for several contacts of a "
-                                 "mechanics system acting together: use smooth or stick "
-                                 "there, or the rule Sequential(order)")
+                                 "(by regimes) has no closed form for several contacts of "
+                                 "a mechanics system acting together: give numbers "
+                                 "(SystemImpact.at), or use smooth or stick there")
             if restitution.name != "newton":
-                raise InputError(f"{c.name}.law", f"{restitution.name}'s law has no form "
-                                 "for several contacts of a mechanics system acting "
-                                 "together here: use Newton's, or the rule "
-                                 "Sequential(order)")
-        if not self._numbers or not all(x.is_number for x in self.u_before):
-            return self._linear()
-        return self._acting()
+                raise InputError(f"{c.name}.law", f"{restitution.name}'s law has no closed "
+                                 "form for several contacts of a mechanics system acting "
+                                 "together here: give numbers (SystemImpact.at), or use "
+                                 "Newton's")
+        return self._linear()
 
-    def _acting(self) -> Solution:
-        """With numbers: the largest set of acting contacts in which none pulls and every
-        released one leaves at least as fast as its law asks."""
-        k = len(self.contacts)
-        v = self.J * self.u_before
-        for size in range(k, 0, -1):
-            for active in itertools.combinations(range(k), size):
-                try:
-                    solution = self._linear(active)
-                except InputError:
-                    continue  # these contacts' conditions do not fix their impulses
-                P = [solution.impulses[c.name] for c in self.contacts]
-                after = self.J * sp.Matrix(solution.speeds_after)
-                scale = max(abs(x) for x in v)
-                released_ok = all(
-                    after[2 * i] >= self.contacts[i].laws.laws[0].leaving(min(v[2 * i], 0))
-                    - sp.Float(1e-12) * scale for i in range(k) if i not in active)
-                if all(P[i] >= 0 for i in active) and released_ok:
-                    return solution
-        raise InputError("contacts", "no set of acting contacts fits the laws (each "
-                         "pushing, each released one leaving): the rule has no answer")
+    def outcomes(self, rule: Rule) -> tuple[Solution, ...]:
+        """What `rule` makes of several contacts at numbers: the built-in rules
+        themselves (:class:`~rigidimpact.solve.collision.Collision`'s simultaneous rule
+        with every restitution law and Coulomb friction at the velocity level, the
+        sequential rule in an order, every order or a seeded sample of orders), run on
+        this system's speeds, M and contact rows; one Solution per outcome."""
+        if not isinstance(rule, Rule):
+            raise InputError("rule", "must be a rule object (ri.Simultaneous() or "
+                             f"ri.Sequential(order)), not {type(rule).__name__} {rule!r}")
+        if not (self._numbers and all(x.is_number for x in self.u_before)):
+            raise InputError("values", "the rules run at numbers: SystemImpact.at(...) with "
+                             "q, the speeds and the constants")
+        if len(self.contacts) > MAX_ENUMERATED:
+            raise InputError("contacts", f"a mechanics system is solved with at most "
+                             f"{MAX_ENUMERATED} contacts so far")
+        return rule.outcomes(_AsCollision((), tuple(c.laws for c in self.contacts),
+                                          system=self))
 
     def _linear(self, active: Sequence[int] | None = None) -> Solution:
         """Every law a pair of linear conditions: one linear system in the speeds after
@@ -462,59 +455,15 @@ class SystemImpact:
         return self._map(self._in(after), self._in(impulse), {c.name: course},
                          self._in(sp.Matrix([energy]))[0])
 
-    def _sequential(self, order: tuple[str, ...]) -> Solution:
-        """One contact at a time in `order`, each its own impact under its own laws
-        (its 2x2 block of W, :meth:`ContactLaw.alone`), in passes until none approaches."""
-        names = [c.name for c in self.contacts]
-        if sorted(order) != sorted(names) or len(order) != len(names):
-            raise InputError("rule.order", f"must list the contacts by name, each once: "
-                             f"{', '.join(names)}")
-        if not (self._numbers and all(x.is_number for x in self.u_before)):
-            raise InputError("rule", "the sequential rule at a mechanics system needs "
-                             "numbers: SystemImpact.at(...) with q, the speeds and the "
-                             "constants")
-        state = {"u": sp.Matrix(self.u_before)}
-
-        def closing(i: int) -> sp.Expr:
-            return (self.J[2 * i, :] * state["u"])[0]
-
-        def step(i: int, _: sp.Expr) -> tuple[sp.Expr, sp.Expr, str]:
-            pair = slice(2 * i, 2 * i + 2)
-            restitution, tangential = self.contacts[i].laws.laws
-            try:
-                normal, along, course = tangential.alone(
-                    self.W[pair, pair], self.J[pair, :] * state["u"], restitution)
-            except InputError as error:  # the law's own words, at this contact
-                raise InputError(f"{self.contacts[i].name}.tangential",
-                                 error.message) from None
-            state["u"] = state["u"] + self._M_inv_JT[:, pair] * sp.Matrix([normal, along])
-            return normal, along, course
-
-        count, steps = sequential_passes([names.index(n) for n in order], closing, step,
-                                         max(abs(x) for x in self.J * self.u_before),
-                                         sp.Float(1e-12))
-        u = state["u"]
-        total = sp.zeros(2 * len(names), 1)
-        courses: dict[str, list[str]] = {n: [] for n in names}
-        for i, normal, along, course in steps:
-            total[2 * i] += normal
-            total[2 * i + 1] += along
-            courses[names[i]].append(str(course))
-        energy = ((self.u_before.T * self.M * self.u_before)[0] - (u.T * self.M * u)[0]) / 2
-        solution = self._map(self._in(u), self._in(total),
-                             {n: ", ".join(c) or "released" for n, c in courses.items()},
-                             self._in(sp.Matrix([energy]))[0], summed=True)
-        return replace(solution, rule="sequential", order=order, passes=count)
-
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
-             energy: sp.Expr, summed: bool = False) -> Solution:
+             energy: sp.Expr, summed: bool = False, how: str | None = None) -> Solution:
         """The result, from the stand-ins back to q, the speeds and their sines."""
         back = self._out
         P = back(impulse)
         normal = {c.name: _small(P[2 * i]) for i, c in enumerate(self.contacts)}
         along = {c.name: _small(P[2 * i + 1]) for i, c in enumerate(self.contacts)}
         v = self.J * self.u_before
-        equations, unknowns = self._equations(v, courses, normal, along, summed)
+        equations, unknowns = self._equations(v, courses, normal, along, summed, how)
         lost = _small(back(sp.Matrix([energy]))[0])
         warnings = self._warnings(normal)
         before = (self.u_before.T * self.M * self.u_before)[0] / 2
@@ -627,7 +576,8 @@ class SystemImpact:
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
                    normal: dict[str, sp.Expr], along: dict[str, sp.Expr],
-                   summed: bool = False) -> tuple[tuple[Equation, ...], tuple]:
+                   summed: bool = False, rule: str | None = None
+                   ) -> tuple[tuple[Equation, ...], tuple]:
         after = [sp.Symbol(f"{_name(s)}^+") for s in self.u]
         pushes = []
         for c in self.contacts:
@@ -643,7 +593,8 @@ class SystemImpact:
             restitution, tangential = c.laws.laws
             course = courses[c.name]
             if summed or course == "released":
-                how = (f"the sum of {c.name}'s impulses in turn (each its own impact)"
+                how = (f"{c.name}'s impulse by the {rule}" if summed and rule else
+                       f"the sum of {c.name}'s impulses in turn (each its own impact)"
                        if summed else f"{c.name} released: no impulse")
                 found += [Equation(how, "", P[2 * i], normal[c.name], law="rule"),
                           Equation(how + ", tangential", "", P[2 * i + 1], along[c.name],
@@ -814,3 +765,96 @@ def _folded(M: sp.MatrixBase, u: tuple, dependent: tuple
     T = sp.ImmutableMatrix(sp.Matrix.vstack(sp.eye(p), A))
     folded = sp.ImmutableMatrix((k_d * T).applyfunc(plain))
     return folded, tuple(u[:p]), (tuple(u), T)
+
+
+@dataclass(frozen=True)
+class _AsCollision(Collision):
+    """A mechanics system at numbers as the built-in rules see a collision: its
+    independent speeds are the generalized velocities, its M^-1 is dense, and its rows
+    are the contacts' (normal, tangent), so each rule runs its one implementation. What
+    the rules make of it goes back through :meth:`SystemImpact._map`: the system's
+    Solution, its equations and its own residuals."""
+
+    system: Any = None
+
+    def __post_init__(self) -> None:
+        pass  # the system checked its contacts and the approach
+
+    @property
+    def _dense(self) -> bool:
+        return True
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        return frozenset()
+
+    @cached_property
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        return tuple(Coordinate("system", str(u), 1, x)
+                     for u, x in zip(self.system.u, self.system.u_before, strict=True))
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix(self.system.u_before)
+
+    @cached_property
+    def row_scale(self) -> tuple[sp.Expr, ...]:
+        return (sp.Integer(1),) * len(self.contacts)
+
+    @cached_property
+    def J(self) -> sp.Matrix:
+        return sp.SparseMatrix(self.system.J[::2, :])
+
+    @cached_property
+    def J_t(self) -> sp.Matrix:
+        return sp.SparseMatrix(self.system.J[1::2, :])
+
+    @cached_property
+    def _J(self) -> sp.Matrix:
+        return self.J
+
+    @cached_property
+    def _J_t(self) -> sp.Matrix:
+        return self.J_t
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        return sp.Matrix(self.system.M).inv()
+
+    def _after(self, u: sp.Matrix) -> tuple:
+        return ()
+
+    def _pivot_reactions(self, outcome: Solution) -> dict:
+        return {}
+
+    def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                 impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                 **more: Any) -> Solution:
+        system = self.system
+        along = more.pop("tangential", None) or {}
+        P = sp.Matrix([x for c in self.contacts
+                       for x in (impulses[c.name], along.get(c.name, 0))])
+        states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
+        courses = {c.name: states.get(c.name, "released" if c.name not in acted else
+                                      ("acts" if rule == "simultaneous" else "in turn"))
+                   for c in self.contacts}
+        M, u0 = system.M, sp.Matrix(system.u_before)
+        energy = ((u0.T * M * u0)[0] - (u.T * M * u)[0]) / 2
+        # the contact's own printed laws hold where the rule imposed them as they are
+        # (Newton's law at each acting contact, smooth or sticking); otherwise the
+        # rule's impulses are what is printed
+        own = rule == "simultaneous" and not self._poisson() and all(
+            courses[c.name] in ("acts", "released", "sticks")
+            for c in self.contacts)
+        for c in self.contacts:  # a contact that stuck prints its no-slip law
+            if courses[c.name] == "sticks" or (courses[c.name] == "acts" and
+                                               c.laws[1].unknown_tangential):
+                courses[c.name] = "stick"
+        solution = system._map(sp.Matrix(u), P, courses, energy, summed=not own,
+                               how=None if own else f"{rule} rule")
+        limits, _ = replace(solution, rule=rule).assessed()
+        return replace(solution, rule=rule, order=tuple(order), passes=passes,
+                       acted=tuple(acted), notes=solution.notes + more.pop("notes", ()),
+                       method=more.pop("method", ""),
+                       warnings=solution.warnings + tuple(
+                           w for w in limits if "still approaches" in w))
