@@ -22,6 +22,7 @@ from rigidimpact.model.shapes import is_segment
 from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.compliant import prepare, run_compliant
 from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
+from rigidimpact.simulate.linkage import run_linkage
 from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
@@ -94,10 +95,8 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
-    if scene.joints:
-        raise InputError("simulate", "a scene with joints is not simulated yet (the bodies' "
-                         "flight would have to keep the joints together): derive and "
-                         "evaluate solve its impact")
+    if scene.joints:  # a linkage: the impact, then its flight with the joints held
+        return run_linkage(scene)
     if len(scene.contacts) > 1:
         return run_several(scene)
     start = time.perf_counter()
