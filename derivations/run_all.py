@@ -51,6 +51,8 @@ def _figures():
         ("impulse-vs-offset.png", _impulse_vs_offset),
         ("oblique-discs.png", _oblique_discs),
         ("spring-rod.png", _spring_rod),
+        ("double-pendulum-wall.png", _double_pendulum),
+        ("compass-gait-heel-strike.png", _heel_strike),
         ("rigid-limit.png", lambda: plots.convergence(
             rigid_limit(ri.load_scene(HERE / "barbell.toml"), [1e3, 1e4, 1e5]))),
         ("accuracy-vs-time.png", _accuracy_vs_time),
@@ -107,6 +109,22 @@ def _spring_rod():
     track = ri.run(scene).trajectory
     return plots.trajectories(track.t, track.points(), scene.title,
                               ("sphere A", track.contact_velocity("barbell")), relative=True)
+
+
+def _double_pendulum():
+    """The double pendulum after its tip strikes the wall, until it strikes again."""
+    scene = ri.load_scene(HERE / "double-pendulum-wall.toml")
+    track = ri.run(scene).trajectory
+    return plots.trajectories(track.t, track.points(), scene.title + ", until it strikes "
+                              "again")
+
+
+def _heel_strike():
+    """The compass-gait biped at heel strike, its velocities before and after."""
+    from rigidimpact.simulate import impact_view
+
+    scene = ri.load_scene(HERE / "compass-gait-heel-strike.toml")
+    return plots.impact_picture(*impact_view(scene, ri.run(scene)), scene.title)
 
 
 def _accuracy_vs_time():

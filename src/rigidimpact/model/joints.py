@@ -79,14 +79,15 @@ def off_body(body: Body, point: sp.MatrixBase) -> str | None:
     >>> off_body(rod, sp.Matrix([1, 0])) is None, off_body(rod, sp.Matrix([3, 0]))
     (True, 'it is 3 from the centre of a rod of half length 1')
     """
-    offset = sp.Matrix(point) - sp.Matrix(body.position)
     dims = dict(body.dimensions)
+    if body.support == "fixed" or not (body.inertia.is_zero or body.shape == "rod" or
+                                       "radius" in dims):
+        return None  # nothing says where the body's extent ends
+    offset = sp.Matrix(point) - sp.Matrix(body.position)
 
     def false(x: sp.Expr) -> bool:  # decidedly false, not merely undecided
         return sp.sympify(x) is sp.false
 
-    if body.support == "fixed":
-        return None
     if body.inertia.is_zero:
         gap = [tidy(c) for c in offset]
         if any(c.is_zero is False for c in gap):

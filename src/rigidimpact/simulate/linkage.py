@@ -90,9 +90,9 @@ class _Model:
                              float(b.inertia) + float(b.mass) * float(arm @ arm), arm)
                 q0 += [0.0]
                 u0 += [float(b.spin)]
-            else:
-                part = _Part(b.name, index, None, float(b.mass), float(b.inertia),
-                             np.zeros(2))
+            else:  # a point mass's own angle is a spectator: any inertia keeps it still
+                part = _Part(b.name, index, None, float(b.mass),
+                             float(b.inertia) or 1.0, np.zeros(2))
                 q0 += [*centre, 0.0]
                 u0 += [float(b.velocity[0]), float(b.velocity[1]), float(b.spin)]
             self.parts[b.name] = part
