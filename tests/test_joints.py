@@ -29,10 +29,11 @@ CHAIN = (ROOT / "derivations" / "hinged-chain.toml").read_text()
 HALF = sp.Rational(1, 2)
 
 
-def _bridge(law: str, tangential: str, friction=None):
+def _rods(g=0):
     """The double pendulum of the scene as a sympy.physics.mechanics system: two uniform
-    rods (mass 1, length 1) at q1 = 30 deg, q2 = 60 deg from the downward vertical,
-    turning at 1 and 2, the lower rod's tip striking a wall on its right."""
+    rods (mass 1, length 1) at angles q1, q2 from the downward vertical, turning at u1
+    and u2, under gravity g; returns the KanesMethod, its frame, the lower rod's tip and
+    the coordinates and speeds."""
     q1, q2, u1, u2 = me.dynamicsymbols("q1 q2 u1 u2")
     N = me.ReferenceFrame("N")
     A = N.orientnew("A", "Axis", [q1, N.z])
@@ -53,7 +54,14 @@ def _bridge(law: str, tangential: str, friction=None):
             me.RigidBody("lower", lower_c, B, 1, (me.inertia(B, 0, 0, sp.Rational(1, 12)),
                                                   lower_c))]
     kane = me.KanesMethod(N, [q1, q2], [u1, u2], [q1.diff() - u1, q2.diff() - u2])
-    kane.kanes_equations(rods, [])
+    kane.kanes_equations(rods, [(upper_c, -g * N.y), (lower_c, -g * N.y)])
+    return kane, N, tip, (q1, q2), (u1, u2)
+
+
+def _bridge(law: str, tangential: str, friction=None):
+    """The twin at q1 = 30 deg, q2 = 60 deg, turning at 1 and 2, its tip striking a wall
+    on its right."""
+    kane, N, tip, (q1, q2), (u1, u2) = _rods()
     extra = {"friction": friction} if friction is not None else {}
     contact = ri.mechanics.contact(tip, -N.x, restitution=HALF, law=law,
                                    tangential=tangential, name="tip", **extra)
@@ -244,29 +252,9 @@ def test_the_compass_gait_heel_strike_scene_is_the_published_walkers_map():
 
 
 def _twin_flow(g):
-    """The double pendulum of the scene with gravity, as sympy.physics.mechanics'
-    equations of motion (KanesMethod), integrated apart from the package's linkage
-    simulator."""
-    q1, q2, u1, u2 = me.dynamicsymbols("q1 q2 u1 u2")
-    N = me.ReferenceFrame("N")
-    A = N.orientnew("A", "Axis", [q1, N.z])
-    B = N.orientnew("B", "Axis", [q2, N.z])
-    A.set_ang_vel(N, u1 * N.z)
-    B.set_ang_vel(N, u2 * N.z)
-    hinge = me.Point("O")
-    hinge.set_vel(N, 0)
-    upper_c = hinge.locatenew("Cu", -A.y / 2)
-    knee = hinge.locatenew("K", -A.y)
-    lower_c = knee.locatenew("Cl", -B.y / 2)
-    for point, frame, base in ((upper_c, A, hinge), (knee, A, hinge), (lower_c, B, knee)):
-        point.v2pt_theory(base, N, frame)
-    rods = [me.RigidBody("upper", upper_c, A, 1, (me.inertia(A, 0, 0, sp.Rational(1, 12)),
-                                                  upper_c)),
-            me.RigidBody("lower", lower_c, B, 1, (me.inertia(B, 0, 0, sp.Rational(1, 12)),
-                                                  lower_c))]
-    kane = me.KanesMethod(N, [q1, q2], [u1, u2], [q1.diff() - u1, q2.diff() - u2])
-    kane.kanes_equations(rods, [(upper_c, -g * N.y), (lower_c, -g * N.y)])
-    return ri.mechanics.flow_of(kane, {})
+    """The twin's equations of motion under gravity, integrated apart from the package's
+    linkage simulator."""
+    return ri.mechanics.flow_of(_rods(g)[0], {})
 
 
 def test_the_double_pendulum_flies_on_as_its_mechanics_twin():

@@ -36,7 +36,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.outcome import Outcome, finite
 from rigidimpact.simulate.planner import make_plan
-from rigidimpact.solve.derivation import read_values
+from rigidimpact.simulate.several import scene_numbers
 
 __all__ = ["run_linkage", "LinkageTrack", "RESTRIKE_HORIZON"]
 
@@ -219,12 +219,7 @@ def run_linkage(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None) -> 
     if any(step.model == "compliant" for step in plan.steps) or \
             set(plan.effects) - {"gravity"}:
         raise InputError("simulate.effects", "a linkage's flight takes gravity only so far")
-    raw = dict(scene.values if values is None else values)
-    exact = read_values({k.name: v for k, v in raw.items()}, {}, scene.data_symbols,
-                        scene.roles, scene.name)
-    missing = sorted(set(scene.data_symbols) - {s.name for s in exact})
-    if missing:
-        raise InputError("values", f"simulate needs numbers for: {', '.join(missing)}")
+    exact = scene_numbers(scene, values)
     outcomes = scene.outcomes(exact)
     if len(outcomes) > 1:
         raise InputError("impact.order", "simulate follows one outcome: give the "

@@ -55,7 +55,7 @@ from rigidimpact.simulate.planner import make_plan
 from rigidimpact.solve.collision import Outcome as RuleOutcome
 from rigidimpact.solve.derivation import physics_warnings, read_values
 
-__all__ = ["run_several", "Watch", "watches", "SeveralTrack"]
+__all__ = ["run_several", "scene_numbers", "Watch", "watches", "SeveralTrack"]
 
 @dataclass(frozen=True)
 class Watch:
@@ -234,6 +234,19 @@ def _fly(scene: Scene, outcome: RuleOutcome, until: str | float, gravity: float)
     return flyers, events, 0.0, "no contact of the scene closes again"
 
 
+def scene_numbers(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None
+                  ) -> dict[sp.Symbol, sp.Expr]:
+    """The scene's [values] (or `values`), checked through the one door, exact; every
+    symbol of its data must have one, or one line says which do not."""
+    raw = dict(scene.values if values is None else values)
+    exact = read_values({k.name: v for k, v in raw.items()}, {}, scene.data_symbols,
+                        scene.roles, scene.name)
+    missing = sorted(set(scene.data_symbols) - {s.name for s in exact})
+    if missing:
+        raise InputError("values", f"simulate needs numbers for: {', '.join(missing)}")
+    return dict(exact)
+
+
 def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
     """Simulate a several-contact scene: its rule's impact, then free flight.
 
@@ -246,12 +259,7 @@ def run_several(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None):
         raise InputError("simulate.effects", "with several contacts the impact's own "
                          "compliance is chosen by [impact] rule = \"compliant\"; the "
                          "compliance effects are for one contact")
-    raw = dict(scene.values if values is None else values)
-    exact = read_values({k.name: v for k, v in raw.items()}, {}, scene.data_symbols,
-                        scene.roles, scene.name)
-    missing = sorted(set(scene.data_symbols) - {s.name for s in exact})
-    if missing:
-        raise InputError("values", f"simulate needs numbers for: {', '.join(missing)}")
+    exact = scene_numbers(scene, values)
     outcomes = scene.outcomes(exact)
     g = plan.settings["g"] if "gravity" in plan.effects else 0.0
     runs = [(o, *_fly(scene, o, plan.until, g)) for o in outcomes]

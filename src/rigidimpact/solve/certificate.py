@@ -157,15 +157,10 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         turn = _perp(r)
         return num(state.velocity[0]) + w * turn[0], num(state.velocity[1]) + w * turn[1]
 
-    for c in contacts:
-        first, second = c.bodies if c.bodies else tuple(bodies)[:2]
-        n = [num(x) for x in c.normal]
-        length = root(n[0] * n[0] + n[1] * n[1])
-        n = [n[0] / length, n[1] / length]
-        t = _perp(n)
-        p_n, p_t = num(impulses[c.name]), num(tangential.get(c.name, 0))
-        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
-        point = [num(x) for x in c.point]
+    def receive(first: str, second: str, at: Sequence[Any], push: list[Any]) -> None:
+        """An impulse `push` at `at`, given to `second` and taken from `first`: into each
+        movable body's linear and angular momentum (about its pivot or centre)."""
+        point = [num(x) for x in at]
         for name, sign in ((second, 1), (first, -1)):
             body = bodies[name]
             if body.support == "fixed":
@@ -175,6 +170,16 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             received[name][0] += sign * push[0]
             received[name][1] += sign * push[1]
             received[name][2] += sign * _cross(arm, push)
+
+    for c in contacts:
+        first, second = c.bodies if c.bodies else tuple(bodies)[:2]
+        n = [num(x) for x in c.normal]
+        length = root(n[0] * n[0] + n[1] * n[1])
+        n = [n[0] / length, n[1] / length]
+        t = _perp(n)
+        p_n, p_t = num(impulses[c.name]), num(tangential.get(c.name, 0))
+        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
+        receive(first, second, c.point, push)
 
         (v_before, _), (v_after, slip) = (
             _relative(velocity, bodies, states, first, second, c.point, n, t)
@@ -201,17 +206,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
                 out[f"{c.name}.released"] = max(zero, target - v_after)
             out[f"{c.name}.complementarity"] = abs(p_n * (v_after - target))
     for j in joints:  # a hinge between two bodies: its impulse, any sign; no gap after
-        push = [num(x) for x in joint_impulses[j.name]]
-        point = [num(x) for x in j.point]
-        for name, sign in ((j.second, 1), (j.first, -1)):
-            body = bodies[name]
-            if body.support == "fixed":
-                continue
-            axis = body.pivot if body.support == "pivot" else body.position
-            arm = [point[k] - num(axis[k]) for k in range(2)]
-            received[name][0] += sign * push[0]
-            received[name][1] += sign * push[1]
-            received[name][2] += sign * _cross(arm, push)
+        receive(j.first, j.second, j.point, [num(x) for x in joint_impulses[j.name]])
         gap = [a - b for a, b in zip(velocity(bodies[j.second], later[j.second], j.point),
                                      velocity(bodies[j.first], later[j.first], j.point),
                                      strict=True)]
