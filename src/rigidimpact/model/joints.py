@@ -105,7 +105,12 @@ def off_body(body: Body, point: sp.MatrixBase) -> str | None:
             return f"it is {sp.Abs(distance)} from the centre of a rod of half length {half}"
         return None
     if "radius" in dims:
-        reach = tidy(offset.dot(offset))
-        if false(sp.Le(reach, dims["radius"] ** 2)):
+        reach, limit = offset.dot(offset), dims["radius"] ** 2
+        if reach.is_Rational and limit.is_Rational:  # at numbers (a thousand balls)
+            beyond = bool(reach > limit)
+        else:
+            reach = tidy(reach)
+            beyond = false(sp.Le(reach, limit))
+        if beyond:
             return f"it is {sp.sqrt(reach)} from the centre, past the radius {dims['radius']}"
     return None

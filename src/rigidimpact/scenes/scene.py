@@ -26,6 +26,7 @@ import time
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -123,9 +124,10 @@ class Scene:
     sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
     joints: tuple[Joint, ...] = ()  # [[joints]]: bodies pinned together
 
-    @property
+    @cached_property
     def roles(self) -> tuple[Role, ...]:
-        """What bounds the scene's data by role (see :mod:`rigidimpact.model.roles`)."""
+        """What bounds the scene's data by role (see :mod:`rigidimpact.model.roles`);
+        found once (a scene is read once and asked for its roles at every check)."""
         return roles_of(self.bodies, self.contacts, self.contacts)
 
     @property
@@ -227,7 +229,7 @@ class Scene:
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> Collision:
         """The scene's bodies and contacts (with numbers for its symbols when given)."""
-        if values is None:
+        if not values:  # none to put in: the bodies as they are (at scale, seconds)
             return Collision(self.bodies, self.contacts, self.joints)
         return Collision.from_values(self.bodies, self.contacts, dict(values), self.joints)
 
