@@ -326,14 +326,13 @@ class SystemImpact:
         return rule.outcomes(_AsCollision((), tuple(c.laws for c in self.contacts),
                                           system=self))
 
-    def _linear(self, active: Sequence[int] | None = None) -> Solution:
+    def _linear(self) -> Solution:
         """Every law a pair of linear conditions: one linear system in the speeds after
-        and the impulses, ``M u+ - J^T P = M u-`` with each acting contact's two
-        conditions (a released one: no impulse), solved fraction-free over the
+        and the impulses, ``M u+ - J^T P = M u-`` with each contact's two conditions
+        (every contact acting), solved fraction-free over the
         polynomials of the stand-ins (no gcd until the end, where each result is
         reduced once)."""
         n, k = len(self.u), len(self.contacts)
-        acting = range(k) if active is None else active
         M, J = self._in(self.M), self._in(self.J)
         u = self._in(self.u_before)
         after = sp.Matrix(sp.symbols(f"x0:{n}"))
@@ -342,9 +341,6 @@ class SystemImpact:
         for i, c in enumerate(self.contacts):
             restitution, tangential = c.laws.laws
             pair = slice(2 * i, 2 * i + 2)
-            if i not in acting:
-                rows += [P[2 * i], P[2 * i + 1]]
-                continue
             closing = (J[i * 2, :] * u)[0]
             if closing.is_number:  # a contact at rest or opening leaves at rest or faster
                 closing = min(closing, 0)
@@ -356,7 +352,7 @@ class SystemImpact:
         A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
         if self.digits is not None and not gens:
-            return self._floating(A, b, acting, n, k, M, u)
+            return self._floating(A, b, n, M, u)
         # numbers alone: the rationals, with the one square root _exact_enough allows
         # adjoined where the data hold it (sqrt(3) of a 60 degree angle)
         ring = sp.QQ[tuple(gens)] if gens else construct_domain(
@@ -385,12 +381,11 @@ class SystemImpact:
             notes = ("more contact conditions than freedoms: the motion after is unique but "
                      "the impulses are not; shown: the least-norm impulses",)
         u_after, impulse = solved[:n, :], solved[n:, :]
-        courses = {c.name: c.laws.laws[1].name if i in acting else "released"
-                   for i, c in enumerate(self.contacts)}
+        courses = {c.name: c.laws.laws[1].name for c in self.contacts}
         solution = self._map(u_after, impulse, courses, twice / 2)
         if notes:
             solution = replace(solution, notes=notes)
-        if k > 1 and active is None:  # the case where every contact acts, and when:
+        if k > 1:  # the case where every contact acts, and when:
             # each approaching, each pushing
             closing = self.J * self.u_before
             conditions = tuple(sp.Le(closing[2 * i], 0) for i in range(k)) + tuple(
@@ -399,8 +394,8 @@ class SystemImpact:
                 c for c in conditions if c is not sp.true))
         return solution
 
-    def _floating(self, A: sp.Matrix, b: sp.Matrix, acting: Sequence[int], n: int, k: int,
-                  M: sp.Matrix, u: sp.Matrix) -> Solution:
+    def _floating(self, A: sp.Matrix, b: sp.Matrix, n: int, M: sp.Matrix,
+                  u: sp.Matrix) -> Solution:
         """The linear system at numbers in floating point (:attr:`digits`): the
         least-norm solution by mpmath's SVD, singular values below 1e-40 of the largest
         taken as zero (dependent conditions: the motion fixed, the impulses not), with
@@ -427,8 +422,7 @@ class SystemImpact:
         solved = sp.Matrix([sp.Float(x[i], digits) for i in range(A_.cols)])
         u_after, impulse = solved[:n, :], solved[n:, :]
         twice = (u.T * M * u - u_after.T * M * u_after)[0]
-        courses = {c.name: c.laws.laws[1].name if i in acting else "released"
-                   for i, c in enumerate(self.contacts)}
+        courses = {c.name: c.laws.laws[1].name for c in self.contacts}
         notes: tuple[str, ...] = (
             f"solved in {digits}-digit floating point (the numbers are out of the "
             f"rationals): the system's residual is {float(error):.1e} of its size",)
