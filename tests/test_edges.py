@@ -253,7 +253,7 @@ def test_every_order_of_many_contacts_is_refused_before_any_is_made(tmp_path, ca
 
 
 def test_symbolic_simultaneous_rule_is_bounded(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("rigidimpact.solve.collision.MAX_SYMBOLIC_SECONDS", 2.0)
+    monkeypatch.setattr("rigidimpact.solve.rules.simultaneous.MAX_SYMBOLIC_SECONDS", 2.0)
     # three contacts between four discs, every speed a symbol: 64 cases under Newton's law
     speeds = ["v", "u", "w", "d"]
     lines = []

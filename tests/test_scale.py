@@ -8,6 +8,7 @@ import sympy as sp
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision, chain, cluster, fan
+from rigidimpact.solve.rules import simultaneous as rule
 
 HALF = sp.Rational(1, 2)
 
@@ -25,9 +26,9 @@ def test_the_path_at_scale_gives_lemkes_exact_answer(problem):
     # below MAX_LEMKE the rule uses Lemke's exact method; the path used past it (floating
     # point, then the acting set solved and checked exactly) must give the same numbers
     v, target = _targets(problem)
-    lemke, notes, _ = problem._lcp(v, target)
+    lemke, notes, _ = rule._lcp(problem, v, target)
     assert notes == ()
-    scaled, notes, method = problem._lcp_at_scale(v, target, True)
+    scaled, notes, method = rule._lcp_at_scale(problem, v, target, True)
     assert scaled == lemke  # exact rationals, equal entry by entry
     assert notes == () and "confirmed in exact arithmetic" in method
 
@@ -35,7 +36,8 @@ def test_the_path_at_scale_gives_lemkes_exact_answer(problem):
 def test_the_path_at_scale_gives_enumerations_exact_answer_where_it_still_runs():
     for problem in (fan(4), fan(8), chain(9, HALF)):
         v, target = _targets(problem)
-        assert problem._lcp_at_scale(v, target, True)[0] == problem._complementarity(v, target)
+        assert rule._lcp_at_scale(problem, v, target, True)[0] == \
+            rule._complementarity(problem, v, target)
 
 
 @pytest.mark.parametrize("e", [1, HALF])
@@ -75,8 +77,8 @@ def test_the_path_at_scale_moves_bodies_as_enumeration_says(problem):
     # where W is singular many impulses fit and one motion after; the floating-point
     # path (the proximal point method there) must find enumeration's motion
     v, target = _targets(problem)
-    exact = problem._kick(problem.u_before, problem._complementarity(v, target))
-    impulses, notes, _ = problem._lcp_at_scale(v, target, True)
+    exact = problem._kick(problem.u_before, rule._complementarity(problem, v, target))
+    impulses, notes, _ = rule._lcp_at_scale(problem, v, target, True)
     scaled = problem._kick(problem.u_before, impulses)
     W = problem.W.to_DM()
     if W.rank() < W.shape[0]:

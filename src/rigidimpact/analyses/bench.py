@@ -56,6 +56,7 @@ from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
 from rigidimpact.solve.collision import Collision, chain, cluster, fan
 from rigidimpact.solve.lcp import confirm
+from rigidimpact.solve.rules import simultaneous as simultaneous_rule
 from rigidimpact.symbolic.notation import symbol
 from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
@@ -797,7 +798,7 @@ def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = Tru
         e = [c.restitution for c in problem.contacts]
         target = sp.Matrix([-e[i] * min(v[i], 0) for i in range(len(v))])
         begin = time.perf_counter()
-        problem._complementarity(v, target)
+        simultaneous_rule._complementarity(problem, v, target)
         return time.perf_counter() - begin
 
     fans: tuple[int, ...] = (16, 64) if quick else (16, 32, 64, 128, 256, 512, 1000)

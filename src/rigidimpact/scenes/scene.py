@@ -40,7 +40,6 @@ from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_
 from rigidimpact.model.shapes import SHAPES, Fields
 from rigidimpact.solve.collision import (
     MAX_BUILT_CONTACTS,
-    MAX_SAMPLED_ORDERS,
     Collision,
     Compliant,
     Rule,
@@ -55,6 +54,7 @@ from rigidimpact.solve.derivation import (
     read_values,
 )
 from rigidimpact.solve.impact import Impact
+from rigidimpact.solve.rules.sequential import MAX_SAMPLED_ORDERS
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
 from rigidimpact.symbolic.geometry import spin_cross

@@ -1,0 +1,633 @@
+"""The one impulse problem: bodies, contacts and joints as generalized speeds u, the
+inverse mass M^-1 (diagonal for free shapes, projected where joints or a mechanics
+system couple the speeds), the contact rows J (normal) and J_t (tangent), and
+W = J M^-1 J^T.
+
+It knows how the bodies move under impulses (:meth:`ImpactProblem._kick`), how fast
+each contact closes, what each body is after, and how the printed equations read;
+it does not know how contacts act together: that is a rule's
+(:mod:`rigidimpact.solve.rules`), and every rule works on this one type, whatever
+the source of M and J (the built-in shapes, joints, a sympy.physics.mechanics
+system).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from functools import cached_property
+from typing import Any, Self
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import Equation
+from rigidimpact.model.bodies import Body
+from rigidimpact.model.impulse import Coordinate, coordinates_of, jacobian, moving
+from rigidimpact.model.joints import Joint, off_body
+from rigidimpact.solve.conditions import sample_points, tidied
+from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.symbolic.geometry import perp
+from rigidimpact.symbolic.rewrite import tidy
+
+MAX_ENUMERATED = 12
+
+
+@dataclass(frozen=True)
+class ImpactProblem:
+    """Bodies in the world frame and the smooth contacts that close together.
+
+    Parameters
+    ----------
+    bodies : tuple of Body
+        Positions (and pivots) from the world origin.
+    contacts : tuple of Contact
+        Each with its two `bodies` named and its `point` (world frame).
+    joints : tuple of Joint
+        Bodies pinned together (:mod:`rigidimpact.model.joints`): each adds two
+        bilateral rows, eliminated by the projected inverse mass (:attr:`M_inverse`),
+        and its impulse is reported.
+    """
+
+    bodies: tuple[Body, ...]
+    contacts: tuple[Contact, ...]
+    joints: tuple[Joint, ...] = ()
+
+    def __post_init__(self) -> None:
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise InputError("bodies", "two bodies share a name")
+        if len({t.name for t in self.contacts}) != len(self.contacts):
+            raise InputError("contacts", "two contacts share a name")
+        for touch in self.contacts:
+            if touch.bodies is None:
+                raise InputError(f"{touch.name}.bodies", "required: name the two bodies")
+            for side in (touch.first, touch.second):
+                if side not in names:
+                    raise InputError(f"{touch.name}.bodies", f"no body named {side!r}")
+            if all(self._body(side).support == "fixed" for side in (touch.first,
+                                                                     touch.second)):
+                raise InputError(f"{touch.name}.bodies", "two fixed bodies cannot collide: "
+                                 "at least one must move")
+            for side in (touch.first, touch.second):
+                body = self._body(side)
+                if body.inertia.is_zero and body.support != "fixed" and \
+                        any(not c.is_zero for c in body.position - touch.point):
+                    raise InputError(f"{touch.name}.point", f"{side} is a point mass: the "
+                                     "contact must be where it is")
+                why = off_body(body, touch.point)
+                if why:
+                    raise InputError(f"{touch.name}.point", f"not on {side}: {why}")
+        if self.joints:
+            self._check_joints(names)
+        # in numbers (a closing speed may hold a sine: compared at 30 digits)
+        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self._velocity_before):
+            raise InputError("bodies", "no contact is approaching: there is no impact")
+
+    def _check_joints(self, names: list[str]) -> None:
+        """Each joint names two bodies of the collision, at least one movable; its
+        point is on both (where their shapes say where they are); its name is its own;
+        the two bodies move together there before the impact; and the joints together
+        leave the bodies some freedom (their rows are independent)."""
+        taken = set(names) | {t.name for t in self.contacts}
+        seen: set[str] = set()
+        for j in self.joints:
+            if not isinstance(j, Joint):
+                raise InputError("joints", f"each must be a Joint, not {type(j).__name__}")
+            if j.name in taken or j.name in seen:
+                raise InputError(f"{j.name}.name", "a joint's name must differ from every "
+                                 "body's, contact's and other joint's")
+            seen.add(j.name)
+            for side in j.bodies:
+                if side not in names:
+                    raise InputError(f"{j.name}.bodies", f"no body named {side!r}")
+                why = off_body(self._body(side), j.point)
+                if why:
+                    raise InputError(f"{j.name}.point", f"not on {side}: {why}")
+            if all(self._body(side).support == "fixed" for side in j.bodies):
+                raise InputError(f"{j.name}.bodies", "a joint between two fixed bodies "
+                                 "holds nothing: at least one must move")
+        if len(self.contacts) > MAX_ENUMERATED:
+            raise InputError("joints", f"joints are solved with at most {MAX_ENUMERATED} "
+                             f"contacts (this collision has {len(self.contacts)})")
+        # with symbols, at two seeded random points (an identity that holds there
+        # holds everywhere but on a set of measure zero); exactly at numbers
+        drift = sp.Matrix(self.G) * self.u_before
+        S = self._joint_S
+        for point in sample_points(drift.free_symbols | S.free_symbols
+                                    | self.u_before.free_symbols):
+            gap = [sp.N(x.xreplace(point), 30) for x in drift]
+            for k, j in enumerate(self.joints):
+                here = gap[2 * k:2 * k + 2]
+                if any(abs(x) > 1e-20 * (1 + max(abs(sp.N(u.xreplace(point), 30))
+                                                 for u in self.u_before)) for x in here):
+                    first, second = j.bodies
+                    moved = [tidy(x) for x in drift[2 * k:2 * k + 2]]
+                    raise InputError(f"{j.name}", f"its two bodies do not move together "
+                                     f"at ({j.point[0]}, {j.point[1]}) before the impact: "
+                                     f"{second}'s point moves at ({moved[0]}, {moved[1]}) "
+                                     f"relative to {first}'s; give velocities and spins "
+                                     "that keep the joint together")
+            if abs(sp.N(S.xreplace(point).det(), 30)) < 1e-20:
+                raise InputError("joints", "the joints are not independent (a closed loop "
+                                 "or a body pinned twice over): their impulses are not "
+                                 "fixed")
+
+    @cached_property
+    def G(self) -> sp.Matrix:
+        """Two rows per joint: the velocity of its second body's point less its first's,
+        along x then y, as a function of u (zero before and after the impact)."""
+        x, y = sp.ImmutableMatrix([1, 0]), sp.ImmutableMatrix([0, 1])
+        return jacobian(self.bodies, self.coordinates,
+                        [(j.first, j.second, j.point, d) for j in self.joints
+                         for d in (x, y)])
+
+    @cached_property
+    def _free_M_inverse(self) -> sp.Matrix:
+        """M^-1 of the bodies as if no joint held them (diagonal)."""
+        n = len(self.coordinates)
+        return sp.SparseMatrix(n, n, dict(((j, j), x)
+                                          for j, x in enumerate(self._inverse_inertia)))
+
+    @cached_property
+    def _joint_S(self) -> sp.Matrix:
+        """``G M^-1 G^T``: how the joints' impulses open their joints."""
+        G = sp.Matrix(self.G)
+        return (G * sp.Matrix(self._free_M_inverse) * G.T).applyfunc(tidy)
+
+    @cached_property
+    def _joint_map(self) -> sp.Matrix:
+        """``S^-1 G M^-1``: the joints' impulses are ``-S^-1 G M^-1 F`` for the contacts'
+        generalized impulse F (so that the joints stay together)."""
+        G = sp.Matrix(self.G)
+        return (self._joint_S.inv() * G * sp.Matrix(self._free_M_inverse)).applyfunc(tidy)
+
+    def _joint_impulses(self, impulses: dict[str, sp.Expr],
+                        tangential: dict[str, sp.Expr]) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """Each joint's impulse (x, y) on its second body, from the contacts' impulses
+        along their unit normals and tangents."""
+        if not self.joints:
+            return {}
+        P_n = sp.Matrix([impulses[t.name] for t in self.contacts])
+        P_t = sp.Matrix([tangential.get(t.name, 0) for t in self.contacts])
+        force = self.J.T * P_n + (self.J_t.T * P_t if any(P_t) else sp.zeros(
+            len(self.coordinates), 1))
+        lam = (-self._joint_map * force).applyfunc(tidy)
+        return {j.name: (lam[2 * k], lam[2 * k + 1]) for k, j in enumerate(self.joints)}
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        """The symbols left in the collision (none: every rule runs; some: the
+        simultaneous and one-pass sequential formulas, each with its conditions)."""
+        return frozenset(self._J.free_symbols | self._free_M_inverse.free_symbols
+                         | (self.G.free_symbols if self.joints else set())
+                         | self.u_before.free_symbols
+                         | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
+                                                  t.tangential_restitution or 0).free_symbols
+                                         for t in self.contacts)))
+
+    def _smooth_only(self, where: str) -> None:
+        rough = [t.name for t in self.contacts if t.laws[1].grips]
+        if rough:
+            needed = (f": give [values] (or --set) for "
+                      f"{', '.join(sorted(map(str, self.symbols)))}, or ask for one "
+                      "sequential pass in an order (solved with symbols, case by case)"
+                      if where == "with symbols" and self.symbols else "")
+            raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
+                             f"solved with numbers, by the simultaneous or sequential rule; "
+                             f"not {where}{needed}")
+
+    def _numbers_only(self, rule: str) -> None:
+        if self.symbols:
+            raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
+                             f"{', '.join(sorted(map(str, self.symbols)))}")
+
+    @classmethod
+    def from_values(cls, bodies: Sequence[Body], contacts: Sequence[Contact],
+                    values: dict, joints: Sequence[Joint] = ()) -> Self:
+        """The collision with numbers put in for its symbols.
+
+        Examples
+        --------
+        >>> from rigidimpact.solve.collision import Collision
+        >>> x = sp.Symbol("x")
+        >>> c = Collision.from_values([Body.rigid(1, 0, (0, 0), (x, 0), name="a"),
+        ...                            Body.fixed("wall")],
+        ...                           [Contact(restitution=1, bodies=("a", "wall"))], {x: 2})
+        >>> c.simultaneous().results()["a.vx"]
+        -2
+        """
+        def number(v):
+            return sp.sympify(v).xreplace(values)
+
+        def vector(v):
+            return None if v is None else sp.ImmutableMatrix(v).xreplace(values)
+
+        bodies = tuple(b if b.support == "fixed" else replace(
+            b, mass=number(b.mass), inertia=number(b.inertia), position=vector(b.position),
+            velocity=vector(b.velocity), spin=number(b.spin), pivot=vector(b.pivot))
+            for b in bodies)
+        return cls(bodies, tuple(c.at(values) for c in contacts),
+                   tuple(j.at(values) for j in joints))
+
+    def _body(self, name: str) -> Body:
+        return self._by_body_name[name]
+
+    @cached_property
+    def _by_body_name(self) -> dict[str, Body]:
+        return {b.name: b for b in self.bodies}
+
+    @cached_property
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        """The generalized velocities (see :func:`rigidimpact.model.impulse.coordinates_of`)."""
+        return coordinates_of(self.bodies)
+
+    @cached_property
+    def J(self) -> sp.Matrix:
+        """One row per contact: its normal closing velocity as a function of u (sparse:
+        a contact touches only its two bodies' coordinates)."""
+        return self._rows(lambda t, s: t.unit_normal)
+
+    @cached_property
+    def J_t(self) -> sp.Matrix:
+        """One row per contact: the tangential velocity (second minus first) along its
+        tangent, as a function of u."""
+        return self._rows(lambda t, s: t.tangent)
+
+    @cached_property
+    def row_scale(self) -> tuple[sp.Expr, ...]:
+        """Each contact's rows in the solvers' J and J_t are its unit normal's and
+        tangent's times this.
+
+        A normal given as rational numbers is used as given, so its scale is its length
+        (sqrt(61)/8 for (3/4, -5/8)); any other normal is made unit (scale 1). Every rule
+        is unchanged by a positive scale of a contact's rows (the closing velocity and
+        the impulse scale inversely, the laws and the friction cone are homogeneous), so
+        the algebra stays in the rationals where the data are rational instead of in a
+        field with one square root adjoined per contact; the impulses are put back on
+        the unit normal where the Solution is made (:meth:`_named`).
+
+        Examples
+        --------
+        >>> from rigidimpact.solve.collision import Collision
+        >>> from rigidimpact.model.bodies import Body
+        >>> Collision((Body.rigid(1, 1, (0, 0), (0, -1), name="a"), Body.fixed("floor")),
+        ...           (Contact(normal=(3, -4), bodies=("a", "floor")),)).row_scale
+        (5,)
+        """
+        return tuple(sp.sqrt(t.normal[0] ** 2 + t.normal[1] ** 2)
+                     if all(isinstance(x, sp.Rational) for x in t.normal) else sp.Integer(1)
+                     for t in self.contacts)
+
+    @cached_property
+    def _J(self) -> sp.Matrix:
+        """J with each row times its :attr:`row_scale` (what the rules solve with)."""
+        if all(s == 1 for s in self.row_scale):
+            return self.J
+        return self._rows(lambda t, s: t.unit_normal if s == 1 else t.normal)
+
+    @cached_property
+    def _J_t(self) -> sp.Matrix:
+        """J_t with each row times its :attr:`row_scale`."""
+        if all(s == 1 for s in self.row_scale):
+            return self.J_t
+        return self._rows(lambda t, s: t.tangent if s == 1 else perp(t.normal))
+
+    def _rows(self, direction_of) -> sp.Matrix:
+        return jacobian(self.bodies, self.coordinates,
+                        [(t.first, t.second, t.point, direction_of(t, s))
+                         for t, s in zip(self.contacts, self.row_scale, strict=True)])
+
+    @property
+    def frictional(self) -> bool:
+        """Whether any contact's tangential law gives a tangential impulse."""
+        return any(t.laws[1].grips for t in self.contacts)
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        """M^-1 (diagonal for free and pivoted bodies); with joints, the projected
+        ``M^-1 - M^-1 G^T (G M^-1 G^T)^-1 G M^-1``: the velocity change an impulse gives
+        the bodies while every joint holds."""
+        if not self.joints:
+            return self._free_M_inverse
+        free = sp.Matrix(self._free_M_inverse)
+        return (free - free * sp.Matrix(self.G).T * self._joint_map).applyfunc(tidy)
+
+    @cached_property
+    def W(self) -> sp.Matrix:
+        """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
+        return self._product(self.J)
+
+    @cached_property
+    def _W(self) -> sp.Matrix:
+        """W of the scaled rows (:attr:`row_scale`): what the rules solve with."""
+        return self.W if self._J is self.J else self._product(self._J)
+
+    def _product(self, J: sp.Matrix) -> sp.Matrix:
+        if not (J.free_symbols or self.M_inverse.free_symbols):
+            # numbers: in their own field (the rationals, or with sqrt(3) adjoined), where
+            # the product of sparse rows is exact and fast at hundreds of contacts
+            J, Minv = J.to_DM(extension=True), self.M_inverse.to_DM(extension=True)
+            J, Minv = J.unify(Minv)
+            return (J * Minv * J.transpose()).to_Matrix()
+        return (J * self.M_inverse * J.T).applyfunc(tidied)
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix([c.before for c in self.coordinates])
+
+    @cached_property
+    def velocity_before(self) -> sp.Matrix:
+        """Normal closing velocity of every contact before (negative: approaching)."""
+        return (self.J * self.u_before).applyfunc(tidy)
+
+    @cached_property
+    def _velocity_before(self) -> sp.Matrix:
+        """The closing velocities of the scaled rows (:attr:`row_scale`)."""
+        return self._times(self.u_before)
+
+    def _closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
+        """Contact k's normal closing velocity at the generalized velocities u (its row
+        of J, two bodies' coordinates), tidied."""
+        return tidy(sp.Add(*(value * u[j] for j, value in self._J_rows[k])))
+
+    def _times(self, u: Sequence[sp.Expr]) -> sp.Matrix:
+        """``J u``: every contact's normal closing velocity, one sparse row at a time."""
+        return sp.Matrix([self._closing(k, u) for k in range(len(self.contacts))])
+
+    @cached_property
+    def _J_rows(self) -> list[list[tuple[int, sp.Expr]]]:
+        """Each row of J as its nonzero (column, value) pairs."""
+        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
+        for i, j, value in self._J.row_list():
+            found[i].append((j, value))
+        return found
+
+    @cached_property
+    def _inverse_inertia(self) -> list[sp.Expr]:
+        """The diagonal of M^-1, one entry per coordinate."""
+        return [1 / c.inertia for c in self.coordinates]
+
+    def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
+        """The bodies moving with `u`, tidied (a pivoted body's centre by its turn)."""
+        after = moving(self.bodies, self.coordinates, [tidied(x) for x in u])
+        return tuple(b if b.support != "pivot" else b.with_motion(
+            b.velocity.applyfunc(tidied), b.spin) for b in after)
+
+    def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                 impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                 **more: Any) -> Solution:
+        """The one :class:`Solution` a rule gives: the bodies moving with `u` after,
+        certified (see :mod:`rigidimpact.solve.certificate`): a physical limit of the
+        model here goes into its warnings; a broken condition is never an answer."""
+        joined: dict[str, Any] = {"joints": self.joints, "joint_impulses":
+                                  self._joint_impulses(impulses, more.get("tangential") or {})
+                                  } if self.joints else {}
+        solution = Solution(before=self.bodies, after=self._after(u), impulses=impulses,
+                            contacts=self.contacts, rule=rule, order=tuple(order),
+                            acted=tuple(acted), passes=passes, **joined, **more)
+        return certified(solution)
+
+    @property
+    def _dense(self) -> bool:
+        """Whether M^-1 is dense (joints couple the bodies' coordinates; a model source
+        with a full mass matrix): then an impulse moves every coordinate through it."""
+        return bool(self.joints)
+
+    def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        if self._dense:  # the joints spread each impulse over every joined body
+            return (sp.Matrix(u) + self.M_inverse * (self._J.T * sp.Matrix(impulses))
+                    ).applyfunc(tidy)
+        change: dict[int, sp.Expr] = {}
+        for i, row in enumerate(self._J_rows):
+            if impulses[i] != 0:
+                for j, value in row:
+                    change[j] = change.get(j, 0) + value * impulses[i]
+        inverse = self._inverse_inertia
+        return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
+                          else u[j] for j in range(len(u))])
+
+    def _leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
+        """The normal velocity after that contact k's restitution law asks on a straight
+        impulse path, from its closing velocity before (the law's own, so a new law is
+        one class)."""
+        return tidy(self.contacts[k].laws[0].leaving(closing))
+
+    def _poisson(self) -> bool:
+        """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
+        if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
+            return False
+        forms = [t.laws[0].together for t in self.contacts]
+        if None in forms:
+            name = self.contacts[forms.index(None)].name
+            raise InputError(f"{name}.law", f"the {self.contacts[forms.index(None)].law} "
+                             "law has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        if len(set(forms)) > 1:
+            raise InputError("contacts", "give every contact the same law to act together")
+        return forms[0] == "impulse"
+
+    @cached_property
+    def _rational_rows(self) -> bool:
+        """Whether J's rows and M^-1 are rational (then so is W)."""
+        return not self._dense and \
+            all(isinstance(x, sp.Rational) for row in self._J_rows for _, x in row) and \
+            all(isinstance(x, sp.Rational) for x in self._inverse_inertia)
+
+    @cached_property
+    def _rational_W(self) -> bool:
+        """Whether W is rational (it can be where J is not: sqrt(3)^2)."""
+        return self._rational_rows or all(isinstance(x, sp.Rational)
+                                          for _, _, x in self._W_entries)
+
+    def _float_W(self) -> Any:
+        """W in float64 as a SciPy sparse matrix, from J's sparse rows (W itself, dense
+        when one body touches every contact, is never formed exactly at scale)."""
+        import scipy.sparse as sps
+
+        rows = self._J_rows
+        J = sps.csr_matrix(([float(x) for row in rows for _, x in row],
+                            ([i for i, row in enumerate(rows) for _ in row],
+                             [j for row in rows for j, _ in row])),
+                           shape=(len(rows), len(self.coordinates)))
+        inverse = sps.diags([float(x) for x in self._inverse_inertia])
+        return (J @ inverse @ J.T).tocsc()
+
+    @cached_property
+    def _W_entries(self) -> list[tuple[int, int, sp.Expr]]:
+        return [(i, j, x) for (i, j), x in sorted(self._W.todok().items()) if x != 0]
+
+    def _order_index(self, order: Sequence[str]) -> dict[str, int]:
+        index = {t.name: k for k, t in enumerate(self.contacts)}
+        unknown = [name for name in order if name not in index]
+        if unknown or sorted(order) != sorted(index):
+            raise InputError("impact.order", f"must list every contact once: "
+                             f"{', '.join(index)}")
+        return index
+
+    def _pivot_reactions(self, outcome: Solution) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """What each pivot gives its body: the body's change of linear momentum less the
+        contact impulses it received (each along its contact's unit normal and tangent;
+        the second body of a contact receives +P, the first -P)."""
+        found = {}
+        for before, after in zip(outcome.before, outcome.after, strict=True):
+            if before.support != "pivot":
+                continue
+            received = sp.zeros(2, 1)
+            for t in self.contacts:
+                if before.name not in (t.first, t.second):
+                    continue
+                push = outcome.impulses[t.name] * t.unit_normal + \
+                    outcome.tangential.get(t.name, sp.Integer(0)) * t.tangent
+                received += push if before.name == t.second else -push
+            for j in self.joints:
+                if before.name in j.bodies:
+                    push = sp.Matrix(outcome.joint_impulses[j.name])
+                    received += push if before.name == j.second else -push
+            reaction = before.mass * (after.velocity - before.velocity) - received
+            found[before.name] = (tidy(reaction[0]), tidy(reaction[1]))
+        return found
+
+    def unknowns(self) -> tuple[sp.Symbol, ...]:
+        """What the printed equations are solved for: each generalized velocity after
+        (``V_BODYfx``, ``V_BODYfy``, ``omega_BODYfz``), then each contact's normal and
+        (with friction) tangential impulse (``Pn_CONTACT``, ``Pt_CONTACT``)."""
+        speeds = [sp.Symbol(f"omega_{c.body}fz" if c.kind == "omega"
+                            else f"V_{c.body}f{c.kind[1]}", real=True)
+                  for c in self.coordinates]
+        pushes = [sp.Symbol(f"Pn_{t.name}", real=True) for t in self.contacts]
+        if self.frictional:
+            pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
+        pushes += [sp.Symbol(f"J{axis}_{j.name}", real=True) for j in self.joints
+                   for axis in "xy"]
+        return tuple(speeds + pushes)
+
+    def equations(self, outcome: Solution) -> tuple[Equation, ...]:
+        """The labelled equations `outcome` solves, over :meth:`unknowns`: the momentum
+        balance of every generalized velocity (``M (u+ - u-) = J^T P``, the same for
+        every rule), then what the rule imposed at each contact. Substituting the
+        outcome's results makes every residual zero (tested), so what is printed is
+        what was solved.
+
+        Examples
+        --------
+        >>> from rigidimpact.solve.collision import chain
+        >>> c = chain(2)
+        >>> [str(eq.as_sympy()) for eq in c.equations(c.simultaneous())][-1]
+        'Eq(-V_ball0fx + V_ball1fx, 1)'
+        """
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        u_after, P_n = sp.Matrix(symbols[:size]), sp.Matrix(symbols[size:size + n])
+        pinned = 2 * len(self.joints)
+        rest = symbols[size + n:len(symbols) - pinned]
+        P_t = sp.Matrix(rest) if self.frictional else sp.zeros(n, 1)
+        J, J_t = self.J, self.J_t
+        push = J.T * P_n + J_t.T * P_t
+        if self.joints:
+            push += sp.Matrix(self.G).T * sp.Matrix(symbols[len(symbols) - pinned:])
+        v_before = J * self.u_before
+        found = []
+        for i, c in enumerate(self.coordinates):
+            body = self._body(c.body)
+            what = {"vx": f"x momentum of {c.body}", "vy": f"y momentum of {c.body}"}.get(
+                c.kind) or f"angular momentum of {c.body} about its " + (
+                "pivot" if body.support == "pivot" else "centre")
+            found.append(Equation(f"{what}: its change is the contacts' impulse" + (
+                " and the joints'" if self.joints else ""), "",
+                c.inertia * (u_after[i] - c.before), tidy(push[i]), law="momentum"))
+        held = sp.Matrix(self.G) * u_after if self.joints else sp.zeros(0, 1)
+        for k, j in enumerate(self.joints):
+            for axis, row in (("x", held[2 * k]), ("y", held[2 * k + 1])):
+                found.append(Equation(f"{j.name} holds: {j.second} and {j.first} move "
+                                      f"together at it, along {axis}", "", tidy(row), 0,
+                                      law="joint"))
+        u = self._u_of(outcome)
+        routh = outcome.rule == "simultaneous" and len(outcome.acted) == 1 and \
+            self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
+        for k, t in enumerate(self.contacts):
+            restitution, tangential = t.laws
+            closing = (J[k, :] * u_after)[0]
+            slip = (J_t[k, :] * u_after)[0]
+            normal, along = outcome.impulses[t.name], outcome.tangential.get(t.name, 0)
+            if outcome.rule != "simultaneous" or routh:
+                how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
+                                     "impact)",
+                       "compliant": f"{t.name}'s spring impulse, integrated",
+                       "simultaneous": f"{t.name} alone by its own {tangential.name} law "
+                                       "(Routh's or Walton's regimes)"}
+                found.append(Equation(how[outcome.rule], "", P_n[k], normal,
+                                      law="rule"))
+                if self.frictional:
+                    found.append(Equation(how[outcome.rule] + ", tangential", "", P_t[k],
+                                          along, law="rule"))
+                continue
+            if t.name not in outcome.acted:
+                found.append(Equation(f"{t.name} released: no impulse", "", P_n[k], 0,
+                                      law="released"))
+            elif restitution.together == "impulse" and n > 1:
+                W_k = J[k, :] * self.M_inverse * J.T
+                compression = (v_before[k] + sum(
+                    (W_k[0, j] * self.contacts[j].laws[0].compression(P_n[j])
+                     for j in range(n)), sp.Integer(0)))
+                found.append(Equation(f"{t.name} at rest at the end of compression "
+                                      "(Poisson's law: each impulse is 1 + e times its "
+                                      "compression impulse)", "", tidy(compression), 0,
+                                      law="restitution"))
+            else:
+                before = tidy(v_before[k])
+                closed = before.is_negative
+                found.append(Equation(f"restitution at {t.name} (Newton's law" + (
+                    ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
+                    self._leaving(k, before) if closed else 0, law="restitution"))
+            if not self.frictional:
+                continue
+            after_slip = tidy((J_t[k, :] * u)[0])
+            if not tangential.grips or t.name not in outcome.acted:
+                found.append(Equation(f"{t.name}: no tangential impulse", "", P_t[k], 0,
+                                      law="tangential"))
+            elif after_slip == 0:
+                found.append(Equation(f"{t.name} sticks: no slip after", "", slip, 0,
+                                      law="tangential"))
+            else:
+                sign = -1 if after_slip > 0 else 1
+                found.append(Equation(f"{t.name} slides: Coulomb's friction against the "
+                                      "slip after", "", P_t[k], sign * tangential.cone()
+                                      * P_n[k], law="tangential"))
+        return tuple(found)
+
+    def _u_of(self, outcome: Solution) -> sp.Matrix:
+        """The generalized velocities of `outcome`'s bodies after."""
+        after = {b.name: b for b in outcome.after}
+        values = []
+        for c in self.coordinates:
+            body = after[c.body]
+            values.append(body.spin if c.kind == "omega" else
+                          body.velocity[0 if c.kind == "vx" else 1])
+        return sp.Matrix(values)
+
+    def solved_values(self, outcome: Solution) -> dict[sp.Symbol, sp.Expr]:
+        """:meth:`unknowns` -> their values in `outcome` (to check the equations)."""
+        n, size = len(self.contacts), len(self.coordinates)
+        symbols = self.unknowns()
+        values = dict(zip(symbols[:size], self._u_of(outcome), strict=True))
+        values.update({symbols[size + k]: outcome.impulses[t.name]
+                       for k, t in enumerate(self.contacts)})
+        if self.frictional:
+            values.update({symbols[size + n + k]: outcome.tangential.get(t.name, 0)
+                           for k, t in enumerate(self.contacts)})
+        for k, j in enumerate(self.joints):
+            start = len(symbols) - 2 * len(self.joints) + 2 * k
+            x, y = outcome.joint_impulses[j.name]
+            values.update({symbols[start]: x, symbols[start + 1]: y})
+        return values
+
+    def _by_name(self, name: str) -> Contact:
+        return next(t for t in self.contacts if t.name == name)
+
+    def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
+        """Each contact's impulse along its unit normal (or tangent), by name, from the
+        impulses of its scaled rows (see :attr:`row_scale`)."""
+        return {t.name: impulses[k] if s == 1 else tidy(impulses[k] * s)
+                for k, (t, s) in enumerate(zip(self.contacts, self.row_scale, strict=True))}

@@ -1,0 +1,87 @@
+"""What every rule shares: the base class, the laws each rule imposes in words, and the
+check of a whole-number argument.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+from rigidimpact.errors import InputError
+from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.solution import Solution
+
+RULES = ("simultaneous", "sequential", "compliant")
+
+
+RULE_LAWS = {
+    "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
+                    "restitution law at each contact that acts and no contact pulling "
+                    "(v+ = v- + W P, a complementarity problem)",
+    "sequential": "every contact smooth; one contact at a time in the order given, each a "
+                  "two-body impact with Newton's e, repeated until no contact approaches",
+    "compliant": "every contact a push-only spring-dashpot (linear, damping from e) or an "
+                 "elastic Hertz spring, integrated until all let go (floating point)",
+}
+
+
+FRICTION_LAWS = {
+    "simultaneous": "Coulomb friction at the velocity level: the impulses act together; "
+                    "each contact is released, sticks (Newton's e across, no slip after, "
+                    "|P_t| <= mu P_n) or slides (|P_t| = mu P_n against its slip after); "
+                    "every combination solved exactly",
+    "sequential": "one contact at a time in the order given, each that contact's own "
+                  "impact under its own laws (Routh's method for Coulomb friction, "
+                  "Walton's for a rough contact); repeated until no contact approaches",
+}
+
+
+def rule_laws(rule: str, frictional: bool = False) -> str:
+    """The laws a rule imposes, in words (with friction when any contact has it)."""
+    return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
+
+
+def whole_number(name: str, value: Any, least: int, most: int | None = None,
+                 why: str = "") -> int:
+    """`value` as an int in [least, most], or InputError naming `name` (a bool, a float
+    or a string is refused, not rounded or parsed).
+
+    Examples
+    --------
+    >>> whole_number("n", 3, 2)
+    3
+    >>> whole_number("n", 2.5, 2)
+    Traceback (most recent call last):
+    ...
+    rigidimpact.errors.InputError: n: must be a whole number, not float 2.5
+    """
+    if isinstance(value, bool) or not hasattr(value, "__index__"):
+        raise InputError(name, f"must be a whole number, not {type(value).__name__} "
+                         f"{value!r}")
+    value = int(value.__index__())
+    if value < least:
+        raise InputError(name, f"must be at least {least}, got {value}")
+    if most is not None and value > most:
+        raise InputError(name, f"{value} is past the budget of {most}{why}")
+    return value
+
+
+class Rule:
+    """How several contacts that close at the same instant act together.
+
+    A rule is one small class in its own module: :meth:`outcomes` says what it makes of
+    an impulse problem (:class:`~rigidimpact.solve.problem.ImpactProblem`: one outcome,
+    or one per case or order), so every rule returns the same
+    :class:`~rigidimpact.solve.solution.Solution` whatever the source of the problem (the
+    built-in shapes, joints, a sympy.physics.mechanics system).
+    :data:`~rigidimpact.solve.rules.RULE_TYPES` lists the built-in ones for the scene
+    reader; a new rule needs no entry there to be used from Python.
+    """
+
+    name: ClassVar[str] = ""
+
+    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+        raise NotImplementedError
+
+    def laws(self, frictional: bool = False) -> str:
+        """What the rule imposes, in words."""
+        return rule_laws(self.name, frictional)

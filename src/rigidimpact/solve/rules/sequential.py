@@ -1,0 +1,392 @@
+"""The sequential rule: one contact at a time, in a given order, in every order or in a
+seeded sample of orders; each step is that contact's own impact under its own laws
+(Newton's e, Routh's method for Coulomb friction, Walton's rough law), and passes
+repeat until no contact approaches.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import random
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import ClassVar
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.solve.conditions import (
+    case_conditions,
+    tidied,
+)
+from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.rules.base import Rule, whole_number
+from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.rewrite import tidy
+
+FLOAT_DIGITS = 60  # where exact algebra would nest roots: floating point at this precision
+
+
+# a sequential run still going after this long (and as much again per 100 contacts) is
+# refused (a Routh step with numbers takes 5 to 60 ms here: two contacts ringing for
+# 1000 passes took 50 to 115 s; a 1009-contact cluster settles in about 8 s)
+MAX_SEQUENTIAL_SECONDS = 10.0
+
+
+MAX_PASSES = 1000  # sequential passes before the rule is declared endless
+
+
+# a sequence of one-at-a-time impacts can go on forever while converging (inelastic
+# collapse); it is cut where every closing speed left is this small next to the first
+SETTLED = sp.Rational(1, 10**40)
+
+
+MAX_ORDERS = 720  # every order of up to six contacts
+
+
+MAX_SAMPLED_ORDERS = 10000
+
+
+MAX_SAMPLE_SECONDS = 60.0  # a sample of orders estimated to take longer is refused
+
+
+@dataclass(frozen=True)
+class Sequential(Rule):
+    """One contact at a time in `order`; every order when `order` is None, or a seeded
+    sample of `sample` orders.
+
+    Examples
+    --------
+    >>> from rigidimpact.solve.collision import chain
+    >>> from rigidimpact.solve.collision import chain
+    >>> [o.label for o in chain(3).solve(Sequential(("c0", "c1")))]
+    ['sequential c0, c1']
+    """
+
+    order: tuple[str, ...] | None = None
+    sample: int | None = None  # with no order: this many orders drawn with `seed`
+    seed: int = 0
+    name: ClassVar[str] = "sequential"
+
+    def __post_init__(self) -> None:
+        if self.order is not None:
+            if isinstance(self.order, str) or not all(
+                    isinstance(x, str) for x in self.order):
+                raise InputError("order", "must be a sequence of contact names, e.g. "
+                                 f"(\"c0\", \"c1\"), not {self.order!r}")
+            object.__setattr__(self, "order", tuple(self.order))
+        if self.sample is not None:
+            whole_number("sample", self.sample, 1, MAX_SAMPLED_ORDERS,
+                          " sampled orders (each a whole sequential run)")
+        whole_number("seed", self.seed, 0)
+
+    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+        if self.order is None and self.sample is not None:
+            return sampled_orders(problem, self.sample, self.seed)
+        if self.order is None:
+            return every_order(problem)
+        if problem.symbols:
+            return sequential_cases(problem, self.order)
+        return (sequential(problem, self.order),)
+
+
+def _smooth_step(problem: ImpactProblem, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
+    """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
+    (only the two bodies' coordinates the contact moves)."""
+    impulse = tidy((problem._leaving(k, closing) - closing) / problem._W[k, k])
+    if problem._dense:
+        change = problem.M_inverse * problem._J[k, :].T * impulse
+        for j in range(len(u)):
+            u[j] = tidy(u[j] + change[j])
+        return impulse
+    for j, value in problem._J_rows[k]:
+        u[j] = tidy(u[j] + value * impulse * problem._inverse_inertia[j])
+    return impulse
+
+
+def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
+    """One contact at a time in `order`, passes repeated until none approaches.
+
+    With e < 1 the passes can go on forever while the closing speeds shrink
+    geometrically (a stack coming to rest): they stop once every closing speed left
+    is below 1e-40 of the largest before, so such results are exact to that size.
+    """
+    problem._numbers_only("sequential")
+    index = problem._order_index(order)
+    u = list(problem.u_before)
+    floating: list[str] = []
+
+    def step(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
+        if problem.contacts[k].laws[1].grips:  # its own impact (Routh's for Coulomb)
+            if not floating and not all(x.is_Rational for x in u):
+                # the arithmetic is chosen before the next case analysis: a state
+                # out of the rationals (an energetic step's square root) would
+                # nest a root in every later step, so from here on every step
+                # starts from the state as FLOAT_DIGITS-digit Floats
+                floating.append(problem.contacts[k].name)
+            if floating:
+                u[:] = [_rounded(x) for x in u]
+            impulse, along, course, after = _routh_step(problem, k, sp.Matrix(u))
+            if floating:
+                impulse, along = _rounded(impulse), _rounded(along)
+                after = after.applyfunc(_rounded)
+            u[:] = list(after)
+            return impulse, along, course
+        return _smooth_step(problem, k, u, closing), sp.Integer(0), None
+
+    count, steps = sequential_passes([index[name] for name in order],
+                                     lambda k: problem._closing(k, u), step,
+                                     max(abs(v) for v in problem._velocity_before))
+    total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
+    for k, impulse, along, _ in steps:
+        total[k] += impulse
+        tangential[k] += along
+    courses = tuple(f"{problem.contacts[k].name}: {course}" for k, _, _, course in steps
+                    if course is not None)
+    notes = (f"from {floating[0]}'s step on, the velocities held square roots that "
+             "would nest at every further step: each step from there started from "
+             f"them rounded to {FLOAT_DIGITS} digits (the results are good to about "
+             "that many digits, not exact)",) if floating else ()
+    return problem._outcome("sequential", tuple(order), sp.Matrix(u),
+                         problem._named(total.applyfunc(tidy)),
+                         tuple(t.name for t, p in zip(problem.contacts, total, strict=True)
+                               if p > 0),
+                         count, tangential=problem._named(tangential.applyfunc(tidy))
+                         if problem.frictional else {}, courses=courses, notes=notes,
+                         method=f"rounded to {FLOAT_DIGITS} digits between steps"
+                         if floating else "")
+
+
+def _routh_step(problem: ImpactProblem, k: int,
+                u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
+    """Contact k's impact alone under its own laws (Routh's method for Coulomb,
+    Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
+    restitution, tangential = problem.contacts[k].laws
+    rows = sp.Matrix.vstack(problem._J[k, :], problem._J_t[k, :])
+    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+    if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
+        raise InputError(f"{problem.contacts[k].name}.tangential",
+                         f"{tangential.name}: the touching points have one degree of "
+                         "freedom here (their 2x2 W is singular), so they cannot both "
+                         "stop slipping and leave by the restitution law; tangential = "
+                         "\"coulomb\" follows them (Routh's method), or make it smooth")
+    normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
+    normal, along = tidy(normal), tidy(along)
+    u_after = (u + problem.M_inverse * (problem._J[k, :].T * normal
+                                     + problem._J_t[k, :].T * along)).applyfunc(tidy)
+    return normal, along, course, u_after
+
+
+def sequential_pass(problem: ImpactProblem, order: Sequence[str]) -> Solution:
+    """The sequential rule with symbols: one pass in `order`, every contact acting
+    once, with the conditions that make it so (each contact closing at its turn) and
+    that end the rule there (no contact closing after the pass).
+
+    Examples
+    --------
+    >>> from rigidimpact.solve.collision import chain
+    >>> e = sp.Symbol("e", nonnegative=True)
+    >>> out = chain(3, e).sequential_pass(("c0", "c1"))
+    >>> [out.results()[f"ball{k}.vx"] for k in range(3)]
+    [-(e - 1)/2, (1 - e)*(e + 1)/4, (e + 1)**2/4]
+
+    With e < 1 the first pair still closes after the pass, so one pass ends the rule
+    only at e = 1:
+
+    >>> out.conditions
+    (e**2 - 2*e <= -1,)
+    """
+    problem._smooth_only("with symbols")
+    index = problem._order_index(order)
+    u = list(problem.u_before)
+    total = sp.zeros(len(index), 1)
+    conditions = []
+    for name in order:
+        k = index[name]
+        closing = problem._closing(k, u)
+        conditions.append(sp.Lt(closing, 0))
+        total[k] = _smooth_step(problem, k, u, closing)
+    conditions += [sp.Ge(x, 0) for x in problem._times(u)]
+    return problem._outcome("sequential", tuple(order), sp.Matrix(u),
+                   problem._named(total.applyfunc(tidy)), tuple(order),
+                   conditions=case_conditions(conditions))
+
+
+def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solution, ...]:
+    """The sequential rule with symbols, friction allowed: one pass in `order`, each
+    contact's step its own impact under its own laws, as in :func:`sequential_pass`.
+    A Coulomb or rough step can take several courses (Routh's and Walton's regimes,
+    each with its conditions), so the pass is a tree of cases: one outcome per path
+    through it, with every condition along the path (and the pass's own: each
+    contact closing at its turn, none closing after). A path whose conditions cannot
+    hold is dropped.
+
+    Examples
+    --------
+    A particle of mass 1 sliding onto a floor at (1, -1) with Coulomb's mu and
+    Poisson's e = 1/2: the normal impulse is 1 in compression and 3/2 in all, so it
+    slides throughout while mu 3/2 <= 1, stops sliding in compression once mu >= 1,
+    and in restitution between.
+
+    >>> from rigidimpact.laws.contact import Contact
+    >>> from rigidimpact.model.bodies import Body
+    >>> from rigidimpact.solve.collision import Collision
+    >>> mu = sp.Symbol("mu", positive=True)
+    >>> floor = Contact((0, -1), sp.Rational(1, 2), "coulomb", "poisson", "f",
+    ...                 bodies=("p", "floor"), friction=mu)
+    >>> ball = Body.rigid(1, 0, (0, 0), (1, -1), name="p")
+    >>> cases = Collision((ball, Body.fixed("floor")), (floor,)).sequential_cases(("f",))
+    >>> for c in cases:
+    ...     print(c.courses, c.results()["p.vx"], c.conditions)
+    ('f: slip',) -(3*mu - 2)/2 (mu <= 2/3,)
+    ('f: slip-stick, in compression',) 0 (mu > 1,)
+    ('f: slip-stick, in restitution',) 0 (mu <= 1, mu > 2/3)
+    """
+    if not problem.frictional:
+        return (sequential_pass(problem, order),)
+    index = problem._order_index(order)
+    n = len(index)
+    # each path so far: (u, normal impulses, tangential impulses, conditions, courses)
+    branches: list[tuple[sp.Matrix, sp.Matrix, sp.Matrix, list, list[str]]] = [
+        (sp.Matrix(problem.u_before), sp.zeros(n, 1), sp.zeros(n, 1), [], [])]
+    for name in order:
+        k = index[name]
+        restitution, tangential = problem.contacts[k].laws
+        rows = sp.Matrix.vstack(problem._J[k, :], problem._J_t[k, :])
+        W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+        grown = []
+        for u, total, along, conditions, courses in branches:
+            v = (rows * u).applyfunc(tidy)
+            here = [*conditions, sp.Lt(v[0], 0)]
+            if tangential.solved_by_regimes:
+                steps = [(r.impulse, r.conditions, r.name)
+                         for r in tangential.regimes(W, v, restitution)]
+            else:
+                normal, t, course = tangential.alone(W, v, restitution)
+                steps = [((normal, t), (), course)]
+            for (normal, t), more, course in steps:
+                kept = case_conditions([*here, *more])
+                if kept == (sp.false,):
+                    continue
+                push = sp.Matrix([tidy(normal), tidy(t)])
+                after = (u + problem.M_inverse * rows.T * push).applyfunc(tidy)
+                grown.append((after, total + _at(n, k, push[0]), along + _at(n, k, push[1]),
+                              [c for c in kept if c is not sp.true],
+                              [*courses, f"{name}: {course}"]))
+        branches = grown
+    cases = []
+    for u, total, along, conditions, courses in branches:
+        kept = case_conditions([*conditions, *(sp.Ge(x, 0) for x in problem._times(u))])
+        if kept == (sp.false,):
+            continue
+        cases.append(problem._outcome("sequential", tuple(order), u,
+                                   problem._named(total.applyfunc(tidy)), tuple(order),
+                                   tangential=problem._named(along.applyfunc(tidy)),
+                                   courses=tuple(courses), conditions=kept))
+    if not cases:
+        symbols = ", ".join(sorted(map(str, problem.symbols)))
+        raise InputError("contacts", f"one pass in the order {', '.join(order)} does not "
+                         "end the sequential rule for any value of the symbols (a "
+                         "contact closes again after it): the passes that follow need "
+                         f"numbers; give [values] (or --set) for {symbols}")
+    return tuple(cases)
+
+
+def every_order(problem: ImpactProblem) -> tuple[Solution, ...]:
+    """The sequential rule in every order of the contacts."""
+    names = [t.name for t in problem.contacts]
+    count = math.factorial(len(names))  # counted before any order is made
+    if count > MAX_ORDERS:
+        raise InputError("impact.order", f"{len(names)} contacts have {count} orders "
+                         f"(at most {MAX_ORDERS} are run): give one, or ask for a "
+                         "seeded sample (orders = N, seed = S)")
+    orders = list(itertools.permutations(names))
+    if problem.symbols:
+        return tuple(sequential_pass(problem, order) for order in orders)
+    return tuple(sequential(problem, order) for order in orders)
+
+
+def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solution, ...]:
+    """The sequential rule in `count` orders drawn at random (``random.Random(seed)``,
+    each a uniform shuffle; repeats possible when the orders are few): a sample of
+    the outcomes' spread, not every order."""
+    problem._numbers_only("sequential")
+    if not 1 <= count <= MAX_SAMPLED_ORDERS:
+        raise InputError("impact.orders", f"must lie in [1, {MAX_SAMPLED_ORDERS}], got "
+                         f"{count}")
+    draw, names = random.Random(seed), [t.name for t in problem.contacts]
+    orders = []
+    for _ in range(count):
+        order = names[:]
+        draw.shuffle(order)
+        orders.append(tuple(order))
+    # a cost budget, not only a count: the first order's time says what all cost
+    start = time.perf_counter()
+    found = [sequential(problem, orders[0])]
+    estimate = (time.perf_counter() - start) * count
+    if estimate > MAX_SAMPLE_SECONDS:
+        raise InputError("impact.orders", f"{count} orders would take about "
+                         f"{estimate:.0f} s (one took {estimate / count:.2g} s), past "
+                         f"the budget of {MAX_SAMPLE_SECONDS:g} s: ask for fewer")
+    return tuple(found + [sequential(problem, order) for order in orders[1:]])
+
+
+def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
+                      step: Callable[[int, sp.Expr], tuple[sp.Expr, sp.Expr, str | None]],
+                      scale: sp.Expr, settled: sp.Expr = SETTLED
+                      ) -> tuple[int, list[tuple[int, sp.Expr, sp.Expr, str | None]]]:
+    """The sequential rule's passes, for any model: contact by contact in `order`, each
+    contact still closing (``closing(k) < 0``, beyond `settled` times `scale`) takes its
+    own impact (``step(k, closing)``: its normal and tangential impulse and its course,
+    the model's velocities moved by the step), repeated until a pass in which none acts.
+    Returns the passes in which some contact acted and every step taken.
+
+    Examples
+    --------
+    Two unit masses at rest and a third arriving at 1, e = 1, head on:
+
+    >>> u = [1, 0, 0]
+    >>> def hit(k, closing):  # equal masses: they swap velocities
+    ...     u[k], u[k + 1] = u[k + 1], u[k]
+    ...     return -closing, 0, None
+    >>> sequential_passes([0, 1], lambda k: u[k + 1] - u[k], hit, 1)
+    (1, [(0, 1, 0, None), (1, 1, 0, None)])
+    """
+    steps: list[tuple[int, sp.Expr, sp.Expr, str | None]] = []
+    count, acted = 0, True
+    deadline = time.perf_counter() + MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100)
+    while acted:  # a pass in which no contact acted ends the rule
+        if count == MAX_PASSES or time.perf_counter() > deadline:
+            raise InputError("impact.rule", f"the sequential rule did not settle in "
+                             f"{count} passes ({len(steps)} impacts, "
+                             f"{MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100):g} s at "
+                             "most): the contacts keep "
+                             "closing again after each other's impacts (with e = 1 they "
+                             "can ring for ever); try the simultaneous rule")
+        count, acted = count + 1, False
+        for k in order:
+            now = closing(k)
+            if now >= 0 or -now <= settled * scale:
+                continue
+            steps.append((k, *step(k, now)))
+            acted = True
+    return count - 1, steps
+
+
+def _rounded(x: sp.Expr) -> sp.Expr:
+    """A number as a Float of FLOAT_DIGITS significant digits (a Float stays as it is):
+    SymPy's polynomial arithmetic keeps a Float's precision, and unlike a rational of
+    that many digits it puts no large integer under the next square root."""
+    x = sp.sympify(x)
+    if x.is_Float:
+        return x
+    return sp.N(x, FLOAT_DIGITS)
+
+
+def _at(n: int, k: int, value: sp.Expr) -> sp.Matrix:
+    """An n-vector holding `value` at k."""
+    vector = sp.zeros(n, 1)
+    vector[k] = value
+    return vector

@@ -1,0 +1,549 @@
+"""The simultaneous rule: every contact acts at once, none pulls.
+
+With numbers, a linear complementarity problem: Lemke's exact method for rational
+data, block pivoting with an exact confirmation at scale, the acting sets tried
+where numbers are irrational; with Coulomb friction every combination of contact
+states at the velocity level; with symbols, one outcome per case that can hold,
+each with its conditions. One implementation for every source of the problem.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, ClassVar
+
+import sympy as sp
+from sympy.polys.domains import QQ
+
+from rigidimpact.errors import InputError
+from rigidimpact.solve.conditions import (
+    case_conditions,
+    exact_solve,
+    tidied,
+)
+from rigidimpact.solve.lcp import (
+    NoSolution,
+    confirm,
+    confirm_by_rows,
+    least_norm,
+    lemke,
+    pivoting,
+    proximal,
+    residual,
+)
+from rigidimpact.solve.problem import MAX_ENUMERATED, ImpactProblem
+from rigidimpact.solve.rules.base import Rule
+from rigidimpact.solve.rules.sequential import _routh_step
+from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.rewrite import tidy
+
+# the simultaneous rule with symbols: a case (signs before x acting contacts) that can
+# hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
+# past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
+# the cases are counted first and the work is given a time
+MAX_SYMBOLIC_CASES = 4096
+
+
+MAX_SYMBOLIC_SECONDS = 20.0
+
+
+# the simultaneous rule: Lemke's exact dense tableau up to this many contacts; past it
+# (or past MAX_ENUMERATED with irrational numbers) floating point with an exact check
+MAX_LEMKE = 64
+
+
+_STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
+          "slide-": "slides", "mixed": "differs between the solutions"}
+
+
+@dataclass(frozen=True)
+class Simultaneous(Rule):
+    """All contacts at once, none pulling (a complementarity problem); with symbols, one
+    outcome per case, each with its conditions.
+
+    Examples
+    --------
+    >>> from rigidimpact.solve.collision import chain
+    >>> from rigidimpact.solve.collision import chain
+    >>> [o.label for o in chain(3).solve(Simultaneous())]
+    ['simultaneous']
+    """
+
+    name: ClassVar[str] = "simultaneous"
+
+    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+        if problem.symbols:
+            return simultaneous_cases(problem)
+        return (simultaneous(problem),)
+
+
+def simultaneous(problem: ImpactProblem) -> Solution:
+    """All contacts at once, no contact pulling (a complementarity problem).
+
+    Newton's law: every acting contact leaves at ``-e`` times its closing velocity
+    before, every released one at least that fast. Poisson's law: the compression
+    impulses solve the same problem with target zero, and each is scaled by 1 + e.
+    How the problem is solved depends on its size and numbers (see :func:`_lcp`):
+    Lemke's method in exact arithmetic (a 16-contact fan in 0.025 s here), trying
+    the acting sets from the largest down, or past those sizes floating point with
+    an exact check (a 1001-ball cradle in about 1 s); the outcome's `method` and
+    notes say which when it is not the first.
+    """
+    problem._numbers_only("simultaneous")
+    if problem.frictional:
+        return _frictional_simultaneous(problem)
+    v = problem._velocity_before
+    poisson = problem._poisson()
+    target = sp.zeros(len(v), 1) if poisson else \
+        sp.Matrix([problem._leaving(i, min(v[i], 0)) for i in range(len(v))])
+    impulses, how, method = _lcp(problem, v, target)
+    if poisson:  # each law makes its whole impulse from its compression impulse
+        impulses = sp.Matrix([problem.contacts[i].laws[0].from_compression(impulses[i])
+                              for i in range(len(v))])
+    u = problem._kick(problem.u_before, impulses)
+    return problem._outcome("simultaneous", (), u, problem._named(impulses),
+                   tuple(t.name for t, p in zip(problem.contacts, impulses, strict=True)
+                         if p > 0), notes=how + (_still_closing(problem, u) if poisson else ()),
+                         method=method)
+
+
+def _still_closing(problem: ImpactProblem, u: sp.Matrix) -> tuple[str, ...]:
+    """A warning for every contact that still approaches after the impact (the bodies
+    would pass into each other): Poisson's law scales each compression impulse by
+    its own 1 + e, which need not leave every contact opening."""
+    after = problem._times(u)
+    scale = max(abs(x) for x in problem._velocity_before)
+    closing = [(t.name, after[i] / problem.row_scale[i]) for i, t in enumerate(problem.contacts)
+               if after[i] < -sp.Rational(1, 10**12) * scale]
+    return tuple(f"{name} still approaches after the impact (normal velocity "
+                 f"{float(speed):.6g}): the bodies would pass into each other; the "
+                 f"simultaneous rule with Poisson's law cannot honour the physics here "
+                 f"(the sequential rule can)" for name, speed in closing)
+
+
+def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
+    """All contacts at once with Coulomb friction, at the velocity level.
+
+    Each contact is released (no impulse, separating at least as fast as Newton's
+    law asks), sticking (it leaves with Newton's normal velocity and no slip, its
+    tangential impulse inside the cone |P_t| <= mu P_n) or sliding (on the cone's
+    edge, opposite to the slip it leaves with). This is the model of time-stepping
+    codes (Stewart and Trinkle, Anitescu and Potra), not Routh's integration over
+    the impact: friction acts on the velocities after, so it agrees with Routh's
+    method when the slip does not change during the impact. Every combination of
+    states is solved exactly; with friction the problem can have several solutions,
+    or none (Painleve's paradox), and the outcome says so.
+    """
+    if len(problem.contacts) == 1:  # one contact: its own exact answer, under any law
+        return _one_acting(problem, 0, [sp.Integer(0)])
+    restitution, tangential = zip(*(t.laws for t in problem.contacts), strict=True)
+    late = [t.name for t, r in zip(problem.contacts, restitution, strict=True)
+            if r.together != "velocity"]
+    if late:
+        raise InputError(f"{late[0]}.law", "with friction the simultaneous rule takes "
+                         "Newton's law at every contact (the sequential rule takes "
+                         "each law)")
+    formless = [(t.name, law.name) for t, law in zip(problem.contacts, tangential,
+                                                      strict=True)
+                if not law.velocity_states]
+    if formless:
+        raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
+                         "has no form for contacts acting together: use the "
+                         "sequential rule (each contact's own impact)")
+    n = len(problem.contacts)
+    v_n, v_t = problem._velocity_before, (problem._J_t * problem.u_before).applyfunc(tidy)
+    mu = [law.cone() for law in tangential]
+    target = [problem._leaving(i, min(v_n[i], 0)) for i in range(n)]
+    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+    states = [("off",) + law.velocity_states for law in tangential]
+    found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
+    count = math.prod(len(s) for s in states)
+    if count > MAX_SYMBOLIC_CASES:
+        raise InputError("contacts", _too_many_states(n, count))
+    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    not_unique = False
+    for pattern in itertools.product(*states):
+        if all(state == "off" for state in pattern):
+            continue
+        if time.perf_counter() > deadline:
+            raise InputError("contacts", _too_many_states(n, count))
+        fits = _friction_pattern(problem, pattern, W, v_n, v_t, target, mu)
+        if fits is None:
+            continue
+        solved, unique = fits
+        if all(solved != f for f, _ in found):
+            found.append((solved, pattern))
+            not_unique = not_unique or not unique
+    if not found:
+        raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
+                         "friction here (a Painleve-type inconsistency); try the "
+                         "sequential rule")
+    acting = {tuple(i for i in range(n) if f[i] > 0) for f, _ in found}
+    if len(acting) == 1 and len(next(iter(acting))) == 1:
+        (k,), = acting
+        if tangential[k].solved_by_regimes:  # one contact acts: its own exact answer
+            return _one_acting(problem, k, target)
+    impulses, pattern = found[0]
+    motions = [(problem.u_before + problem.M_inverse * rows.T * f).applyfunc(tidy)
+               for f, _ in found]
+    u = motions[0]
+    notes: tuple[str, ...] = ()
+    if not_unique:
+        notes = ("more contact conditions than freedoms: the motion after is unique but "
+                 "the impulses are not; shown: the least-norm impulses of each state",)
+    if len(found) > 1 and all(m == u for m in motions):
+        # with the velocities after fixed, the conditions on the impulses are convex:
+        # every mixture of the solutions found is one too; the mean is shown
+        impulses = (sum((f for f, _ in found), sp.zeros(2 * n, 1)) / len(found)
+                    ).applyfunc(tidy)
+        pattern = tuple(pattern[i] if all(p[i] == pattern[i] for _, p in found)
+                        else "mixed" for i in range(n))
+        notes += (f"the motion after is unique but the impulses are not: {len(found)} "
+                 "ways to share them between the contacts fit the rule, and every "
+                 "mixture of them; shown: their mean",)
+    elif len(found) > 1:
+        notes += (f"the simultaneous rule with friction has {len(found)} solutions here, "
+                 "with different motions after; shown: " + ", ".join(
+                     _STATE[s] for s in pattern) + "; others: " + "; ".join(
+                     ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
+    normal = impulses[:n, 0]
+    return problem._outcome("simultaneous", (), u,
+                   problem._named(normal), tuple(t.name for t, p in
+                                              zip(problem.contacts, normal, strict=True)
+                                              if p > 0),
+                   tangential=problem._named(impulses[n:, 0]),
+                   courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                                 zip(problem.contacts, pattern, strict=True)),
+                   notes=notes)
+
+
+def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
+    """Only contact k acts: its frictional impact alone by Routh's method (the answer
+    for one contact under every rule), if that leaves every other contact opening
+    at least as fast as its law asks; otherwise one line saying so."""
+    normal, along, course, u = _routh_step(problem, k, problem.u_before)
+    after = problem._times(u)
+    blocked = [t.name for i, t in enumerate(problem.contacts)
+               if i != k and after[i] < target[i]]
+    name = problem.contacts[k].name
+    if blocked:
+        raise InputError("impact.rule", f"only {name} acts at the velocity level, but "
+                         f"its exact (Routh) impulse leaves {', '.join(blocked)} "
+                         "closing: the simultaneous rule has no consistent answer here; "
+                         "try the sequential rule")
+    zeros = sp.zeros(len(problem.contacts), 1)
+    normals, tangentials = zeros.copy(), zeros.copy()
+    normals[k], tangentials[k] = normal, along
+    return problem._outcome("simultaneous", (), u,
+                   problem._named(normals), (name,),
+                   tangential=problem._named(tangentials) if problem.frictional else {},
+                   courses=tuple(f"{t.name}: {course}" if i == k else
+                                 f"{t.name}: {_STATE['off']}"
+                                 for i, t in enumerate(problem.contacts)))
+
+
+def _friction_pattern(problem: ImpactProblem, pattern, W, v_n, v_t, target,
+                      mu) -> tuple[sp.Matrix, bool] | None:
+    """The impulses (normal then tangential) for one choice of contact states, if
+    that choice is consistent, and whether they are the only ones."""
+    n = len(pattern)
+    P = sp.symbols(f"p0:{2 * n}")
+    after = sp.Matrix(list(v_n) + list(v_t)) + W * sp.Matrix(P)
+    equations = []
+    for i, state in enumerate(pattern):
+        if state == "off":
+            equations += [P[i], P[n + i]]
+            continue
+        equations.append(after[i] - target[i])
+        if state in ("on",):
+            equations.append(P[n + i])
+        elif state == "stick":
+            equations.append(after[n + i])
+        else:
+            equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
+    matrix, rhs = sp.linear_eq_to_matrix(equations, P)
+    impulses, unique = exact_solve(matrix, rhs), True
+    if impulses is None:  # the states do not fix the impulses: if they are consistent
+        impulses, unique = least_norm(matrix, rhs), False  # the motion is fixed (W's
+        if impulses is None:  # null vectors are J^T's); the least-norm ones are shown
+            return None
+    after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
+    for i, state in enumerate(pattern):
+        p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
+        if state == "off":
+            if after[i] < target[i]:
+                return None
+            continue
+        if p_n < 0:
+            return None
+        if state == "stick" and mu[i] is not None and abs(p_t) > mu[i] * p_n:
+            return None
+        if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
+            return None
+    return impulses, unique
+
+
+def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
+    """Each set of acting contacts whose block of W is invertible, largest first:
+    ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
+    and zero elsewhere (the conditions that pick a set are the caller's)."""
+    n = len(v)
+    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    for size in range(n, 0, -1):
+        for active in itertools.combinations(range(n), size):
+            if time.perf_counter() > deadline:  # checked for singular blocks too
+                raise InputError("contacts", f"{n} contacts: {2 ** n} sets of acting "
+                                 "contacts, more than can be tried in "
+                                 f"{MAX_SYMBOLIC_SECONDS:.0f} s (give numbers for the "
+                                 "symbols: the rule then needs no such search)")
+            block = problem._W.extract(list(active), list(active))
+            det = tidy(block.det())
+            if det == 0 or (block.has(sp.Float) and det.is_number and abs(det) <= 1e-35
+                            * abs(sp.prod(block[i, i] for i in range(size)))):
+                continue  # singular (at 50 digits: to within their rounding)
+            solved = block.LUsolve(sp.Matrix([target[i] - v[i] for i in active]))
+            impulses = sp.zeros(n, 1)
+            for k, i in enumerate(active):
+                impulses[i] = tidy(solved[k])
+            yield active, impulses, v + problem._W * impulses
+
+
+def _lcp(problem: ImpactProblem, v: sp.Matrix,
+         target: sp.Matrix) -> tuple[sp.Matrix, tuple[str, ...], str]:
+    """The complementarity problem: exactly by Lemke's method (:mod:`rigidimpact.solve.lcp`)
+    when its numbers are rational, W invertible (then exactly one answer fits, the one
+    enumeration finds) and the contacts at most :data:`MAX_LEMKE`; at more contacts,
+    or with irrational numbers past :data:`MAX_ENUMERATED`, in floating point with an
+    exact check (:func:`_lcp_at_scale`); otherwise by enumerating the acting sets.
+    Returns the impulses, the notes a reader must see (an answer in floating point,
+    with its residual) and how the problem was solved (at scale)."""
+    rational = problem._rational_W and all(isinstance(x, sp.Rational)
+                                        for x in list(v) + list(target))
+    if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED):
+        return _lcp_at_scale(problem, v, target, rational)
+    if rational:
+        W = problem._W.to_DM()
+        if W.rank() == W.shape[0]:
+            q = [Fraction(int(x.p), int(x.q)) for x in v - target]
+            M = [[Fraction(int(x.p), int(x.q)) for x in problem._W.row(i)]
+                 for i in range(len(v))]
+            try:
+                z = lemke(M, q)
+            except NoSolution:  # cannot happen for a positive definite W; be safe
+                return _complementarity(problem, v, target), (), ""
+            return sp.Matrix([sp.Rational(x.numerator, x.denominator) for x in z]), (), \
+                ""
+        if len(v) > MAX_ENUMERATED:  # singular W: many impulses, one motion after
+            return _lcp_at_scale(problem, v, target, rational)
+    return _complementarity(problem, v, target), (), ""
+
+
+def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
+                  rational: bool) -> tuple[sp.Matrix, tuple[str, ...], str]:
+    """Many contacts: the acting set by block principal pivoting in floating point
+    (sparse W), then, with rational numbers, that set solved and checked exactly.
+    The notes say which it is, with the floating-point answer's certified residual
+    when the exact check could not be made; a singular W (more contacts than a
+    body's freedoms) has many impulses with the same motion after, and the one
+    reported is then said to be chosen close to the least-norm one."""
+    import numpy as np
+    from scipy.sparse.linalg import splu
+
+    n = len(v)
+    W = problem._float_W()
+    q = np.array([float(v[i] - target[i]) for i in range(n)])
+    try:
+        pivots = np.abs(splu(W, permc_spec="MMD_AT_PLUS_A").U.diagonal())
+        singular = bool(pivots.min() < 1e-11 * pivots.max())
+    except RuntimeError:  # exactly singular
+        singular = True
+    if singular:
+        z, steps = proximal(W, q, 1e-2 * float(W.diagonal().max()))
+        method = f"the proximal point method, {steps} rounds of block principal pivoting"
+    else:
+        z, steps, _ = pivoting(W, q)
+        method = f"block principal pivoting, {steps} steps"
+        acting = [i for i in range(n) if z[i] > 0]
+        if rational and problem._rational_rows:  # in SymPy's QQ (python-flint's fmpq
+            def field(x: sp.Rational) -> Any:  # where it is installed), W unformed
+                return QQ(int(x.p), int(x.q))
+
+            exact = confirm_by_rows(
+                [[(j, field(x)) for j, x in row] for row in problem._J_rows],
+                [field(x) for x in problem._inverse_inertia],
+                [field(x) for x in v - target], acting)
+        elif rational:  # W rational, J not (sqrt(3) in a hexagonal cluster)
+            rows: dict[int, dict[int, Fraction]] = {i: {} for i in range(n)}
+            for i, j, x in problem._W_entries:
+                rows[i][j] = Fraction(int(x.p), int(x.q))
+            exact = confirm(rows, [Fraction(int(x.p), int(x.q)) for x in v - target],
+                            acting)
+        else:
+            exact = None
+        if exact is not None:
+            return sp.Matrix([sp.sympify(QQ.to_sympy(x) if not isinstance(x, Fraction)
+                                         else sp.Rational(x.numerator, x.denominator))
+                              for x in exact]), (), (
+                    f"{n} contacts: the acting set found in floating point ({method}) "
+                    "and confirmed in exact arithmetic")
+    error = residual(W, q, z)
+    how = ("W is singular (more contacts than the bodies' freedoms): the motion after "
+           "is unique, the impulses are not (those reported stay close to the "
+           "least-norm ones); " if singular else "")
+    note = (f"{n} contacts solved in floating point ({method}): {how}complementarity "
+            f"residual {error:.1e} of the largest closing speed"
+            + ("" if error < 1e-9 else " (LARGE: do not trust these numbers)"))
+    return sp.Matrix([sp.Float(float(x), 17) for x in z]), (note,), note
+
+
+def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+    """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
+    acting sets (largest first) for at most MAX_SYMBOLIC_SECONDS: past that, one line
+    says how large the problem is instead of a run of minutes."""
+    for active, impulses, after in _active_sets(problem, v, target):
+        if all(impulses[i] >= 0 for i in active) and all(
+                after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
+            return impulses
+    return sp.zeros(len(v), 1)
+
+
+def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
+    """The simultaneous rule with symbols: one outcome per set of acting contacts,
+    each with the conditions under which it is the one (its impulses >= 0, every
+    released contact separating at least as fast as its law asks, every contact
+    closing or at rest before). Where W is positive definite exactly one case holds
+    at any numbers. Under Newton's law each contact's sign before decides its target
+    (-e v- if it closes, 0 if it opens), so the cases are also split by those signs.
+
+    Examples
+    --------
+    >>> from rigidimpact.laws.contact import Contact
+    >>> from rigidimpact.model.bodies import Body
+    >>> from rigidimpact.solve.collision import Collision
+    >>> m = sp.Symbol("m", positive=True)
+    >>> balls = [Body.rigid(1, 1, (0, 0), (1, 0), name="a"),
+    ...          Body.rigid(m, 1, (2, 0), (0, 0), name="b"),
+    ...          Body.rigid(1, 1, (4, 0), (0, 0), name="c")]
+    >>> touches = [Contact(restitution=1, name="ab", bodies=("a", "b"), point=(1, 0)),
+    ...            Contact(restitution=1, name="bc", bodies=("b", "c"), point=(3, 0))]
+    >>> both = Collision(tuple(balls), tuple(touches)).simultaneous_cases()[0]
+    >>> both.results()["c.vx"], both.conditions
+    (2/(m + 2), (True,))
+    """
+    regimes = [t.name for t in problem.contacts if t.laws[1].solved_by_regimes]
+    if regimes:  # Coulomb's and Walton's courses: no closed form acting together
+        problem._smooth_only("with symbols")
+    stick = [i for i, t in enumerate(problem.contacts) if t.laws[1].grips]
+    v = problem._velocity_before
+    poisson = problem._poisson()
+    n = len(v)
+    if stick and poisson:
+        raise InputError(f"{problem.contacts[stick[0]].name}.law", "a sticking contact "
+                         "acting together with others takes Newton's law")
+    # Newton's target -e min(v, 0) depends on each contact's sign before: one
+    # pattern of signs at a time (a contact at rest, or under Poisson's law: one)
+    options = []
+    for i in range(n):
+        if poisson or tidy(v[i]).is_zero:
+            options.append([(sp.true, sp.Integer(0), v[i].is_negative is True)])
+            continue
+        options.append([(sp.Le(v[i], 0), problem._leaving(i, v[i]), True),
+                        (sp.Ge(v[i], 0), sp.Integer(0), False)])
+    count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
+    if count > MAX_SYMBOLIC_CASES:
+        raise InputError("contacts", _too_many_cases(n, count))
+    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    cases = []
+    for pattern in itertools.product(*options):
+        if not poisson and not any(closing for _, _, closing in pattern):
+            continue  # nothing approaches: no impact
+        signs = case_conditions([c for c, _, _ in pattern])
+        if signs == (sp.false,):
+            continue
+        target = sp.Matrix([t for _, t, _ in pattern])
+        found = (_active_sets(problem, v, target) if not stick
+                 else _sticking_sets(problem, v, target, stick))
+        for active, compression, after, *extra in found:
+            if time.perf_counter() > deadline:
+                raise InputError("contacts", _too_many_cases(n, count))
+            held = case_conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
+                               + [sp.Ge(tidy(after[i] - target[i]), 0)
+                                  for i in range(n) if i not in active])
+            if held == (sp.false,):
+                continue
+            impulses = sp.Matrix([problem.contacts[i].laws[0].from_compression(
+                compression[i]) if poisson else compression[i]
+                for i in range(n)]).applyfunc(tidy)
+            if extra:  # sticking contacts: their tangential impulses move u too
+                tangential, free = extra
+                u = (problem.u_before + problem.M_inverse * (problem._J.T * impulses
+                                                       + problem._J_t.T * tangential)
+                     ).applyfunc(tidy)
+                more: dict[str, Any] = {"tangential": problem._named(tangential),
+                        "courses": tuple(f"{t.name}: " + (_STATE["stick"] if i in active
+                                                          else _STATE["off"])
+                                         for i, t in enumerate(problem.contacts))}
+                if free:
+                    more["notes"] = (f"the motion after is unique but the impulses are "
+                                     f"not: {', '.join(map(str, free))} may take any "
+                                     "value that meets the conditions",)
+            else:
+                u, more = problem._kick(problem.u_before, impulses), {}
+            more["conditions"] = held
+            cases.append(problem._outcome("simultaneous", (), u, problem._named(impulses),
+                                       tuple(problem.contacts[i].name for i in active),
+                                       **more))
+    return tuple(cases)
+
+
+def _sticking_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix, stick: Sequence[int]):
+    """As :func:`_active_sets`, with the contacts in `stick` leaving without slip
+    where they act (their tangential impulse an unknown of its own, no cone):
+    ``(active, P_n, v_n + (W P)_n, P_t)`` for each set whose block is invertible."""
+    n = len(v)
+    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+    slip = (problem._J_t * problem.u_before).applyfunc(tidy)
+    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    for size in range(n, 0, -1):
+        for active in itertools.combinations(range(n), size):
+            if time.perf_counter() > deadline:
+                raise InputError("contacts", _too_many_cases(n, 2**n))
+            unknowns = list(active) + [n + i for i in active if i in stick]
+            block = W.extract(unknowns, unknowns)
+            rhs = sp.Matrix([target[i] - v[i] for i in active]
+                            + [-slip[i] for i in active if i in stick])
+            if tidy(block.det()) != 0:
+                solved, free = block.LUsolve(rhs), ()
+            else:  # more conditions than freedoms: consistent, or no such case
+                try:
+                    solved, params = block.gauss_jordan_solve(rhs)
+                except ValueError:
+                    continue
+                # the impulses are not unique (the motion after is: a null vector
+                # of W's block is one of J^T's); each free part keeps a name
+                free = tuple(sp.Symbol(f"tau_{k + 1}", real=True)
+                             for k in range(len(params)))
+                solved = solved.xreplace(dict(zip(params, free, strict=True)))
+            P = sp.zeros(2 * n, 1)
+            for k, j in enumerate(unknowns):
+                P[j] = tidy(solved[k])
+            yield active, P[:n, 0], v + (W * P)[:n, 0], P[n:, 0], free
+
+
+def _too_many_cases(n: int, count: int) -> str:
+    return (f"{n} contacts with symbols make {count} cases (signs before x contacts "
+            f"acting), more than can be solved in {MAX_SYMBOLIC_SECONDS:.0f} s: give "
+            "numbers for the symbols (--set or [values]) and it is solved exactly at them")
+
+
+def _too_many_states(n: int, count: int) -> str:
+    return (f"{n} frictional contacts have {count} combinations of states (released, "
+            f"sticking, sliding either way), more than can be solved exactly in "
+            f"{MAX_SYMBOLIC_SECONDS:.0f} s: try the sequential rule with an order")
