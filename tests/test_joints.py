@@ -22,6 +22,8 @@ import rigidimpact as ri
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.model.joints import Joint
+from rigidimpact.scenes.scene import load_scene
+from rigidimpact.solve.rules import Compliant, Simultaneous
 
 ROOT = Path(__file__).resolve().parents[1]
 PENDULUM = (ROOT / "derivations" / "double-pendulum-wall.toml").read_text()
@@ -378,3 +380,17 @@ def test_random_linkages_obey_their_laws():
                    abs(solution.checks[f"j{k}.holds"]) < 1e-35
                    for k in range(1, len(collision.joints) + 1))
     assert seen >= 20
+
+
+@pytest.mark.parametrize("name", ["hinged-chain", "double-pendulum-wall"])
+def test_the_compliant_rule_gives_back_the_one_contact_answer_through_joints(name):
+    # one contact alone: its spring-dashpot's damping is chosen from e on the contact's
+    # effective mass 1/W (here through the joints' projected M^-1), so it gives back
+    # Newton's e exactly, and the speeds of the rigid answer, to the integration's error
+    scene = load_scene(ROOT / "derivations" / f"{name}.toml")
+    collision = scene.collision(dict(scene.values))
+    (rigid,) = collision.solve(Simultaneous())
+    (spring,) = collision.solve(Compliant())
+    exact, integrated = rigid.results(), spring.results()
+    assert max(abs(float(exact[k] - integrated[k])) for k in exact) < 1e-8
+    assert all(abs(float(v)) < 1e-8 for k, v in spring.checks.items() if "holds" in k)

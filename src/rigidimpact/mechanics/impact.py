@@ -450,8 +450,10 @@ class SystemImpact:
                          self._in(sp.Matrix([energy]))[0])
 
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
-             energy: sp.Expr, summed: bool = False, how: str | None = None) -> Solution:
-        """The result, from the stand-ins back to q, the speeds and their sines."""
+             energy: sp.Expr, summed: bool = False, how: str | None = None,
+             rule: str = "simultaneous") -> Solution:
+        """The result, from the stand-ins back to q, the speeds and their sines, checked
+        against `rule`'s own laws and tolerance."""
         back = self._out
         P = back(impulse)
         normal = {c.name: _small(P[2 * i]) for i, c in enumerate(self.contacts)}
@@ -470,6 +472,8 @@ class SystemImpact:
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
         checks = self._checks(back(after), P, before, lost)
+        if checks is not None and rule == "compliant":  # integrated in floating point:
+            checks.pop("_tolerance")  # the rule's own tolerance, not the exact paths'
         solution = Solution(
             before=(), after=(), impulses=normal, tangential=along,
             contacts=tuple(c.laws for c in self.contacts),
@@ -481,7 +485,7 @@ class SystemImpact:
                 "rationals)",) if self.digits else (),
             speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
             speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)),
-            given_checks=checks)
+            given_checks=checks, rule=rule)
         # its energy warning is its own (above): only a broken condition is acted on
         return solution if checks is None else certified(solution, limits=False)
 
@@ -845,7 +849,7 @@ class _AsCollision(Collision):
                                                c.laws[1].unknown_tangential):
                 courses[c.name] = "stick"
         solution = system._map(sp.Matrix(u), P, courses, energy, summed=not own,
-                               how=None if own else f"{rule} rule")
+                               how=None if own else f"{rule} rule", rule=rule)
         limits, _ = replace(solution, rule=rule).assessed()
         return replace(solution, rule=rule, order=tuple(order), passes=passes,
                        acted=tuple(acted), notes=solution.notes + more.pop("notes", ()),

@@ -85,10 +85,6 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     >>> round(float(out.results()["ball1.vx"]), 6)
     1.0
     """
-    if problem._dense:
-        raise InputError("impact.rule", "the compliant rule takes built-in bodies "
-                         "without joints so far (its springs integrate a diagonal M): "
-                         "use the simultaneous or the sequential rule")
     import math
 
     import numpy as np
@@ -110,15 +106,25 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     # only the coordinates some contact moves are integrated (a chain's balls do not
     # spin or move across it); J is sparse, each contact touching two bodies
     entries = problem.J.row_list()  # the springs push along the unit normals
-    moved = sorted({j for _, j, _ in entries})
+    dense = problem._dense  # joints or a mechanics system: M^-1 couples the speeds
+    moved = list(range(len(problem.coordinates))) if dense else \
+        sorted({j for _, j, _ in entries})
     column = {j: c for c, j in enumerate(moved)}
     n = len(moved)
     J = sps.csr_matrix(([float(x) for _, _, x in entries],
                         ([i for i, _, _ in entries], [column[j] for _, j, _ in entries])),
                        shape=(k, n))
     JT = J.T.tocsr()
-    m_inv = np.array([float(problem._inverse_inertia[j]) for j in moved])
-    w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
+    if dense:
+        m_full = np.array(problem.M_inverse.evalf(30), dtype=float)
+        w_diag = np.einsum("ij,jk,ik->i", J.toarray(), m_full, J.toarray())
+    else:
+        m_inv = np.array([float(problem._inverse_inertia[j]) for j in moved])
+        w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
+
+    def accelerate(f):
+        """M^-1 J^T f: the speeds' rates under the contact forces."""
+        return m_full @ (JT @ f) if dense else m_inv * (JT @ f)
     e = np.array([float(t.restitution) for t in problem.contacts])
     if hertz and np.any(e < 1):
         raise InputError("restitution", "Hertzian contacts here are elastic (e = 1)")
@@ -137,7 +143,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
         u, depth = y[:n], y[n:n + k]
         rate = -(J @ u)
         f = force(depth, rate)
-        return np.concatenate([m_inv * (JT @ f), rate, f])
+        return np.concatenate([accelerate(f), rate, f])
 
     u_all = np.array(problem.u_before.evalf(), dtype=float).ravel()
     y = np.concatenate([u_all[moved], np.zeros(k), np.zeros(k)])
@@ -153,7 +159,8 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     # narrow band (a chain's a few wide), so a stiff stretch costs a band
     # factorisation, not LSODA's dense n^2 one
     none = sps.csr_matrix((n, k))  # u', depth', impulse' against u, depth, impulse
-    pattern = sps.bmat([[JT @ J, JT, none], [J, None, None], [J, sps.identity(k), None]],
+    coupled = sps.csr_matrix(np.ones((n, n))) if dense else JT @ J
+    pattern = sps.bmat([[coupled, JT, none], [J, None, None], [J, sps.identity(k), None]],
                        format="csr")
     pattern = (pattern + pattern.T + sps.identity(n + 2 * k)).tocsr()
     order = reverse_cuthill_mckee(pattern, symmetric_mode=True)
