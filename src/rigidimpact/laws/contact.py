@@ -28,6 +28,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.law import (
     RESTITUTION_LAWS,
     TANGENTIAL_LAWS,
@@ -36,10 +37,18 @@ from rigidimpact.laws.law import (
 )
 from rigidimpact.model.bodies import _expr, as_vector
 from rigidimpact.model.roles import Role
+from rigidimpact.model.space import as_vector3
 from rigidimpact.symbolic.geometry import frame_of
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Contact", "RESTITUTION_LAWS", "TANGENTIAL"]
+
+
+def _components(value: Any) -> int | None:
+    """How many components a vector given as a sequence or matrix has (None if neither)."""
+    if isinstance(value, sp.MatrixBase) or (isinstance(value, (list, tuple))):
+        return len(value)
+    return None
 
 TANGENTIAL = tuple(TANGENTIAL_LAWS)
 
@@ -102,8 +111,12 @@ class Contact:
             if self.bodies[0] == self.bodies[1]:
                 raise InputError(f"{self.name}.bodies", "a contact needs two bodies")
             object.__setattr__(self, "bodies", tuple(self.bodies))
-        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
-        normal = as_vector(self.normal, "contact.normal")
+        spatial = _components(self.normal) == 3  # a 3-D contact: normal and point in space
+        read = as_vector3 if spatial else as_vector
+        point = (0, 0, 0) if spatial and _components(self.point) == 2 and \
+            all(sp.sympify(x) == 0 for x in self.point) else self.point
+        object.__setattr__(self, "point", read(point, f"{self.name}.point"))
+        normal = read(self.normal, "contact.normal")
         if all(c.is_zero for c in normal):
             raise InputError("contact.normal", "must not be the zero vector")
         object.__setattr__(self, "normal", normal)
@@ -152,6 +165,11 @@ class Contact:
         than as linear conditions."""
         return TANGENTIAL_LAWS[self.tangential].solved_by_regimes
 
+    @property
+    def spatial(self) -> bool:
+        """Whether the contact is in three dimensions (its normal has three components)."""
+        return len(self.normal) == 3
+
     def __repr__(self) -> str:
         n = self.normal
         extra = "" if self.name == "contact" else f", name={self.name!r}"
@@ -161,8 +179,8 @@ class Contact:
             extra += f", tangential_restitution={self.tangential_restitution}"
         if self.bodies is not None:
             p = self.point
-            extra += f", bodies={self.bodies!r}, point=({p[0]}, {p[1]})"
-        return (f"Contact(normal=({n[0]}, {n[1]}), restitution={self.restitution}, "
+            extra += f", bodies={self.bodies!r}, point=({', '.join(map(str, p))})"
+        return (f"Contact(normal=({', '.join(map(str, n))}), restitution={self.restitution}, "
                 f"tangential={self.tangential!r}, law={self.law!r}{extra})")
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> Contact:
@@ -208,6 +226,8 @@ class Contact:
         [0, 1]])
         """
         n = self.normal
+        if self.spatial:  # rows n, t1, t2 (laws.cone.tangents says which tangents)
+            return sp.ImmutableMatrix.vstack(*(t.T for t in tangents(n)))
         length = sp.sqrt(tidy(n[0] ** 2 + n[1] ** 2))  # tidy sees cos^2 + sin^2 = 1
         return frame_of(sp.ImmutableMatrix([tidy(n[0] / length), tidy(n[1] / length)]))
 

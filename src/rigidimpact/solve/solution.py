@@ -28,6 +28,7 @@ from functools import cached_property
 from typing import Any
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
@@ -123,6 +124,9 @@ class Solution:
     joints: tuple[Any, ...] = field(default=(), repr=False)
     joint_impulses: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
                                                                   repr=False)
+    # a 3-D contact: its tangential impulse's components along its tangents t1, t2
+    tangent_impulses: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+                                                                    repr=False)
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     speeds_before: tuple[Any, ...] = ()
@@ -357,7 +361,10 @@ class Solution:
         ``energy_loss_fraction`` (and ``impulse_t`` when one contact sticks),
         ``CONTACT.normal_impulse`` and ``CONTACT.tangential_impulse`` for every contact,
         ``BODY.pivot_impulse_x``, ``BODY.pivot_impulse_y`` for a pivoted body, and
-        ``JOINT.impulse_x``, ``JOINT.impulse_y`` for a joint (what it gave its second body).
+        ``JOINT.impulse_x``, ``JOINT.impulse_y`` for a joint (what it gave its second body);
+        in 3-D, ``BODY.vz`` and ``BODY.omega_x`` ... ``_z`` among the speeds, and
+        ``CONTACT.tangential_impulse_1``, ``_2`` along the contact's tangents (its
+        ``tangential_impulse`` is then the size).
 
         Examples
         --------
@@ -372,7 +379,7 @@ class Solution:
         results: dict[str, sp.Expr] = {}
         if self.speeds_after is not None:  # a mechanics system: its speeds after
             for speed, value in zip(self.speeds_before, self.speeds_after, strict=True):
-                results[f"{getattr(speed, 'func', speed)}"] = value
+                results[str(speed.func if isinstance(speed, AppliedUndef) else speed)] = value
         for body in self.after:
             if body.support == "fixed":
                 continue
@@ -395,6 +402,9 @@ class Solution:
                 results[f"{body.name}.pivot_impulse_y"] = reaction[1]
         for name, (x, y) in self.joint_impulses.items():
             results[f"{name}.impulse_x"], results[f"{name}.impulse_y"] = x, y
+        for name, (t1, t2) in self.tangent_impulses.items():
+            results[f"{name}.tangential_impulse_1"] = t1
+            results[f"{name}.tangential_impulse_2"] = t2
         return results
 
 

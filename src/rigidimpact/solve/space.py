@@ -1,0 +1,241 @@
+"""Impacts in three dimensions: bodies with six speeds each and one contact with its
+normal and two tangents.
+
+The model is the same as in the plane, one dimension up: the speeds u of every free
+body (``vx, vy, vz, omega_x, omega_y, omega_z``), ``M^-1`` block diagonal
+(``1/m`` three times, then the inverse of the inertia tensor in the world frame), the
+contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone.tangents`),
+``v = J u`` and ``W = J M^-1 J^T``. The contact's laws give the impulse P in contact space
+(:func:`rigidimpact.laws.cone.cone_impact` for Coulomb's circular cone), and
+``u+ = u- + M^-1 J^T P``.
+
+What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
+named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
+impulse has its two components (``CONTACT.tangential_impulse_1``, ``_2``, along t1 and
+t2; ``CONTACT.tangential_impulse`` is its size), and its residuals are computed here,
+from the bodies' momenta, apart from the path that solved them.
+
+Examples
+--------
+A solid sphere landing on a floor with spin (the case of the 3-D issue: m = 1, radius 1,
+velocity (1, 1/2, -2), spin (3, -1, 2), Newton's e = 1/2, mu = 1/5):
+
+>>> from rigidimpact.laws.contact import Contact
+>>> from rigidimpact.model.space import Body3
+>>> half, fifth = sp.Rational(1, 2), sp.Rational(1, 5)
+>>> ball = Body3.sphere(1, 1, (0, 0, 1), (1, half, -2), (3, -1, 2), name="ball")
+>>> floor = Contact(normal=(0, 0, 1), restitution=half, tangential="coulomb",
+...                 friction=fifth, bodies=("floor", "ball"), point=(0, 0, 0))
+>>> out = SpaceCollision((Body3.fixed("floor"), ball), (floor,)).solve()
+>>> r = out.results()
+>>> r["ball.vz"], r["contact.normal_impulse"], out.regime
+(1, 3, 'slides throughout')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.cone import ConeImpact, cone_impact
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.space import SPEEDS, Body3
+from rigidimpact.solve.solution import Solution, certified
+
+__all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
+
+CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
+EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
+TANGENTIAL_3D = ("smooth", "stick", "coulomb")
+
+
+@dataclass(frozen=True)
+class SpaceCollision:
+    """Bodies in space (:class:`~rigidimpact.model.space.Body3`) and the contact where
+    two of them meet (a :class:`~rigidimpact.laws.contact.Contact` with a 3-D normal and
+    point, and its two bodies named).
+
+    `tolerance` asks for the contact's path to be integrated numerically with that
+    relative tolerance even where a closed form exists (to measure the integration).
+    """
+
+    bodies: tuple[Body3, ...]
+    contacts: tuple[Contact, ...]
+    tolerance: float | None = None
+
+    def __post_init__(self) -> None:
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise InputError("bodies", "two bodies share a name")
+        if len(self.contacts) != 1:
+            raise InputError("contacts", "a 3-D scene has one contact so far (several 3-D "
+                             "contacts acting together are not solved yet)")
+        for c in self.contacts:
+            if not c.spatial:
+                raise InputError(f"{c.name}.normal", "a 3-D scene's contact needs a normal "
+                                 "with three components")
+            if c.bodies is None or not set(c.bodies) <= set(names):
+                raise InputError(f"{c.name}.bodies", "must name two of the bodies")
+            if c.tangential not in TANGENTIAL_3D:
+                raise InputError(f"{c.name}.tangential", f"in 3-D: one of "
+                                 f"{', '.join(TANGENTIAL_3D)} so far, not {c.tangential!r}")
+            if c.tangential == "stick" and c.law != "newton":
+                raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
+        free = [b for b in self.bodies if b.support != "fixed"]
+        if not free:
+            raise InputError("bodies", "at least one body must be free to move")
+
+    @cached_property
+    def free(self) -> tuple[Body3, ...]:
+        return tuple(b for b in self.bodies if b.support != "fixed")
+
+    @cached_property
+    def speeds(self) -> tuple[sp.Symbol, ...]:
+        """The generalized speeds' names: ``BODY.vx`` ... ``BODY.omega_z``."""
+        return tuple(sp.Symbol(f"{b.name}.{s}") for b in self.free for s in SPEEDS)
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix([x for b in self.free for x in b.speeds])
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        return sp.diag(*[b.mass_inverse() for b in self.free])
+
+    def rows(self, contact: Contact) -> sp.Matrix:
+        """The contact's rows (n, t1, t2): the second body's touching point's velocity
+        less the first's, in the contact frame."""
+        frame = sp.Matrix(contact.frame)
+        J = sp.zeros(3, 6 * len(self.free))
+        for k, body in enumerate(self.free):
+            sign = 1 if body.name == contact.second else -1 if body.name == contact.first \
+                else 0
+            if sign == 0:
+                continue
+            for i in range(3):
+                J[i, 6 * k:6 * k + 6] = sign * body.row(contact.point, frame[i, :].T)
+        return J
+
+    def W(self, contact: Contact) -> sp.Matrix:
+        """The contact's block ``J M^-1 J^T`` in its frame (n, t1, t2)."""
+        J = self.rows(contact)
+        return (J * self.M_inverse * J.T).applyfunc(_tidy)
+
+    def solve(self) -> Solution:
+        """The impact under the contact's laws (see the module's text)."""
+        (c,) = self.contacts
+        J = self.rows(c)
+        W = (J * self.M_inverse * J.T).applyfunc(_tidy)
+        v = (J * self.u_before).applyfunc(_tidy)
+        if v[0].is_number and not v[0] < 0:
+            raise InputError("bodies", f"the touching points at {c.name} are not "
+                             "approaching (their normal velocity is "
+                             f"{v[0]}, along the normal from {c.first} into {c.second})")
+        e, law = c.restitution, c.law
+        notes: list[str] = []
+        turned = 0.0
+        if c.tangential == "smooth":
+            P = sp.Matrix([(1 + e) * (-v[0]) / W[0, 0], 0, 0])
+            course = "smooth"
+        elif c.tangential == "stick":
+            P = W.LUsolve(sp.Matrix([-(1 + e) * v[0], -v[1], -v[2]]))
+            course = "sticks"
+        else:
+            out: ConeImpact = cone_impact(W, v, e, law, c.friction, self.tolerance)
+            P, course, turned = out.impulse, out.course, out.turned
+            if not out.exact:
+                notes.append(f"the slip direction turns during the impact (by "
+                             f"{turned * 180 / 3.141592653589793:.4g} degrees): the path is "
+                             f"integrated in the normal impulse to a relative tolerance of "
+                             f"{out.tolerance:g} ({out.steps} steps); course: {course}")
+        P = P.applyfunc(sp.radsimp)
+        u_after = (self.u_before + self.M_inverse * J.T * P).applyfunc(
+            lambda x: sp.piecewise_fold(sp.radsimp(sp.expand(x))))
+        M = self.M_inverse.inv()
+        before = sp.nsimplify(0) + (self.u_before.T * M * self.u_before)[0] / 2
+        lost = sp.simplify(before - (u_after.T * M * u_after)[0] / 2)
+        tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
+        regime = course
+        checks = self._checks(c, J, P, u_after, before, lost, exact=self.tolerance is None
+                              and not notes)
+        solution = Solution(
+            before=(), after=(), impulses={c.name: P[0]},
+            tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
+            acted=(c.name,), regime=regime,
+            courses=(f"{c.name}: {course}",) if regime else (),
+            energies=(before, lost, sp.simplify(lost / before)), notes=tuple(notes),
+            speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
+            tangent_impulses={c.name: (P[1], P[2])}, given_checks=checks)
+        return solution if checks is None else certified(solution)
+
+    def _checks(self, c: Contact, J: sp.Matrix, P: sp.Matrix, u_after: sp.Matrix,
+                before: sp.Expr, lost: sp.Expr, exact: bool) -> dict[str, Any] | None:
+        """The residuals of the laws from the bodies' momenta, apart from the solver:
+        each body's linear and angular momentum against the impulse it received, the
+        push, the contact opening after, the cone (or no slip after for a sticking
+        contact), Newton's law where it is the contact's, and energy created."""
+        numbers = [*P, *u_after, *self.u_before, *(x for b in self.free for x in
+                                                   (b.mass, *b.inertia, *b.position))]
+        if not all(sp.sympify(x).is_number for x in numbers):
+            return None  # closed forms with symbols: checked in the tests
+
+        def num(x: Any) -> sp.Float:
+            return sp.N(x, CHECK_DIGITS)
+
+        frame = sp.Matrix(c.frame)
+        impulse = frame.T * P  # on the second body, world frame
+        out: dict[str, Any] = {}
+        for k, body in enumerate(self.free):
+            sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
+            du = u_after[6 * k:6 * k + 6, 0] - self.u_before[6 * k:6 * k + 6, 0]
+            linear = body.mass * du[:3, 0] - sign * impulse
+            arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+            angular = sp.Matrix(body.inertia) * du[3:, 0] - sign * arm.cross(impulse)
+            for axis, x in zip("xyz", linear, strict=True):
+                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
+            for axis, x in zip("xyz", angular, strict=True):
+                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(x))
+        v_before, v_after = J * self.u_before, J * u_after
+        out[f"{c.name}.pushes"] = max(0, -num(P[0]))
+        out[f"{c.name}.opens"] = max(0, -num(v_after[0]))
+        if c.tangential == "smooth":
+            out[f"{c.name}.smooth"] = max(abs(num(P[1])), abs(num(P[2])))
+        elif c.tangential == "stick":
+            out[f"{c.name}.sticks"] = max(abs(num(v_after[1])), abs(num(v_after[2])))
+        else:
+            size = sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
+            out[f"{c.name}.cone"] = max(0, size - num(c.friction) * num(P[0]))
+        if c.law == "newton":
+            out[f"{c.name}.restitution"] = abs(num(v_after[0] + c.restitution * v_before[0]))
+        out["energy"] = max(0, -num(lost))
+        sizes = [abs(num(x)) for x in (*self.u_before, *u_after, *P)]
+        out["_scale"] = max(sizes)
+        out["_kinetic"] = num(before)
+        out["_tolerance"] = EXACT_TOLERANCE if exact else \
+            max(1e-8, 1000 * (self.tolerance or 1e-10))
+        return out
+
+    def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
+        """The collision with numbers put in for its symbols."""
+        return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
+                              tuple(c.at(values) for c in self.contacts), self.tolerance)
+
+
+def _tidy(x: sp.Expr) -> sp.Expr:
+    """Simplified with symbols; exact when rational; else 50 digits (sines of numbers)."""
+    if not x.is_number:
+        return sp.simplify(x)
+    if x.is_Rational or not x.has(sp.sin, sp.cos):
+        return sp.radsimp(x)
+    return sp.N(x, 50)
+
+
+def solve_space(bodies: Sequence[Body3], contacts: Sequence[Contact],
+                tolerance: float | None = None) -> Solution:
+    """Shorthand for ``SpaceCollision(bodies, contacts, tolerance).solve()``."""
+    return SpaceCollision(tuple(bodies), tuple(contacts), tolerance).solve()

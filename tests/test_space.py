@@ -1,0 +1,220 @@
+"""Impacts in three dimensions against hand derivations and against the planar theory.
+
+- the spinning sphere landing on a floor (the case the mechanics bridge used to refuse),
+  by hand: the floor's W is diag(1/m, 1/m + r^2/I, 1/m + r^2/I), the normal impulse
+  (1 + e) m |v_n|, and the contact slides throughout or sticks by comparing the slip
+  with mu (1 + e) |v_n| (1 + m r^2 / I);
+- the same with symbols: the Piecewise of the closed form against that condition;
+- a slender body landing on one end with its motion in a vertical plane: its W couples
+  the normal and the tangent, so the path is integrated, and it must give Routh's exact
+  planar answer (slip, stick or slip reversal) to the integration's tolerance;
+- a body whose slip direction turns: the laws' residuals, the cone (the impulse's size
+  below mu P_n where the direction turned), Newton's law and no energy created.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+import sympy as sp
+
+import rigidimpact as ri
+from rigidimpact.errors import InputError
+from rigidimpact.laws.cone import cone_impact, isotropic, tangents
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.space import Body3
+from rigidimpact.solve.space import SpaceCollision
+
+HALF, FIFTH = sp.Rational(1, 2), sp.Rational(1, 5)
+
+
+def _floor(e=HALF, mu=FIFTH, law="newton", tangential="coulomb"):
+    return Contact(normal=(0, 0, 1), restitution=e, tangential=tangential, law=law,
+                   friction=mu if tangential == "coulomb" else None,
+                   bodies=("floor", "ball"), point=(0, 0, 0))
+
+
+def _sphere(velocity, spin, radius=1, mass=1, inertia=None):
+    return Body3.sphere(mass, radius, (0, 0, radius), velocity, spin, name="ball",
+                        inertia=inertia)
+
+
+def test_the_spinning_sphere_by_hand():
+    # v = (1, 1/2, -2), spin (3, -1, 2): the lowest point slips at v + w x (0, 0, -1)
+    # = (2, 7/2); P_n = (1 + e) * 2 = 3; sticking would need |v_t| / (7/2) = sqrt(65)/7
+    # = 1.15 > mu P_n = 3/5: it slides throughout, P_t = -(3/5) (2, 7/2) / |(2, 7/2)|
+    out = SpaceCollision((Body3.fixed("floor"), _sphere((1, HALF, -2), (3, -1, 2))),
+                         (_floor(),)).solve()
+    r = out.results()
+    slip = sp.Matrix([2, sp.Rational(7, 2)])
+    a, b = -sp.Rational(3, 5) * slip / sp.sqrt(slip.dot(slip))
+    assert (r["contact.normal_impulse"], out.regime) == (3, "slides throughout")
+    assert sp.simplify(r["contact.tangential_impulse_1"] - a) == 0
+    assert sp.simplify(r["contact.tangential_impulse_2"] - b) == 0
+    assert r["contact.tangential_impulse"] == sp.Rational(3, 5)
+    # the centre takes P / m; the spin I^-1 (r x P) with r = (0, 0, -1): (5/2) (b, -a, 0)
+    expected = {"ball.vx": 1 + a, "ball.vy": HALF + b, "ball.vz": 1,
+                "ball.omega_x": 3 + sp.Rational(5, 2) * b,
+                "ball.omega_y": -1 - sp.Rational(5, 2) * a, "ball.omega_z": 2}
+    for key, value in expected.items():
+        assert sp.simplify(r[key] - value) == 0, key
+    assert all(v == 0 for v in out.checks.values())
+
+
+def test_a_sphere_that_stops_slipping_leaves_rolling():
+    # slip (1/2, 0) is less than mu (1 + e) |v_n| (7/2) = 21/10: it sticks before the
+    # end, so its touching point leaves with no slip, and P_t = -(1/2) / (7/2) = -1/7
+    out = SpaceCollision((Body3.fixed("floor"), _sphere((HALF, 0, -2), (0, 0, 0))),
+                         (_floor(),)).solve()
+    r = out.results()
+    assert out.regime == "slides, then sticks"
+    assert (r["contact.tangential_impulse_1"], r["contact.tangential_impulse_2"]) == \
+        (-sp.Rational(1, 7), 0)
+    # rolling: the lowest point's velocity v + w x (0, 0, -r) has x part v_x - w_y r = 0
+    assert r["ball.vx"] - r["ball.omega_y"] * 1 == 0
+
+
+def test_a_hollow_ball_and_the_laws_that_agree_on_a_sphere():
+    # a thin shell (I = 2/3 m r^2): the tangential W is 1 + 3/2 = 5/2; Newton's,
+    # Poisson's and the energetic law agree (the normal does not feel friction)
+    answers = []
+    for law in ("newton", "poisson", "energetic"):
+        out = SpaceCollision((Body3.fixed("floor"), _sphere(
+            (1, HALF, -2), (3, -1, 2), inertia=sp.Rational(2, 3))), (_floor(law=law),)
+        ).solve()
+        answers.append(out.results())
+    assert answers[0] == answers[1] == answers[2]
+    assert answers[0]["ball.vz"] == 1
+
+
+def test_the_closed_form_with_symbols_is_a_piecewise_on_the_hand_condition():
+    m, r, v, mu, e = sp.symbols("m r v mu e", positive=True)
+    sx, sy = sp.symbols("s_x s_y", real=True)
+    W = sp.diag(1 / m, sp.Rational(7, 2) / m, sp.Rational(7, 2) / m)
+    out = cone_impact(W, (-v, sx, sy), e, "newton", mu)
+    p = (1 + e) * m * v
+    assert sp.simplify(out.impulse[0] - p) == 0
+    piece = out.impulse[1]
+    assert isinstance(piece, sp.Piecewise)
+    (slide, condition), (stick, _) = piece.args
+    assert sp.simplify(slide + mu * p * sx / sp.sqrt(sx**2 + sy**2)) == 0
+    assert sp.simplify(stick + sx * m * 2 / 7) == 0
+    # the condition is mu (7/2) (1 + e) v <= |v_t|: true and false at chosen points
+    at = {m: 1, v: 2, e: HALF, mu: FIFTH}
+    assert bool(condition.subs(at | {sx: 2, sy: sp.Rational(7, 2)}))
+    assert not bool(condition.subs(at | {sx: HALF, sy: 0}))
+
+
+def test_the_tangents_are_the_documented_ones():
+    n, t1, t2 = tangents((0, 0, 1))
+    assert (list(t1), list(t2)) == ([1, 0, 0], [0, 1, 0])
+    n, t1, t2 = tangents((1, 1, 0))
+    assert sp.simplify(t1.dot(n)) == 0 and sp.simplify(t2 - n.cross(t1)) == sp.zeros(3, 1)
+    assert t1[2] == 0 and t1[0] > 0  # the x axis's part across n
+
+
+# ---- a slender body in a vertical plane: the 3-D path against Routh's exact answer ----
+
+ROD_AXIS = sp.Matrix([[sp.Rational(4, 5), 0, -sp.Rational(3, 5)], [0, 1, 0],
+                      [sp.Rational(3, 5), 0, sp.Rational(4, 5)]])  # body x along (4, 0, 3)/5
+
+
+def _rod_3d(velocity, omega_y, mu, e, law):
+    rod = Body3.rigid(1, (sp.Rational(1, 100), sp.Rational(1, 3), sp.Rational(1, 3)),
+                      (sp.Rational(4, 5), 0, sp.Rational(3, 5)),
+                      (velocity[0], 0, velocity[1]), (0, omega_y, 0), ROD_AXIS, name="ball")
+    return SpaceCollision((Body3.fixed("floor"), rod), (Contact(
+        normal=(0, 0, 1), restitution=e, tangential="coulomb", friction=mu, law=law,
+        bodies=("floor", "ball"), point=(0, 0, 0)),))
+
+
+def _rod_2d(velocity, omega_y, mu, e, law):
+    # the plane x-z seen as the plane x-y: a turn w_y about y is -w_y about the out-of-plane
+    # axis (x cross z = -y); the moment about y is the body's 1/3
+    rod = ri.Body.rigid(1, sp.Rational(1, 3), (sp.Rational(4, 5), sp.Rational(3, 5)),
+                        velocity, -omega_y, name="rod")
+    return ri.Collision((ri.Body.fixed("floor"), rod), (ri.Contact(
+        normal=(0, 1), restitution=e, tangential="coulomb", friction=mu, law=law,
+        bodies=("floor", "rod"), point=(0, 0)),))
+
+
+PLANAR = [((1, -1), 0, sp.Rational(3, 10)),          # slides forward
+          ((sp.Rational(1, 10), -1), 0, sp.Rational(3, 10)),  # slip stops
+          ((-sp.Rational(1, 5), -1), 1, sp.Rational(1, 10)),  # spins: slip may reverse
+          ((0, -1), -1, sp.Rational(6, 10)),
+          ((2, -sp.Rational(1, 2)), -3, sp.Rational(1, 2))]
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+@pytest.mark.parametrize("velocity,omega_y,mu", PLANAR)
+def test_a_body_in_a_vertical_plane_gives_rouths_planar_answer(velocity, omega_y, mu, law):
+    e = HALF
+    space = _rod_3d(velocity, omega_y, mu, e, law)
+    assert not isotropic(space.W(space.contacts[0]))  # so it is integrated
+    out = space.solve()
+    (flat,) = _rod_2d(velocity, omega_y, mu, e, law).solve(ri.Simultaneous())
+    r, planar = out.results(), flat.results()
+    pairs = {"ball.vx": planar["rod.vx"], "ball.vz": planar["rod.vy"],
+             "ball.omega_y": -planar["rod.omega"], "ball.vy": 0, "ball.omega_x": 0,
+             "ball.omega_z": 0, "contact.normal_impulse": planar["contact.normal_impulse"]}
+    for key, value in pairs.items():
+        assert abs(float(r[key]) - float(value)) < 1e-7, (key, r[key], value)
+    # the course: a slip reversal where Routh's method finds one, sticking where it does
+    assert ("again" in out.regime) == flat.regime.startswith("slip-reversal"), out.regime
+    assert ("sticks" in out.regime) == ("stick" in flat.regime), out.regime
+    # the planar tangent is the normal turned +90 degrees: -x here, where t1 = +x
+    assert abs(float(r["contact.tangential_impulse_1"])
+               + float(planar["contact.tangential_impulse"])) < 1e-7
+
+
+TURNED = sp.Matrix([[2, -1, 2], [2, 2, -1], [-1, 2, 2]]) / 3  # a rotation, rational
+
+
+def test_a_slip_direction_that_turns_obeys_every_law():
+    # a box landing on a corner, slipping obliquely: W's tangential block is neither
+    # isotropic nor uncoupled, so the slip turns; the answer keeps each law
+    box = Body3.rigid(2, (sp.Rational(1, 2), sp.Rational(1, 3), sp.Rational(2, 3)),
+                      (sp.Rational(1, 2), sp.Rational(1, 3), sp.Rational(3, 4)),
+                      (1, sp.Rational(1, 2), -2), (1, -2, sp.Rational(1, 2)),
+                      TURNED, name="ball")
+    for law in ("newton", "poisson", "energetic"):
+        out = SpaceCollision((Body3.fixed("floor"), box), (_floor(
+            mu=sp.Rational(3, 10), law=law),)).solve()
+        r = out.results()
+        assert out.notes and "turns" in out.notes[0], law
+        checks = out.checks
+        scale = max(abs(float(v)) for v in r.values())
+        for key, value in checks.items():
+            assert float(value) < 1e-7 * max(scale, 1), (law, key, value)
+        size = math.hypot(float(r["contact.tangential_impulse_1"]),
+                          float(r["contact.tangential_impulse_2"]))
+        assert size <= 3 / 10 * float(r["contact.normal_impulse"]) * (1 + 1e-9)
+        assert float(r["energy_loss_fraction"]) > 0
+
+
+def test_the_integration_converges_to_the_exact_sphere_answer():
+    W = sp.diag(1, sp.Rational(7, 2), sp.Rational(7, 2))
+    exact = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), HALF, "poisson", FIFTH)
+    errors = []
+    for tolerance in (1e-4, 1e-8, 1e-12):
+        numeric = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), HALF, "poisson", FIFTH,
+                              tolerance=tolerance)
+        errors.append(max(abs(float(a - b)) for a, b in zip(exact.impulse, numeric.impulse,
+                                                            strict=True)))
+    assert errors[0] < 1e-3 and errors[2] < 1e-9
+
+
+def test_bad_3d_input_is_refused_in_one_line():
+    ball = _sphere((1, 0, -1), (0, 0, 0))
+    with pytest.raises(InputError, match="not approaching"):
+        SpaceCollision((Body3.fixed("floor"), _sphere((1, 0, 1), (0, 0, 0))),
+                       (_floor(),)).solve()
+    with pytest.raises(InputError, match="rough"):
+        SpaceCollision((Body3.fixed("floor"), ball), (Contact(
+            normal=(0, 0, 1), restitution=HALF, tangential="rough", friction=FIFTH,
+            tangential_restitution=HALF, bodies=("floor", "ball")),))
+    with pytest.raises(InputError, match="triangle"):
+        Body3.rigid(1, (1, 1, 3))
+    with pytest.raises(InputError, match="three components"):
+        Body3.sphere(1, 1, (0, 0))
