@@ -18,6 +18,7 @@ import math
 
 import pytest
 import sympy as sp
+import sympy.physics.mechanics as me
 
 import rigidimpact as ri
 from rigidimpact.errors import InputError
@@ -218,3 +219,69 @@ def test_bad_3d_input_is_refused_in_one_line():
         Body3.rigid(1, (1, 1, 3))
     with pytest.raises(InputError, match="three components"):
         Body3.sphere(1, 1, (0, 0))
+
+
+# ---- the same bodies as sympy.physics.mechanics systems: the bridge's tangent plane ----
+
+def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton"):
+    """A free rigid body with six speeds (centre velocity, angular velocity in N) built
+    with KanesMethod, striking the floor z = 0 at `point` (from its centre)."""
+    N = me.ReferenceFrame("N")
+    q = me.dynamicsymbols("x y z a b c")
+    u = me.dynamicsymbols("u_x u_y u_z w_x w_y w_z")
+    B = N.orientnew("B", "Body", q[3:], "XYZ")
+    B.set_ang_vel(N, u[3] * N.x + u[4] * N.y + u[5] * N.z)
+    origin = me.Point("O")
+    origin.set_vel(N, 0)
+    C = origin.locatenew("C", q[0] * N.x + q[1] * N.y + q[2] * N.z)
+    C.set_vel(N, u[0] * N.x + u[1] * N.y + u[2] * N.z)
+    P = C.locatenew("P", point[0] * B.x + point[1] * B.y + point[2] * B.z)
+    P.v2pt_theory(C, N, B)
+    tensor = sp.Matrix(inertia)
+    body = me.RigidBody("body", C, B, 1, (me.inertia(
+        B, tensor[0, 0], tensor[1, 1], tensor[2, 2], tensor[0, 1], tensor[1, 2],
+        tensor[0, 2]), C))
+    kane = me.KanesMethod(N, q, u, [a.diff() - b for a, b in zip(q, u, strict=True)])
+    kane.kanes_equations([body], [])
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        P, N.z, restitution=e, tangential="coulomb", friction=mu, law=law, name="floor")],
+        frame=N)
+    return hit.at(dict(zip(q, [*centre, 0, 0, 0], strict=True))).at(
+        dict(zip(u, [*velocity, *spin], strict=True))).solve()
+
+
+def test_the_bridge_answers_the_spinning_sphere_it_used_to_refuse():
+    # the 3-D issue's case: a free sphere (six speeds) on the floor, velocity (1, 1/2, -2),
+    # spin (3, -1, 2), e = 1/2, mu = 1/5: refused before as "can only move straight
+    # across"; its touching point slips at (2, 7/2) in the floor's plane
+    out = _free_body(sp.eye(3) * sp.Rational(2, 5), (0, 0, 1), (1, HALF, -2), (3, -1, 2),
+                     (0, 0, -1), HALF, FIFTH)
+    r = out.results()
+    slip = sp.Matrix([2, sp.Rational(7, 2)])
+    a, b = -sp.Rational(3, 5) * slip / sp.sqrt(slip.dot(slip))
+    by_hand = {"u_x": 1 + a, "u_y": HALF + b, "u_z": 1, "w_x": 3 + sp.Rational(5, 2) * b,
+               "w_y": -1 - sp.Rational(5, 2) * a, "w_z": 2, "floor.normal_impulse": 3}
+    for key, value in by_hand.items():
+        assert sp.simplify(r[key] - value) == 0, key
+    assert out.regime == "slides throughout"
+
+
+def test_a_turned_box_gives_the_same_answer_from_both_sources():
+    # the box whose slip turns: built-in 3-D body and its mechanics twin, one contact
+    # solver, the same speeds to the integration's tolerance
+    corner = (sp.Rational(1, 2), sp.Rational(1, 3), -sp.Rational(3, 4))  # from the centre
+    touching = (0, 0, 0)
+    shifted = Body3.rigid(1, (sp.Rational(1, 2), sp.Rational(1, 3), sp.Rational(2, 3)),
+                          tuple(-x for x in corner), (1, HALF, -2), (1, -2, HALF), TURNED,
+                          name="ball")
+    ours = SpaceCollision((Body3.fixed("floor"), shifted), (Contact(
+        normal=(0, 0, 1), restitution=HALF, tangential="coulomb", friction=sp.Rational(3, 10),
+        bodies=("floor", "ball"), point=touching),)).solve().results()
+    theirs = _free_body(shifted.inertia, tuple(-x for x in corner), (1, HALF, -2),
+                        (1, -2, HALF), corner, HALF, sp.Rational(3, 10)).results()
+    names = dict(zip(["u_x", "u_y", "u_z", "w_x", "w_y", "w_z"],
+                     ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"], strict=True))
+    for theirs_key, ours_key in names.items():
+        assert abs(float(theirs[theirs_key]) - float(ours[f"ball.{ours_key}"])) < 1e-8
+    assert abs(float(theirs["floor.normal_impulse"])
+               - float(ours["contact.normal_impulse"])) < 1e-8

@@ -56,6 +56,7 @@ from sympy.polys.constructor import construct_domain
 from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws.cone import cone_impact, tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.model.impulse import Coordinate
@@ -155,6 +156,9 @@ class SystemImpact:
     # at numbers out of the rationals (sin(3/10), sqrt(2)): every number as a Float of
     # this many digits, chosen before any case analysis (None: exact)
     digits: int | None = None
+    # rows (n, t1, t2) of every contact in turn where a rough or sticking contact's point
+    # can slide across a tangent plane (a 3-D contact; laws.cone.tangents gives t1, t2)
+    J_plane: Any = None
 
     @property
     def u_before(self) -> sp.Matrix:
@@ -166,6 +170,11 @@ class SystemImpact:
             for c in self.contacts:
                 rows += list(self._rows(c))
             object.__setattr__(self, "J", sp.ImmutableMatrix(rows))
+            if any(self._across(c) for c in self.contacts if c.laws.laws[1].grips):
+                plane: list[list[sp.Expr]] = []
+                for c in self.contacts:
+                    plane += self._plane_rows(c)
+                object.__setattr__(self, "J_plane", sp.ImmutableMatrix(plane))
         for i, c in enumerate(self.contacts):
             if all(x == 0 for x in self.J[2 * i:2 * i + 2, :]):
                 raise InputError(f"{c.name}.point", "its velocity does not depend on the "
@@ -195,19 +204,107 @@ class SystemImpact:
             raise InputError(f"{c.name}.point", "its velocity has a part that is not linear "
                              "in the speeds (a driven or moving constraint): not supported")
         n, t = self._unit(c)
-        if c.laws.laws[1].grips:  # friction or stick acts along t: the point must not
-            across = n.cross(t)   # be able to slide across the plane of n and t
-            if any(sp.trigsimp(p.dot(across)) != 0 for p in partials):
-                raise InputError(f"{c.name}.tangential", "the point can slide in two "
-                                 "directions across this normal (a tangent plane, not a "
-                                 "line): friction and stick act along one tangent here, "
-                                 "so they are refused; make the contact smooth, or give a "
-                                 "normal in the plane of the motion")
+        if c.laws.laws[1].grips and self._across(c):  # a tangent plane: t1 of its two
+            n, t, _ = self._plane(c)
         rows = sp.Matrix([[p.dot(n) for p in partials], [p.dot(t) for p in partials]])
         if self.fold is not None:  # along the independent speeds: v = J_all T u
             rows = rows * self.fold[1]
         return ([_no_tan(sp.trigsimp(x)) for x in rows.row(0)],
                 [_no_tan(sp.trigsimp(x)) for x in rows.row(1)])
+
+    def _partials(self, c: PointContact) -> list[Any]:
+        velocity = c.point.vel(self.frame)
+        if c.other is not None:
+            velocity = velocity - c.other.vel(self.frame)
+        speeds = self.u if self.fold is None else self.fold[0]
+        return me.partial_velocity([velocity], list(speeds), self.frame)[0]
+
+    def _across(self, c: PointContact) -> bool:
+        """Whether the contact's point can slide in two directions across its normal (a
+        tangent plane: a 3-D contact), not along one tangent only."""
+        n, t = self._unit(c)
+        if all(sp.trigsimp(x) == 0 for x in t.to_matrix(self.frame)):
+            return True  # the normal along the frame's z: no tangent in the x-y plane
+        across = n.cross(t)
+        return any(sp.trigsimp(p.dot(across)) != 0 for p in self._partials(c))
+
+    def _plane(self, c: PointContact) -> tuple[Any, Any, Any]:
+        """The contact's frame (n, t1, t2) as vectors (:func:`rigidimpact.laws.cone.tangents`
+        applied to the normal's components in the system's frame)."""
+        axes = (self.frame.x, self.frame.y, self.frame.z)
+        return tuple(sum((x * a for x, a in zip(column, axes, strict=True)), me.Vector(0))
+                     for column in tangents(c.normal.to_matrix(self.frame)))
+
+    def _plane_rows(self, c: PointContact) -> list[list[sp.Expr]]:
+        partials = self._partials(c)
+        rows = sp.Matrix([[p.dot(d) for p in partials] for d in self._plane(c)])
+        if self.fold is not None:
+            rows = rows * self.fold[1]
+        return [[_no_tan(sp.trigsimp(x)) for x in rows.row(i)] for i in range(3)]
+
+    def _spatial(self) -> Solution:
+        """One contact with a tangent plane: Coulomb's circular cone (or stick) in
+        contact space (:func:`rigidimpact.laws.cone.cone_impact`), through the system's
+        M: ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2)."""
+        if len(self.contacts) != 1:
+            raise InputError("contacts", "a contact with a tangent plane (3-D) and "
+                             "friction is solved alone so far, not among several contacts")
+        (c,) = self.contacts
+        restitution, tangential = c.laws.laws
+        J = sp.Matrix(self.J_plane)
+        numbers = self._numbers and all(sp.sympify(x).is_number for x in self.u_before)
+        solved = self.M.LUsolve(J.T) if numbers else \
+            sp.Matrix(self.M).LUsolve(J.T).applyfunc(sp.simplify)
+        W = (J * solved).applyfunc(sp.nsimplify if not numbers else lambda x: x)
+        v = J * self.u_before
+        e = c.laws.restitution
+        course: str
+        if tangential.name == "stick":
+            if c.laws.law != "newton":
+                raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
+            P = W.LUsolve(sp.Matrix([-(1 + e) * v[0], -v[1], -v[2]]))
+            course = "sticks"
+        elif tangential.name == "coulomb":
+            out = cone_impact(W, v, e, c.laws.law, c.laws.friction)
+            P, course = out.impulse, out.course
+        else:
+            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law with a "
+                             "tangent plane (3-D) is not solved yet: use coulomb, stick or "
+                             "smooth")
+        after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
+        M = sp.Matrix(self.M)
+        before = (self.u_before.T * M * self.u_before)[0] / 2
+        lost = _small(before - (after.T * M * after)[0] / 2)
+        checks = None
+        if all(sp.sympify(x).is_number for x in (*after, *P, *M, *J)):
+            def num(x: Any) -> Any:
+                return sp.N(x, 50)
+            change = M * (after - self.u_before) - J.T * P
+            v_after = J * after
+            checks = {f"momentum_{k}": abs(num(x)) for k, x in enumerate(change)}
+            checks |= {f"{c.name}.pushes": max(0, -num(P[0])),
+                       f"{c.name}.opens": max(0, -num(v_after[0])),
+                       "energy": max(0, -num(lost)),
+                       "_scale": max(abs(num(x)) for x in (*after, *P, *self.u_before)),
+                       "_kinetic": num(before),
+                       "_tolerance": CHECK_TOLERANCE if all(
+                           x.is_Rational or not x.is_Float for x in P) else 1e-8}
+            if tangential.name == "stick":
+                checks[f"{c.name}.sticks"] = max(abs(num(v_after[1])), abs(num(v_after[2])))
+            else:
+                checks[f"{c.name}.cone"] = max(0, sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
+                                               - num(c.laws.friction) * num(P[0]))
+            if c.laws.law == "newton":
+                checks[f"{c.name}.restitution"] = abs(num(v_after[0] + e * v[0]))
+        solution = Solution(
+            before=(), after=(), impulses={c.name: P[0]},
+            tangential={c.name: _small(sp.sqrt(P[1] ** 2 + P[2] ** 2))},
+            tangent_impulses={c.name: (P[1], P[2])}, contacts=(c.laws,),
+            acted=(c.name,), regime=course, courses=(f"{c.name}: {course}",),
+            energies=(before, lost, lost / before),
+            speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
+            speeds_after=sp.ImmutableMatrix(self._all(after)), given_checks=checks)
+        return solution if checks is None else certified(solution)
 
     @cached_property
     def _stand_ins(self) -> dict[sp.Basic, sp.Dummy]:
@@ -279,6 +376,8 @@ class SystemImpact:
                              f"{', '.join(f'{float(x):.6g}' for x in normals)} >= 0): "
                              "there is no impact")
         laws = [c.laws.laws for c in self.contacts]
+        if self.J_plane is not None:
+            return self._spatial()
         if len(self.contacts) == 1:
             if laws[0][1].solved_by_regimes:
                 return self._by_regimes()
@@ -554,6 +653,7 @@ class SystemImpact:
                          for c in self.contacts)
         fold = None if self.fold is None else (self.fold[0], self.fold[1].xreplace(put))
         M, J = self.M.xreplace(put), self.J.xreplace(put)
+        plane = None if self.J_plane is None else self.J_plane.xreplace(put)
         numbers = [*M, *J, *speeds]
         digits = None
         if all(sp.sympify(x).is_number for x in numbers) and not _exact_enough(numbers):
@@ -566,11 +666,12 @@ class SystemImpact:
                 return sp.N(x, digits)
 
             M, J = M.applyfunc(num), J.applyfunc(num)
+            plane = None if plane is None else plane.applyfunc(num)
             speeds = tuple(num(x) for x in speeds)
             if fold is not None:
                 fold = (fold[0], fold[1].applyfunc(num))
         return SystemImpact(self.frame, self.q, self.u, M, contacts, speeds, J, fold,
-                            digits)
+                            digits, plane)
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
                    normal: dict[str, sp.Expr], along: dict[str, sp.Expr],
