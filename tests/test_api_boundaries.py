@@ -58,9 +58,12 @@ def test_the_mechanics_bridge_refuses_in_one_line(call, needle):
     assert needle in str(info.value)
 
 
-def test_friction_across_a_tangent_plane_is_refused_until_3d_friction():
+def test_friction_across_a_tangent_plane_takes_the_circular_cone():
     # a point that can move in three directions meets a floor: its tangent plane has two
-    # directions, and friction along one of them only would be a wrong number
+    # directions, and friction acts in both (Coulomb's circular cone). By hand, with
+    # n = y, t1 = x, t2 = n x t1 = -z: the slip (v.t1, v.t2) = (1, -1), P_n = (1 + e) 1
+    # = 3/2, and mu P_n = 3/20 < |slip| / W_tt = sqrt(2): it slides throughout, P_t =
+    # -(3/20) (1, -1) / sqrt(2)
     x, y, z, vx, vy, vz = me.dynamicsymbols("x y z vx vy vz")
     N3 = me.ReferenceFrame("N3")
     point = me.Point("ball")
@@ -68,10 +71,12 @@ def test_friction_across_a_tangent_plane_is_refused_until_3d_friction():
     kane = me.KanesMethod(N3, [x, y, z], [vx, vy, vz],
                           [x.diff() - vx, y.diff() - vy, z.diff() - vz])
     kane.kanes_equations([me.Particle("b", point, 1)], [])
-    with pytest.raises(InputError, match="two directions"):
-        ri.mechanics.impact(kane, [C(point, N3.y, restitution=sp.Rational(1, 2),
-                                     tangential="coulomb", friction=sp.Rational(1, 10))],
-                            frame=N3).solve()
+    rough = ri.mechanics.impact(kane, [C(point, N3.y, restitution=sp.Rational(1, 2),
+                                         tangential="coulomb", friction=sp.Rational(1, 10))],
+                                frame=N3).at({vx: 1, vy: -1, vz: 1}).solve()
+    step = sp.Rational(3, 20) / sp.sqrt(2)
+    assert [sp.simplify(a - b) for a, b in zip(
+        rough.speeds_after, [1 - step, sp.Rational(1, 2), 1 - step], strict=True)] == [0] * 3
     smooth = ri.mechanics.impact(kane, [C(point, N3.y, restitution=sp.Rational(1, 2))],
                                  frame=N3).at({vx: 0, vy: -1, vz: 1}).solve()
     assert list(smooth.speeds_after) == [0, sp.Rational(1, 2), 1]  # by Newton's law
