@@ -172,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
           f"-> {out / 'verification.md'}")
 
     derivations = [ri.derive(name) for name in ri.PROBLEMS]
-    derivations += [ri.load_scene(p).derivation() for p in sorted(HERE.glob("*.toml"))]
+    derivations += [ri.load_any(p).derivation() for p in sorted(HERE.glob("*.toml"))]
     pdf = shutil.which("pdflatex") is not None
     written = latex.write_export(out / "latex", derivations, checks, pdf=pdf)
     print(f"LaTeX: {len(written)} files -> {out / 'latex'}"

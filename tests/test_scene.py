@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import tomllib
 import pytest
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.scenes.scene import load_scene, parse_expression, parse_scene
+from rigidimpact.scenes.scene import is_spatial, load_scene, parse_expression, parse_scene
 
 DERIVATIONS = Path(__file__).resolve().parent.parent / "derivations"
 
@@ -97,7 +98,17 @@ def test_scene_barbell_matches_the_built_in_problem():
     assert sp.simplify(scene["bar.omega"] - built_in["omega_z"]) == 0
 
 
-@pytest.mark.parametrize("path", sorted(DERIVATIONS.glob("*.toml")), ids=lambda p: p.stem)
+PLANAR = [p for p in sorted(DERIVATIONS.glob("*.toml"))
+          if not is_spatial(tomllib.loads(p.read_text(encoding="utf-8")))]
+
+
+def test_the_3d_scenes_are_apart_and_checked_in_their_own_tests():
+    # tests/test_space.py holds every shipped 3-D scene to its laws and hand answers
+    spatial = {p.stem for p in DERIVATIONS.glob("*.toml")} - {p.stem for p in PLANAR}
+    assert spatial == {"spinning-ball-floor", "box-corner-floor"}
+
+
+@pytest.mark.parametrize("path", PLANAR, ids=lambda p: p.stem)
 def test_every_shipped_scene_derives_and_obeys_the_laws(path):
     scene = load_scene(path)
     if len(scene.contacts) > 1 or scene.joints:

@@ -14,17 +14,21 @@
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import pytest
 import sympy as sp
 import sympy.physics.mechanics as me
 
 import rigidimpact as ri
+from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import cone_impact, isotropic, tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import Body3
+from rigidimpact.scenes.space import unknowns_at
 from rigidimpact.solve.space import SpaceCollision
 
 HALF, FIFTH = sp.Rational(1, 2), sp.Rational(1, 5)
@@ -285,3 +289,61 @@ def test_a_turned_box_gives_the_same_answer_from_both_sources():
         assert abs(float(theirs[theirs_key]) - float(ours[f"ball.{ours_key}"])) < 1e-8
     assert abs(float(theirs["floor.normal_impulse"])
                - float(ours["contact.normal_impulse"])) < 1e-8
+
+
+# ---- 3-D scene files: derive and evaluate from the command line and from Python ----
+
+DERIVATIONS = Path(__file__).resolve().parents[1] / "derivations"
+
+
+@pytest.mark.parametrize("name", ["spinning-ball-floor", "box-corner-floor"])
+def test_a_3d_scene_derives_with_equations_that_hold(name):
+    scene = ri.load_any(DERIVATIONS / f"{name}.toml")
+    assert isinstance(scene, ri.SpaceScene)
+    d = scene.derivation()
+    values = dict(scene.values) if name == "box-corner-floor" else {}
+    collision = scene.collision(values or None)
+    at = unknowns_at(collision, d.solution)
+    assert set(d.unknowns) == set(at)
+    for eq in d.equations:
+        residual = sp.Matrix([eq.residual]) if not isinstance(eq.residual, sp.MatrixBase) \
+            else sp.Matrix(eq.residual)
+        residual = residual.xreplace(at)
+        if name == "spinning-ball-floor":  # closed forms with symbols, in both courses
+            for point in ({"m": 1, "r": 1, "e": HALF, "mu": FIFTH},
+                          {"m": 2, "r": HALF, "e": sp.Rational(1, 3), "mu": 1}):
+                numbers = {scene.symbols[k]: v for k, v in point.items()}
+                assert all(abs(sp.N(x.xreplace(numbers), 30)) < 1e-25 for x in residual), \
+                    eq.label
+        else:
+            assert all(abs(float(x)) < 1e-12 for x in residual), eq.label
+
+
+def test_the_spinning_ball_scene_gives_the_hand_answer_from_the_command_line(capsys):
+    assert main(["evaluate", str(DERIVATIONS / "spinning-ball-floor.toml"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    slip = math.hypot(2, 3.5)
+    assert out["ball.vz"] == pytest.approx(1.0, abs=1e-15)
+    assert out["contact.tangential_impulse_1"] == pytest.approx(-0.6 * 2 / slip, rel=1e-14)
+    assert out["ball.omega_y"] == pytest.approx(-1 + 2.5 * 0.6 * 2 / slip, rel=1e-14)
+    assert out["regime"] == "slides throughout"
+    # the second course: a small slip sticks before the end
+    assert main(["evaluate", str(DERIVATIONS / "spinning-ball-floor.toml"), "--set", "mu=1",
+                 "--json"]) == 0
+    stuck = json.loads(capsys.readouterr().out)
+    assert stuck["regime"] == "slides, then sticks"
+    # rolling after: the lowest point's slip (v_x - w_y r, v_y + w_x r) is zero
+    assert abs(stuck["ball.vx"] - stuck["ball.omega_y"]) < 1e-14
+    assert abs(stuck["ball.vy"] + stuck["ball.omega_x"]) < 1e-14
+
+
+def test_a_3d_scene_is_refused_in_one_line_where_it_is_not_read(tmp_path, capsys):
+    with pytest.raises(InputError, match="3-D scene"):
+        ri.load_scene(DERIVATIONS / "spinning-ball-floor.toml")
+    bad = (DERIVATIONS / "box-corner-floor.toml").read_text().replace(
+        'inertia = ["1/2", "1/3", "2/3"]', 'inertia = ["1/2", "1/3", "3"]')
+    path = tmp_path / "bad.toml"
+    path.write_text(bad)
+    assert main(["evaluate", str(path)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "triangle" in err[0]

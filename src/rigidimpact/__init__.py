@@ -24,11 +24,15 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.laws.law import Equation as Equation
     from rigidimpact.model.bodies import Body as Body
     from rigidimpact.model.bodies import join as join
+    from rigidimpact.model.space import Body3 as Body3
     from rigidimpact.paper.problems import PROBLEMS as PROBLEMS
     from rigidimpact.paper.problems import derive as derive
     from rigidimpact.scenes.scene import Scene as Scene
     from rigidimpact.scenes.scene import load_scene as load_scene
     from rigidimpact.scenes.scene import parse_scene as parse_scene
+    from rigidimpact.scenes.space import SpaceScene as SpaceScene
+    from rigidimpact.scenes.space import load_any as load_any
+    from rigidimpact.scenes.space import load_space_scene as load_space_scene
     from rigidimpact.simulate import make_plan as make_plan
     from rigidimpact.simulate import run as run
     from rigidimpact.solve.collision import Collision as Collision
@@ -43,6 +47,7 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.solve.derivation import Derivation as Derivation
     from rigidimpact.solve.impact import Impact as Impact
     from rigidimpact.solve.solution import Solution as Solution
+    from rigidimpact.solve.space import SpaceCollision as SpaceCollision
     from rigidimpact.symbolic.notation import symbol as symbol
     from rigidimpact.verify import run_checks as run_checks
 
@@ -63,6 +68,9 @@ _PUBLIC = {
     "Outcome": "solve.collision", "Rule": "solve.collision", "chain": "solve.collision",
     "cluster": "solve.collision",
     "fan": "solve.collision",
+    # three dimensions: bodies with spin, one rough contact with a circular cone
+    "Body3": "model.space", "SpaceCollision": "solve.space", "SpaceScene": "scenes.space",
+    "load_space_scene": "scenes.space", "load_any": "scenes.space",
     # scenes and checks
     "Scene": "scenes.scene", "load_scene": "scenes.scene", "parse_scene": "scenes.scene",
     "run_checks": "verify",

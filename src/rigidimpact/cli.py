@@ -42,12 +42,12 @@ class _Parser(argparse.ArgumentParser):
 def _derivation(target: str):
     """A built-in problem by name, or a scene file by path."""
     from rigidimpact.paper.problems import PROBLEMS, derive
-    from rigidimpact.scenes.scene import load_scene
+    from rigidimpact.scenes.space import load_any
 
     if target in PROBLEMS:
         return derive(target)
     if target.endswith(".toml") or Path(target).exists():
-        return load_scene(target).derivation()
+        return load_any(target).derivation()
     raise InputError("problem", f"unknown problem {target!r}; use one of "
                      f"{', '.join(PROBLEMS)} or a scene file (.toml)")
 
@@ -74,7 +74,9 @@ def _print_json(data: Any) -> None:
 
 
 def _has_regimes(d: Any) -> bool:
-    return d.solution is not None and d.solution.contact.frictional
+    # a 3-D contact's course is one of its setup lines (its cone is not Routh's diagram)
+    return d.solution is not None and d.solution.contact.frictional and \
+        not d.solution.tangent_impulses
 
 
 def _regime_list(d: Any) -> list[tuple[str, tuple, Any]]:
@@ -256,13 +258,13 @@ def _settings(defaults: Any, settings: Sequence[str]) -> tuple[dict, dict]:
 def _evaluation(target: str, settings: Sequence[str], dps: int | None):
     """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
     from rigidimpact.paper.problems import PROBLEMS
-    from rigidimpact.scenes.scene import load_scene
+    from rigidimpact.scenes.space import load_any
 
     if target in PROBLEMS:
         derivation = _derivation(target)
         values, sources = _settings({}, settings)
         return derivation.evaluate(values, dps, sources)
-    scene = load_scene(target)
+    scene = load_any(target)
     values, sources = _settings(scene.values, settings)
     return scene.evaluate(values, sources, dps)
 

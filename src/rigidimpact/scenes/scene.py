@@ -61,9 +61,20 @@ from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression"]
+__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression", "is_spatial"]
 
 ASSUMPTIONS = ("positive", "nonnegative", "negative", "nonpositive", "real", "nonzero")
+
+
+def is_spatial(data: Mapping[str, Any]) -> bool:
+    """Whether a scene's tables give any vector three components (a 3-D scene, read by
+    :mod:`rigidimpact.scenes.space`)."""
+    tables = [t for t in data.get("bodies", []) if isinstance(t, dict)]
+    if isinstance(data.get("contact"), dict):
+        tables.append(data["contact"])
+    tables += [t for t in data.get("contacts", []) if isinstance(t, dict)]
+    return any(isinstance(t.get(k), list) and len(t[k]) == 3
+               for t in tables for k in ("position", "velocity", "spin", "point", "normal"))
 
 
 def parse_expression(value: Any, where: str,
@@ -686,6 +697,9 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", f"malformed TOML: {exc}") from None
+    if is_spatial(data):
+        raise InputError("scene", "a 3-D scene (vectors with three components): read it "
+                         "with rigidimpact.load_space_scene; derive and evaluate read both")
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
                "simulate", "joints"}
     for key in data:

@@ -1,0 +1,339 @@
+"""Three-dimensional scenes: a scene file whose vectors have three components.
+
+The format is the plane's, one dimension up (docs/scenes.md, "Three dimensions"):
+bodies of shape ``sphere`` (``mass``, ``radius``, optional central ``inertia``),
+``rigid`` (``mass``, ``inertia`` as three principal moments or a 3 x 3 table,
+``orientation = { axis = [..], angle = ".." }``) or ``fixed``, each free one with
+``position``, ``velocity`` and ``spin = [wx, wy, wz]``; one ``[contact]`` with its two
+``bodies``, its ``point`` and ``normal`` (three components each), ``restitution``,
+``law`` and ``tangential`` (smooth, stick or coulomb with ``friction``). ``[impact]``
+may set ``tolerance`` to follow the contact numerically even where a closed form exists.
+
+Text from the file is read by the project's bounded expression parser, never by eval.
+"""
+
+from __future__ import annotations
+
+import time
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import Equation
+from rigidimpact.model.space import SPEEDS, Body3
+from rigidimpact.scenes.scene import (
+    Scene,
+    _symbols_table,
+    _table,
+    _values_table,
+    is_spatial,
+    load_scene,
+    parse_expression,
+    parse_scene,
+)
+from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
+from rigidimpact.solve.solution import Solution
+from rigidimpact.solve.space import SpaceCollision
+
+__all__ = ["SpaceScene", "parse_space_scene", "load_space_scene", "load_any", "is_spatial"]
+
+BODY_FIELDS = {"sphere": ("name", "shape", "mass", "radius", "inertia", "position",
+                          "velocity", "spin"),
+               "rigid": ("name", "shape", "mass", "inertia", "orientation", "position",
+                         "velocity", "spin"),
+               "fixed": ("name", "shape")}
+CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
+                  "friction")
+
+
+@dataclass(frozen=True)
+class SpaceScene:
+    """A 3-D scene: its bodies and its contact, with symbols and values."""
+
+    title: str
+    symbols: Mapping[str, sp.Symbol]
+    values: Mapping[sp.Symbol, sp.Expr]
+    bodies: tuple[Body3, ...]
+    contact: Contact
+    name: str = "scene"
+    tolerance: float | None = None
+    used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
+
+    @property
+    def data_symbols(self) -> dict[str, sp.Symbol]:
+        return {str(s): s for s in sorted(self.used, key=str)}
+
+    def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
+        problem = SpaceCollision(self.bodies, (self.contact,), self.tolerance)
+        return problem.at(values) if values else problem
+
+    def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
+                   printed: bool = True) -> Derivation:
+        """The impact in closed form where it has one (every law, Coulomb's cone when the
+        slip cannot turn), else at `values` (the scene's ``[values]`` by default): the
+        laws printed in vector form, the speeds after and the impulses."""
+        start = time.perf_counter()
+        notes: tuple[str, ...] = ()
+        try:
+            solution = self.collision(values).solve()
+        except InputError as symbolic:
+            if values is not None or "give numbers" not in symbolic.message:
+                raise
+            if not self.values:
+                raise InputError("values", "this contact is followed numerically (its slip "
+                                 "direction may turn): give the scene [values]") from None
+            values = self.values
+            solution = self.collision(values).solve()
+            notes = ("solved at the scene's [values]: the slip direction may turn, so the "
+                     "contact is followed numerically",)
+        collision = self.collision(values)
+        setup = tuple(_described(b) for b in self.bodies) + (_contact_words(self.contact),)
+        setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
+        equations = _equations(collision) if printed else ()
+        return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
+                          tuple(unknowns_at(collision, solution)),
+                          solution.results(), solution=solution,
+                          seconds=time.perf_counter() - start,
+                          warnings=tuple(solution.warnings))
+
+    def evaluate(self, settings: Mapping[str, Any], sources: Mapping[str, str],
+                 dps: int | None = None) -> Evaluation:
+        """Every result in numbers at `settings` (names to values; the scene's
+        ``[values]`` are the defaults), with the course and the checks."""
+        exact = read_values(settings, dict(sources), self.data_symbols, (), self.name)
+        missing = sorted(str(s) for s in self.used if s not in exact)
+        if missing:
+            raise InputError("values", f"give a value for {', '.join(missing)}")
+        solution = self.collision(exact).solve()
+        digits = dps or 17
+        numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
+        extra: dict[str, Any] = {"rule": "one contact", "acted": list(solution.acted)}
+        if solution.checks:
+            extra["checks"] = {k: float(v) for k, v in solution.checks.items()}
+        if solution.courses:
+            extra["courses"] = list(solution.courses)
+        if solution.notes:
+            extra["notes"] = list(solution.notes)
+        return Evaluation(numbers, tuple(solution.warnings), solution.regime, extra)
+
+
+def _described(b: Body3) -> str:
+    if b.support == "fixed":
+        return f"{b.name}: fixed"
+    shape = f"sphere of radius {b.radius}" if b.radius is not None else "rigid body"
+    return (f"{b.name}: {shape}, mass {b.mass}, central inertia {list(b.inertia)}, centre "
+            f"{list(b.position)}, velocity {list(b.velocity)}, spin {list(b.spin)}")
+
+
+def _contact_words(c: Contact) -> str:
+    law = {"smooth": "smooth", "stick": "sticking (no slip after)",
+           "coulomb": f"Coulomb friction, circular cone, mu = {c.friction}"}[c.tangential]
+    return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
+            f"{list(c.normal)}, {c.law.capitalize()}'s restitution e = {c.restitution}, {law}; "
+            "tangents "
+            "t1 (the x axis across n, or the y axis's), t2 = n x t1")
+
+
+def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
+    """The laws in vector form, each holding at the solution (tested): every free body's
+    momentum and angular momentum about its centre against the contact impulse
+    ``P = P_n n + P_t1 t1 + P_t2 t2`` (world frame), and the contact's restitution law
+    where it is Newton's."""
+    (c,) = collision.contacts
+    frame = sp.Matrix(c.frame)
+    P = sp.Matrix(IMPULSE)
+    impulse = frame.T * P
+    out = []
+    for body in collision.free:
+        sign = 1 if body.name == c.second else -1
+        after = sp.Matrix(_after(collision, body))
+        arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+        out.append(Equation(f"momentum of {body.name}", "",
+                            sp.ImmutableMatrix(body.mass * (after[:3, 0]
+                                                            - sp.Matrix(body.velocity))),
+                            sp.ImmutableMatrix(sign * impulse), law="momentum"))
+        out.append(Equation(f"angular momentum of {body.name} about its centre", "",
+                            sp.ImmutableMatrix(sp.Matrix(body.inertia) * (
+                                after[3:, 0] - sp.Matrix(body.spin))),
+                            sp.ImmutableMatrix(sign * arm.cross(impulse)), law="momentum"))
+    if c.law == "newton":
+        J = collision.rows(c)
+        after = sp.Matrix([x for b in collision.free for x in _after(collision, b)])
+        out.append(Equation(f"Newton's restitution at {c.name}", "", (J * after)[0],
+                            -c.restitution * (J * collision.u_before)[0], law="restitution"))
+    return tuple(out)
+
+
+IMPULSE = sp.symbols("P_n P_t1 P_t2")  # the contact's impulse along n, t1, t2
+AFTER = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+
+
+def _after(collision: SpaceCollision, body: Body3) -> list[sp.Symbol]:
+    """The printed unknowns: a body's speeds after (named by the body where several
+    move)."""
+    named = len(collision.free) > 1
+    return [sp.Symbol(f"{s}^+" + (f"_{body.name}" if named else "")) for s in AFTER]
+
+
+def unknowns_at(collision: SpaceCollision, solution: Solution) -> dict[sp.Symbol, sp.Expr]:
+    """The printed equations' unknowns at the solution (for checking them)."""
+    (c,) = collision.contacts
+    r = solution.results()
+    values = {x: r[f"{b.name}.{s}"] for b in collision.free
+              for x, s in zip(_after(collision, b), SPEEDS, strict=True)}
+    values |= dict(zip(IMPULSE, (r[f"{c.name}.normal_impulse"], r[f"{c.name}.tangential_impulse_1"],
+                           r[f"{c.name}.tangential_impulse_2"]), strict=True))
+    return values
+
+
+def _vector3(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
+    if not isinstance(value, list) or len(value) != 3:
+        raise InputError(where, "expected a list of three components [x, y, z]")
+    return tuple(parse_expression(c, f"{where}[{i}]", symbols) for i, c in enumerate(value))
+
+
+def _read_body(table: Any, index: int, symbols: Mapping[str, sp.Symbol]) -> Body3:
+    place = f"bodies[{index}]"
+    if not isinstance(table, dict):
+        raise InputError(place, "must be a table")
+    shape = table.get("shape")
+    if shape not in BODY_FIELDS:
+        raise InputError(f"{place}.shape", f"a 3-D scene's shapes are "
+                         f"{', '.join(BODY_FIELDS)}, not {shape!r}")
+    for key in table:
+        if key not in BODY_FIELDS[shape]:
+            raise InputError(f"{place}.{key}", f"unknown field for a {shape}; expected "
+                             f"{', '.join(BODY_FIELDS[shape])}")
+    name = table.get("name", f"body{index}")
+    if not isinstance(name, str) or not name.isidentifier():
+        raise InputError(f"{place}.name", "must be an identifier")
+    if shape == "fixed":
+        return Body3.fixed(name)
+
+    def scalar(key: str) -> sp.Expr:
+        if key not in table:
+            raise InputError(f"{place}.{key}", "required")
+        return parse_expression(table[key], f"{place}.{key}", symbols)
+
+    def vector(key: str) -> tuple:
+        return _vector3(table.get(key, [0, 0, 0]), f"{place}.{key}", symbols)
+
+    position, velocity, spin = vector("position"), vector("velocity"), vector("spin")
+    if shape == "sphere":
+        moment = scalar("inertia") if "inertia" in table else None
+        return Body3.sphere(scalar("mass"), scalar("radius"), position, velocity, spin,
+                            name, inertia=moment)
+    raw = table.get("inertia")
+    if not isinstance(raw, list) or len(raw) != 3:
+        raise InputError(f"{place}.inertia", "three principal moments [I1, I2, I3] or a "
+                         "3 x 3 table [[..], [..], [..]]")
+    if all(isinstance(row, list) for row in raw):
+        inertia: Any = sp.Matrix([list(_vector3(row, f"{place}.inertia[{i}]", symbols))
+                                  for i, row in enumerate(raw)])
+    else:
+        inertia = _vector3(raw, f"{place}.inertia", symbols)
+    orientation = None
+    if "orientation" in table:
+        spec = table["orientation"]
+        if not isinstance(spec, dict) or set(spec) != {"axis", "angle"}:
+            raise InputError(f"{place}.orientation", "a table { axis = [x, y, z], angle = "
+                             "\"30 deg\" }: the turn from the body's axes to the scene's")
+        orientation = (_vector3(spec["axis"], f"{place}.orientation.axis", symbols),
+                       parse_expression(spec["angle"], f"{place}.orientation.angle",
+                                        symbols))
+    return Body3.rigid(scalar("mass"), inertia, position, velocity, spin, orientation, name)
+
+
+def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol]) -> Contact:
+    place = "contact"
+    if not isinstance(table, dict):
+        raise InputError(place, "must be a table")
+    for key in table:
+        if key not in CONTACT_FIELDS:
+            raise InputError(f"{place}.{key}", f"unknown field; expected "
+                             f"{', '.join(CONTACT_FIELDS)}")
+    for key in ("bodies", "normal", "restitution"):
+        if key not in table:
+            raise InputError(f"{place}.{key}", "required in a 3-D scene")
+    bodies = table["bodies"]
+    if not isinstance(bodies, list) or len(bodies) != 2 or \
+            not all(isinstance(b, str) for b in bodies):
+        raise InputError(f"{place}.bodies", "two body names")
+    friction = {"friction": parse_expression(table["friction"], f"{place}.friction",
+                                             symbols)} if "friction" in table else {}
+    return Contact(_vector3(table["normal"], f"{place}.normal", symbols),
+                   parse_expression(table["restitution"], f"{place}.restitution", symbols),
+                   table.get("tangential", "smooth"), table.get("law", "newton"),
+                   table.get("name", "contact"), bodies=tuple(bodies),
+                   point=_vector3(table.get("point", [0, 0, 0]), f"{place}.point", symbols),
+                   **friction)
+
+
+def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
+    """Read a 3-D scene from TOML text (see the module's text)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError("scene", f"malformed TOML: {exc}") from None
+    allowed = {"title", "symbols", "values", "bodies", "contact", "impact"}
+    for key in data:
+        if key not in allowed:
+            raise InputError(key, f"unknown section in a 3-D scene; expected "
+                             f"{', '.join(sorted(allowed))}")
+    title = data.get("title", name)
+    if not isinstance(title, str):
+        raise InputError("title", "must be text")
+    symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
+    values = _values_table(_table(data, "values", "name = number"), symbols)
+    raw = data.get("bodies")
+    if not isinstance(raw, list) or len(raw) < 2:
+        raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
+    bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
+    contact = _read_contact(data.get("contact"), symbols)
+    tolerance = None
+    impact = _table(data, "impact", "settings")
+    for key, value in impact.items():
+        if key != "tolerance":
+            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes tolerance only")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                not 1e-14 <= value <= 1e-2:
+            raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
+        tolerance = float(value)
+    used = frozenset().union(*(x.free_symbols for b in bodies for x in (
+        b.mass, *b.inertia, *b.position, *b.velocity, *b.spin)
+        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for x in (
+            contact.restitution, contact.friction or 0, *contact.point, *contact.normal)))
+    scene = SpaceScene(title, symbols, values, bodies, contact, name, tolerance, used)
+    SpaceCollision(bodies, (contact,), tolerance)  # its bodies and contact agree
+    return scene
+
+
+def load_space_scene(path: str | Path) -> SpaceScene:
+    """Read a 3-D scene file."""
+    return parse_space_scene(_read(path), Path(path).stem)
+
+
+def load_any(path: str | Path) -> Scene | SpaceScene:
+    """A scene file, planar or 3-D (three-component vectors make it 3-D)."""
+    text = _read(path)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError:
+        return load_scene(path)  # the planar reader says what is malformed
+    if is_spatial(data):
+        return parse_space_scene(text, Path(path).stem)
+    return parse_scene(text, Path(path).stem)
+
+
+def _read(path: str | Path) -> str:
+    try:
+        return Path(path).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(str(path), f"cannot read the scene file: "
+                         f"{getattr(exc, 'strerror', None) or exc}") from None
