@@ -280,12 +280,16 @@ def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: str, mu: float,
         stops.direction = -1.0  # type: ignore[attr-defined]
         turns.direction = -1.0  # type: ignore[attr-defined]
         run = solve_ivp(rhs, (p, p + horizon), y, method="DOP853", rtol=tolerance,
-                        atol=tolerance * scale * 1e-3, events=events)
+                        atol=tolerance * scale * 1e-3, events=events, dense_output=True)
         steps += len(run.t)
-        if kind == "slip":
-            s_path = run.y[1:3] / np.linalg.norm(run.y[1:3], axis=0)
-            angles = np.unwrap(np.arctan2(s_path[1], s_path[0]))
-            turned += float(abs(angles[-1] - angles[0]))
+        if kind == "slip":  # the turn while slipping (not the flip as the slip stops)
+            dense = run.sol(np.linspace(run.t[0], run.t[-1], 400))[1:3]
+            norms = np.linalg.norm(dense, axis=0)
+            kept = norms > 100 * floor
+            if kept.sum() > 1:
+                s_path = dense[:, kept] / norms[kept]
+                angles = np.unwrap(np.arctan2(s_path[1], s_path[0]))
+                turned += float(abs(angles[-1] - angles[0]))
         p, y = float(run.t[-1]), run.y[:, -1]
         fired = {ev.__name__ for ev, t in zip(events, run.t_events, strict=True) if len(t)}
         if "finish" in fired:  # the restitution law ends the impact

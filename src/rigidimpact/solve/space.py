@@ -149,10 +149,11 @@ class SpaceCollision:
             out: ConeImpact = cone_impact(W, v, e, law, c.friction, self.tolerance)
             P, course, turned = out.impulse, out.course, out.turned
             if not out.exact:
-                notes.append(f"the slip direction turns during the impact (by "
-                             f"{turned * 180 / 3.141592653589793:.4g} degrees): the path is "
-                             f"integrated in the normal impulse to a relative tolerance of "
-                             f"{out.tolerance:g} ({out.steps} steps); course: {course}")
+                notes.append(f"the contact's path is integrated in the normal impulse to "
+                             f"a relative tolerance of {out.tolerance:g} ({out.steps} steps; "
+                             f"the slip direction turned by "
+                             f"{turned * 180 / 3.141592653589793:.4g} degrees); course: "
+                             f"{course}")
         P = P.applyfunc(sp.radsimp)
         u_after = (self.u_before + self.M_inverse * J.T * P).applyfunc(
             lambda x: sp.piecewise_fold(sp.radsimp(sp.expand(x))))
