@@ -45,7 +45,7 @@ def _cases() -> dict[str, tuple[tuple, dict[str, float]]]:
     sphere = (Body3.fixed("floor"), Body3.sphere(1, 1, (0, 0, 1), (HALF, 0, -2),
                                                  (0, 1, sp.Rational(1, 3)), name="body"))
     sphere_case = (sphere, (_floor(sp.Rational(1, 5)),))
-    exact = SpaceCollision(*sphere_case).solve().results()
+    exact = SpaceCollision(sphere_case[0], sphere_case[1]).solve().results()
     rod = Body3.rigid(1, (sp.Rational(1, 100), sp.Rational(1, 3), sp.Rational(1, 3)),
                       (sp.Rational(4, 5), 0, sp.Rational(3, 5)), (sp.Rational(1, 10), 0, -1),
                       (0, 0, 0), ROD_AXIS, name="body")
@@ -61,7 +61,7 @@ def _cases() -> dict[str, tuple[tuple, dict[str, float]]]:
                       (HALF, sp.Rational(1, 3), sp.Rational(3, 4)), (1, HALF, -2),
                       (1, -2, HALF), TURNED, name="body")
     box_case = ((Body3.fixed("floor"), box), (_floor(sp.Rational(3, 10), "poisson"),))
-    reference = SpaceCollision(*box_case, tolerance=1e-13).solve().results()
+    reference = SpaceCollision(box_case[0], box_case[1], 1e-13).solve().results()
     return {"sphere (exact: closed form)": (sphere_case, exact),
             "planar rod, slip reverses (exact: Routh)": (rod_case, routh),
             "turning box (reference: 1e-13)": (box_case, reference)}
@@ -78,7 +78,7 @@ def accuracy_ladder(tolerances: tuple[float, ...] = TOLERANCES,
             times, out = [], None
             for _ in range(repeats):
                 start = time.perf_counter()
-                out = SpaceCollision(*case, tolerance=tolerance).solve()
+                out = SpaceCollision(case[0], case[1], tolerance).solve()
                 times.append(time.perf_counter() - start)
             assert out is not None
             r = out.results()
