@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test lint notebooks bench lab clean
+.PHONY: run test lint notebooks bench lab clean peers
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -27,9 +27,16 @@ lint: $(STAMP)  ## ruff, the import layers (import-linter), and mypy over the pa
 notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before committing
 	$(PY) notebooks/refresh.py notebooks/*.ipynb
 
+# pooltool 0.6.0 pins a development build of panda3d that no registry serves: it is
+# installed without its pins, then its requirements with a released panda3d
 $(VENV)/.peers-stamp: $(STAMP)
 	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
+	$(PY) -m pip install --quiet --no-deps pooltool-billiards==0.6.0
+	$(PY) -m pip install --quiet -c constraints.txt panda3d==1.10.16 panda3d-gltf \
+		panda3d-simplepbr numpy-quaternion cattrs h5py msgpack msgpack-numpy rich pyyaml
 	touch $@
+
+peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool): make test then runs their comparisons
 
 bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench

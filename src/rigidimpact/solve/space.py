@@ -45,6 +45,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import ConeImpact, cone_impact
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import SPEEDS, Body3
+from rigidimpact.solve.certificate import FLOAT_TOLERANCE
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
@@ -217,8 +218,9 @@ class SpaceCollision:
         sizes = [abs(num(x)) for x in (*self.u_before, *u_after, *P)]
         out["_scale"] = max(sizes)
         out["_kinetic"] = num(before)
-        out["_tolerance"] = EXACT_TOLERANCE if exact else \
-            max(1e-8, 1000 * (self.tolerance or 1e-10))
+        floats = any(sp.sympify(x).has(sp.Float) for x in numbers)
+        out["_tolerance"] = max(1e-8, 1000 * (self.tolerance or 1e-10)) if not exact else \
+            FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
