@@ -218,10 +218,10 @@ def test_bad_3d_input_is_refused_in_one_line():
     with pytest.raises(InputError, match="not approaching"):
         SpaceCollision((Body3.fixed("floor"), _sphere((1, 0, 1), (0, 0, 0))),
                        (_floor(),)).solve()
-    with pytest.raises(InputError, match="rough"):
+    with pytest.raises(InputError, match="Walton's rough law takes Newton's"):
         SpaceCollision((Body3.fixed("floor"), ball), (Contact(
             normal=(0, 0, 1), restitution=HALF, tangential="rough", friction=FIFTH,
-            tangential_restitution=HALF, bodies=("floor", "ball")),))
+            law="poisson", tangential_restitution=HALF, bodies=("floor", "ball")),)).solve()
     with pytest.raises(InputError, match="triangle"):
         Body3.rigid(1, (1, 1, 3))
     with pytest.raises(InputError, match="three components"):
@@ -363,3 +363,26 @@ def test_the_integration_buys_accuracy_with_steps():
         assert tight["error"] <= max(loose["error"], 1e-14), case
         assert tight["error"] < 1e-9, case
         assert tight["steps"] >= loose["steps"], case
+
+
+def test_waltons_rough_law_in_3d_by_hand():
+    # the spinning sphere with beta = 1/2, mu = 1/5: reversing the slip (2, 7/2) at half
+    # its size needs P_t = -(3/2) (2, 7/2) / (7/2) = (-6/7, -3/2), |P_t| = 1.73 > mu P_n
+    # = 3/5: it slides throughout, as under Coulomb's law; with mu = 1 it reverses
+    def rough(mu):
+        contact = Contact(normal=(0, 0, 1), restitution=HALF, tangential="rough",
+                          friction=mu, tangential_restitution=HALF, bodies=("floor", "ball"))
+        return SpaceCollision((Body3.fixed("floor"), _sphere((1, HALF, -2), (3, -1, 2))),
+                              (contact,)).solve()
+    slid = rough(FIFTH)
+    assert slid.regime == "slides throughout"
+    assert slid.results()["contact.tangential_impulse"] == sp.Rational(3, 5)
+    back = rough(1)
+    r = back.results()
+    assert back.regime == "tangential restitution"
+    assert (r["contact.tangential_impulse_1"], r["contact.tangential_impulse_2"]) == \
+        (-sp.Rational(6, 7), -sp.Rational(3, 2))
+    # the lowest point leaves slipping at -(1/2) of (2, 7/2): v - w_y r, v_y + w_x r
+    assert (r["ball.vx"] - r["ball.omega_y"], r["ball.vy"] + r["ball.omega_x"]) == \
+        (-1, -sp.Rational(7, 4))
+    assert all(v == 0 for v in back.checks.values())

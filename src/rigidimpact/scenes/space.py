@@ -6,7 +6,8 @@ bodies of shape ``sphere`` (``mass``, ``radius``, optional central ``inertia``),
 ``orientation = { axis = [..], angle = ".." }``) or ``fixed``, each free one with
 ``position``, ``velocity`` and ``spin = [wx, wy, wz]``; one ``[contact]`` with its two
 ``bodies``, its ``point`` and ``normal`` (three components each), ``restitution``,
-``law`` and ``tangential`` (smooth, stick or coulomb with ``friction``). ``[impact]``
+``law`` and ``tangential`` (smooth, stick, coulomb with ``friction``, or rough with
+``tangential_restitution`` and optionally ``friction``). ``[impact]``
 may set ``tolerance`` to follow the contact numerically even where a closed form exists.
 
 Text from the file is read by the project's bounded expression parser, never by eval.
@@ -49,7 +50,7 @@ BODY_FIELDS = {"sphere": ("name", "shape", "mass", "radius", "inertia", "positio
                          "velocity", "spin"),
                "fixed": ("name", "shape")}
 CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
-                  "friction")
+                  "friction", "tangential_restitution")
 
 
 @dataclass(frozen=True)
@@ -133,7 +134,9 @@ def _described(b: Body3) -> str:
 
 def _contact_words(c: Contact) -> str:
     law = {"smooth": "smooth", "stick": "sticking (no slip after)",
-           "coulomb": f"Coulomb friction, circular cone, mu = {c.friction}"}[c.tangential]
+           "coulomb": f"Coulomb friction, circular cone, mu = {c.friction}",
+           "rough": f"Walton's rough law, beta = {c.tangential_restitution}, "
+                    f"mu = {c.friction}"}[c.tangential]
     return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
             f"{list(c.normal)}, {c.law.capitalize()}'s restitution e = {c.restitution}, {law}; "
             "tangents "
@@ -265,8 +268,8 @@ def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol]) -> Contact:
     if not isinstance(bodies, list) or len(bodies) != 2 or \
             not all(isinstance(b, str) for b in bodies):
         raise InputError(f"{place}.bodies", "two body names")
-    friction = {"friction": parse_expression(table["friction"], f"{place}.friction",
-                                             symbols)} if "friction" in table else {}
+    friction = {key: parse_expression(table[key], f"{place}.{key}", symbols)
+                for key in ("friction", "tangential_restitution") if key in table}
     return Contact(_vector3(table["normal"], f"{place}.normal", symbols),
                    parse_expression(table["restitution"], f"{place}.restitution", symbols),
                    table.get("tangential", "smooth"), table.get("law", "newton"),

@@ -42,7 +42,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.cone import ConeImpact, cone_impact
+from rigidimpact.laws.cone import cone_impact, walton_impact
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE
@@ -52,7 +52,7 @@ __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 
 CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
-TANGENTIAL_3D = ("smooth", "stick", "coulomb")
+TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
 
 @dataclass(frozen=True)
@@ -146,8 +146,14 @@ class SpaceCollision:
         elif c.tangential == "stick":
             P = W.LUsolve(sp.Matrix([-(1 + e) * v[0], -v[1], -v[2]]))
             course = "sticks"
+        elif c.tangential == "rough":
+            if law != "newton":
+                raise InputError(f"{c.name}.law", "Walton's rough law takes Newton's "
+                                 "restitution")
+            out = walton_impact(W, v, e, c.tangential_restitution, c.friction)
+            P, course = out.impulse, out.course
         else:
-            out: ConeImpact = cone_impact(W, v, e, law, c.friction, self.tolerance)
+            out = cone_impact(W, v, e, law, c.friction, self.tolerance)
             P, course, turned = out.impulse, out.course, out.turned
             if not out.exact:
                 notes.append(f"the contact's path is integrated in the normal impulse to "
@@ -163,8 +169,8 @@ class SpaceCollision:
         lost = sp.simplify(before - (u_after.T * M * u_after)[0] / 2)
         tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
         regime = course
-        checks = self._checks(c, J, P, u_after, before, lost, exact=self.tolerance is None
-                              and not notes)
+        checks = self._checks(c, J, P, u_after, before, lost, course,
+                              exact=self.tolerance is None and not notes)
         solution = Solution(
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
@@ -176,7 +182,8 @@ class SpaceCollision:
         return solution if checks is None else certified(solution)
 
     def _checks(self, c: Contact, J: sp.Matrix, P: sp.Matrix, u_after: sp.Matrix,
-                before: sp.Expr, lost: sp.Expr, exact: bool) -> dict[str, Any] | None:
+                before: sp.Expr, lost: sp.Expr, course: str,
+                exact: bool) -> dict[str, Any] | None:
         """The residuals of the laws from the bodies' momenta, apart from the solver:
         each body's linear and angular momentum against the impulse it received, the
         push, the contact opening after, the cone (or no slip after for a sticking
@@ -209,9 +216,13 @@ class SpaceCollision:
             out[f"{c.name}.smooth"] = max(abs(num(P[1])), abs(num(P[2])))
         elif c.tangential == "stick":
             out[f"{c.name}.sticks"] = max(abs(num(v_after[1])), abs(num(v_after[2])))
-        else:
+        elif c.friction is not None:
             size = sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
             out[f"{c.name}.cone"] = max(0, size - num(c.friction) * num(P[0]))
+        if c.tangential == "rough" and course == "tangential restitution":
+            beta = c.tangential_restitution
+            out[f"{c.name}.rough"] = max(abs(num(v_after[i] + beta * v_before[i]))
+                                         for i in (1, 2))
         if c.law == "newton":
             out[f"{c.name}.restitution"] = abs(num(v_after[0] + c.restitution * v_before[0]))
         out["energy"] = max(0, -num(lost))
