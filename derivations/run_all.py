@@ -62,8 +62,9 @@ def _figures():
 
 
 def kharaz_figure():
-    """The rigid Coulomb model, fitted in the gross-slip range, against both digitisations
-    of Kharaz, Gorham and Salman (2001) and the spring-dashpot simulation (notebook 11)."""
+    """The rigid Coulomb model, fitted in the gross-slip range, and the tangentially
+    compliant contact, fitted at every angle, against both digitisations of Kharaz, Gorham
+    and Salman (2001) and the spring-dashpot simulation (notebook 11)."""
     from rigidimpact.analyses import experiment
 
     data = experiment.load_kharaz()
@@ -75,10 +76,17 @@ def kharaz_figure():
     shown = {"measured (MFiX digitisation)": data["mfix"].points,
              "measured (Lethe digitisation)": data["lethe"].points,
              "spring-dashpot simulation": data["simulation"].points}
+    compliant = experiment.fit_compliant()
+    springy = experiment.CompliantSphereOnFlat(compliant.ratio)
+    others = {f"tangentially compliant, mu = {compliant.mu:.3f}, e = {compliant.e:.3f}, "
+              f"k_t/k_n = {compliant.ratio:.3f} (fitted at every angle)": {
+                  q: (angles, springy.predict(q, angles, compliant.mu, compliant.e))
+                  for q in ("e_t", "rebound_angle", "omega")}}
     return plots.experiment_comparison(
-        curves, shown, f"rigid, mu = {found.mu:.4f}, e = {found.e:.4f}",
-        "Alumina spheres on glass (Kharaz et al. 2001): rigid Coulomb model fitted from "
-        f"{found.from_deg:g} deg up")
+        curves, shown, f"rigid, mu = {found.mu:.4f}, e = {found.e:.4f} (fitted from "
+        f"{found.from_deg:g} deg up)",
+        "Alumina spheres on glass (Kharaz et al. 2001): the rigid Coulomb contact and a "
+        "tangentially compliant one", others)
 
 
 def _impulse_vs_offset():

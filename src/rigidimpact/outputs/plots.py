@@ -529,7 +529,9 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
 
 def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
                           data: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]],
-                          label: str, title: str) -> Figure:
+                          label: str, title: str,
+                          others: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]]
+                          | None = None) -> Figure:
     """A model's curves against measured points, one panel per quantity (e_t, rebound
     angle, spin) over the impact angle.
 
@@ -538,6 +540,7 @@ def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
     model : quantity -> (angles in degrees, values)
     data : data set name -> quantity -> (angles, values)
     label : the model's legend entry
+    others : a second model's legend entry -> its curves (drawn dashed)
 
     Examples
     --------
@@ -556,6 +559,9 @@ def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
     for ax, quantity in zip(axes[0], shown, strict=True):
         angles, values = model[quantity]
         ax.plot(angles, values, color="black", label=label)
+        for (name, curves), style in zip((others or {}).items(), ("--", ":"), strict=False):
+            if quantity in curves:
+                ax.plot(*curves[quantity], style, color="tab:red", label=name)
         for marker, (name, points) in zip(markers, data.items(), strict=False):
             if quantity in points:
                 ax.plot(*points[quantity], marker, fillstyle="none", linestyle="none",
@@ -563,6 +569,12 @@ def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
         ax.set_xlabel("impact angle from the normal (deg)")
         ax.set_ylabel(names[quantity])
         ax.grid(alpha=0.3)
+    if others:  # two models' long labels: one legend under the panels
+        handles, labels = axes[0][0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=2, fontsize="x-small")
+        fig.suptitle(title, fontsize="medium")
+        fig.tight_layout(rect=(0, 0.16, 1, 1))
+        return fig
     axes[0][0].legend(fontsize="x-small")
     fig.suptitle(title, fontsize="medium")
     fig.tight_layout()
