@@ -3,12 +3,18 @@ alumina spheres on glass, two digitisations, and a published spring-dashpot simu
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from rigidimpact.analyses import experiment
+from rigidimpact.cli import main
+from rigidimpact.laws.compliance import tangential_bounce
+
+ROOT = Path(__file__).resolve().parents[1]
 
 MU, E = 0.092, 1.0  # the simulation's own coefficients
 
@@ -125,3 +131,35 @@ def test_the_compliant_fit_follows_the_data_at_every_angle():
     model = experiment.CompliantSphereOnFlat(found.ratio)
     dip = model.predict("e_t", np.array([3.0, 20.0, 50.0]), found.mu, found.e)
     assert dip[1] < dip[0] and dip[1] < dip[2]  # e_t dips near 20 deg, as measured
+
+
+def test_a_scene_asks_for_tangential_compliance(capsys, tmp_path):
+    # derivations/sphere-oblique-flat.toml: Kharaz's sphere at 20 degrees through the
+    # fitted compliant contact, beside the rigid contact (which rolls it away at 5/7)
+    path = ROOT / "derivations" / "sphere-oblique-flat.toml"
+    assert main(["simulate", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    along, into = 1.33388, 3.66480  # the scene's speeds: 3.9 m/s at 20 degrees
+    assert out["rigid"]["ball.vx"] / along == pytest.approx(5 / 7, rel=1e-12)
+    vt, vn, turn = tangential_bounce(along, -into, 0.0, 0.0977, 0.9308, 0.7913, 0.4)
+    assert out["final"]["ball.vx"] == pytest.approx(float(vt), rel=1e-12)
+    assert out["final"]["ball.vy"] == pytest.approx(float(vn), rel=1e-12)
+    assert out["final"]["ball.omega"] == pytest.approx(float(turn) / 0.0025, rel=1e-12)
+    # the same contact as the experiment's model, at the same angle
+    same = experiment.compliant_bounce([math.degrees(math.atan2(along, into))], 0.0977,
+                                       0.9308, 0.7913)
+    e_t = float(same["vt"][0]) / (experiment.SPEED * along / math.hypot(along, into))
+    assert out["final"]["ball.vx"] / along == pytest.approx(e_t, rel=1e-9)
+    assert 0.55 < out["final"]["ball.vx"] / along < 0.62  # measured: about 0.6
+    text = path.read_text()
+    for bad, needle in ((text.replace("stiffness_ratio = 0.7913\n", ""), "needs k_t/k_n"),
+                        (text.replace('effects = ["tangential-compliance"]',
+                                      'effects = ["tangential-compliance", "gravity"]'),
+                         "runs alone"),
+                        (text.replace('restitution = "e"', 'restitution = "e"\nlaw = "poisson"'),
+                         "takes Newton's e")):
+        scene = tmp_path / "bad.toml"
+        scene.write_text(bad)
+        assert main(["simulate", str(scene)]) != 0
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and needle in err[0], err

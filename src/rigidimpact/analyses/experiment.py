@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from rigidimpact.laws.compliance import damping_ratio_for
+from rigidimpact.laws.compliance import tangential_bounce
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.impact import Impact
@@ -242,19 +242,11 @@ def departures(result: Fit, data: dict[str, Measurements] | None = None,
 
 def compliant_bounce(degrees: Angles, mu: float, e: float, ratio: float,
                      steps: int = TANGENTIAL_STEPS) -> dict[str, np.ndarray]:
-    """A solid sphere striking a flat with a tangentially compliant contact, for every
-    impact angle at once: the centre's tangential and normal velocity and the spin after,
-    at the experiment's speed and radius.
-
-    The contact is a lumped one, as in the discrete-element codes: a linear normal spring
-    with the dashpot that returns `e` (:func:`rigidimpact.laws.compliance.damping_ratio_for`)
-    and a linear tangential spring of stiffness ``ratio`` times the normal one, stretched by
-    the slip of the touching points and capped by Coulomb's ``mu F_n`` (beyond the cap the
-    points slide and the spring keeps the cap's stretch). The sphere, once its contact
-    stops sliding, is sprung back sideways: the rigid contact, which rolls it away at 5/7,
-    cannot. Linear springs make the answer independent of the stiffness itself, so the
-    model is integrated in units of the sphere's mass, the normal stiffness, the speed and
-    the radius (``steps`` per normal period, semi-implicit Euler).
+    """A solid sphere striking a flat with a tangentially compliant contact
+    (:func:`rigidimpact.laws.compliance.tangential_bounce`), for every impact angle at
+    once: the centre's tangential and normal velocity and the spin after, at the
+    experiment's speed and radius. The sphere, once its contact stops sliding, is sprung
+    back sideways: the rigid contact, which rolls it away at 5/7, cannot.
 
     Examples
     --------
@@ -266,32 +258,9 @@ def compliant_bounce(degrees: Angles, mu: float, e: float, ratio: float,
     0.7807
     """
     angle = np.radians(np.asarray(degrees, dtype=float))
-    vt, vn = np.sin(angle), -np.cos(angle)
-    spin = np.zeros_like(angle)
-    inertia = 0.4  # a solid sphere, in units of m R^2
-    damping = 2 * damping_ratio_for(float(e))
-    depth, stretch = np.zeros_like(angle), np.zeros_like(angle)
-    touched, done = np.zeros(angle.shape, bool), np.zeros(angle.shape, bool)
-    after = {"vt": vt.copy(), "vn": vn.copy(), "omega": spin.copy()}
-    dt = 2 * np.pi / steps
-    for _ in range(3 * steps):
-        push = np.where(touched & (depth <= 0), 0.0, np.maximum(0.0, depth - damping * vn))
-        stretch = stretch + (vt + spin) * dt  # the touching points' slip: v_t + w R
-        trial, cap = -ratio * stretch, mu * push
-        sliding = np.abs(trial) > cap
-        along = np.where(sliding, np.sign(trial) * cap, trial)
-        stretch = np.where(sliding, -along / ratio, stretch)
-        vt, spin, vn = vt + along * dt, spin + along / inertia * dt, vn + push * dt
-        depth = depth - vn * dt
-        touched |= depth > 0
-        ends = touched & (depth <= 0) & ~done
-        for key, value in (("vt", vt), ("vn", vn), ("omega", spin)):
-            after[key] = np.where(ends, value, after[key])
-        done |= ends
-        if done.all():
-            break
-    return {"vt": after["vt"] * SPEED, "vn": after["vn"] * SPEED,
-            "omega": after["omega"] * SPEED / RADIUS}
+    vt, vn, spin = tangential_bounce(SPEED * np.sin(angle), -SPEED * np.cos(angle), 0.0, mu,
+                                     e, ratio, 0.4, steps)
+    return {"vt": vt, "vn": vn, "omega": spin / RADIUS}
 
 
 @dataclass(frozen=True)

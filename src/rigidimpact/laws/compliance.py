@@ -15,11 +15,12 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["restitution_of", "damping_ratio_for", "MAX_DAMPING_RATIO"]
+__all__ = ["tangential_bounce", "restitution_of", "damping_ratio_for", "MAX_DAMPING_RATIO"]
 
 MAX_DAMPING_RATIO = 1e3  # e = 2.5e-7 here; e -> 0 needs an unbounded dashpot
 
@@ -88,3 +89,56 @@ def damping_ratio_for(e: float) -> float:
         return MAX_DAMPING_RATIO
     return brentq(lambda z: restitution_of(z) - e, 0.0, MAX_DAMPING_RATIO, xtol=1e-15,
                   rtol=8.9e-16)
+
+
+def tangential_bounce(vt: Any, vn: Any, slip_spin: Any, mu: float, e: float, ratio: float,
+                      inertia: float, steps: int = 4000) -> tuple[Any, Any, Any]:
+    """A round body striking a fixed flat through a tangentially compliant contact:
+    the tangential and normal velocity of its centre and ``omega R`` after, for arrays
+    of impacts at once (``vn < 0`` approaching; ``slip_spin`` is ``omega R``, so the
+    touching point slips at ``vt + slip_spin``).
+
+    The contact is the lumped one of the discrete-element codes: a linear normal spring
+    with the dashpot that returns `e`, and a linear tangential spring `ratio` times as
+    stiff, stretched by the slip and capped by Coulomb's ``mu F_n`` (beyond the cap the
+    points slide and the spring keeps the cap's stretch). Linear springs make the answer
+    independent of the stiffness and of the radius; `inertia` is the body's central moment
+    in units of ``m R^2`` (2/5 for a solid sphere, 1/2 for a disc). Integrated with
+    `steps` per normal period (semi-implicit Euler, first order).
+
+    Examples
+    --------
+    A solid sphere at 40 degrees with the coefficients of a published spring-dashpot
+    simulation (mu = 0.092, e = 1, k_t / k_n = 1.48 / 1.72): e_t = 0.7807 there.
+
+    >>> import math
+    >>> vt, vn, w = tangential_bounce(math.sin(0.6981317), -math.cos(0.6981317), 0.0,
+    ...                               0.092, 1.0, 1.48 / 1.72, 0.4)
+    >>> round(float(vt / math.sin(0.6981317)), 4)
+    0.7807
+    """
+    vt, vn, spin = (np.array(x, dtype=float) * np.ones(np.broadcast(vt, vn, slip_spin).shape)
+                    for x in (vt, vn, slip_spin))
+    speed = float(np.max(np.abs(np.stack([vt, vn, spin])))) or 1.0
+    vt, vn, spin = vt / speed, vn / speed, spin / speed  # units where the speed is 1
+    damping = 2 * damping_ratio_for(float(e))
+    depth, stretch = np.zeros_like(vt), np.zeros_like(vt)
+    touched, done = np.zeros(vt.shape, bool), np.zeros(vt.shape, bool)
+    after = [vt.copy(), vn.copy(), spin.copy()]
+    dt = 2 * np.pi / steps
+    for _ in range(3 * steps):
+        push = np.where(touched & (depth <= 0), 0.0, np.maximum(0.0, depth - damping * vn))
+        stretch = stretch + (vt + spin) * dt
+        trial, cap = -ratio * stretch, mu * push
+        sliding = np.abs(trial) > cap
+        along = np.where(sliding, np.sign(trial) * cap, trial)
+        stretch = np.where(sliding, -along / ratio, stretch)
+        vt, spin, vn = vt + along * dt, spin + along / inertia * dt, vn + push * dt
+        depth = depth - vn * dt
+        touched |= depth > 0
+        ends = touched & (depth <= 0) & ~done
+        after = [np.where(ends, x, y) for x, y in zip((vt, vn, spin), after, strict=True)]
+        done |= ends
+        if done.all():
+            break
+    return after[0] * speed, after[1] * speed, after[2] * speed

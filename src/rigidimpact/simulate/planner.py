@@ -32,12 +32,15 @@ EFFECTS = {
     "contact-compliance": "the contact is rigid: Newton's e acts in an instant",
     "gravity": "a horizontal table; asked for (g = 9.81 unless set) it would not change "
                "the relative motion, since every body falls alike",
+    "tangential-compliance": "the contact is rigid across the normal too: it sticks or "
+                             "slides in an instant (Routh's method)",
 }
 SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g",
-            "integrator"}
+            "integrator", "stiffness_ratio"}
 INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
-DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81}
+DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81,
+            "stiffness_ratio": 1.0}
 # what the compliant runs can honour in float64 and in reasonable time (a pairing of
 # stiffnesses that is too costly is refused later, from its estimated step count)
 RANGES = {
@@ -48,6 +51,8 @@ RANGES = {
     "tolerance": (1e-12, 1e-1, "float64 cannot meet a tighter one, and a looser one "
                   "is no answer"),
     "g": (1e-6, 1e6, "a gravity outside it belongs to another problem"),
+    "stiffness_ratio": (1e-3, 1e3, "k_t/k_n outside it is a contact that does not hold "
+                        "sideways or one that is rigid across"),
 }
 
 
@@ -153,7 +158,14 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
     steps = [Step("impulse", "the impact as an instant: momentum laws and restitution, "
                              "solved exactly")]
     compliant = [x for x in asked if x.endswith("-compliance")]
-    if compliant:
+    if "tangential-compliance" in asked:
+        if "stiffness_ratio" not in table:
+            raise InputError("simulate.stiffness_ratio", "tangential-compliance needs "
+                             "k_t/k_n, e.g. stiffness_ratio = 0.79 (notebook 11's fit)")
+        steps = [Step("tangential", "tangential-compliance asked for: a lumped contact (a "
+                                    "normal spring-dashpot and a tangential spring capped "
+                                    "by Coulomb) integrated over the contact")]
+    elif compliant:
         steps = [Step("compliant", f"{' and '.join(compliant)} asked for: the impact "
                                    "takes time, integrated with scipy (DOP853, or LSODA "
                                    "when stiff)")]

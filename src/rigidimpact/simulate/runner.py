@@ -27,6 +27,7 @@ from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.several import run_several
+from rigidimpact.simulate.tangential import run_tangential
 from rigidimpact.solve.collision import rule_laws
 from rigidimpact.solve.derivation import model_name, physics_warnings
 
@@ -102,6 +103,8 @@ def run(scene: Scene) -> Outcome:
     start = time.perf_counter()
     plan = make_plan(scene.simulate)
     values = scene_values(scene)
+    if "tangential-compliance" in plan.effects:
+        return finite(run_tangential(scene, plan, values, start))
     supported = [b.name for b in scene.bodies if b.support != "free"]
     if supported and (plan.until != "separation" or len(plan.steps) > 1):
         raise InputError("simulate", f"{supported[0]} is pivoted or fixed: only the impact "
