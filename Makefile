@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test lint notebooks bench lab clean peers
+.PHONY: run test lint notebooks bench lab clean peers pooltool
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -29,11 +29,17 @@ notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before 
 
 # pooltool 0.6.0 pins a development build of panda3d that no registry serves: it is
 # installed without its pins, then its requirements with a released panda3d
-$(VENV)/.peers-stamp: $(STAMP)
-	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
+$(VENV)/.pooltool-stamp: $(STAMP)
 	$(PY) -m pip install --quiet --no-deps pooltool-billiards==0.6.0
-	$(PY) -m pip install --quiet -c constraints.txt panda3d==1.10.16 panda3d-gltf \
-		panda3d-simplepbr numpy-quaternion cattrs h5py msgpack msgpack-numpy rich pyyaml
+	$(PY) -m pip install --quiet -c constraints.txt panda3d==1.10.16 panda3d-gltf==1.3.0 \
+		panda3d-simplepbr==0.13.1 numpy-quaternion==2024.0.13 cattrs h5py msgpack \
+		msgpack-numpy rich pyyaml
+	touch $@
+
+pooltool: $(VENV)/.pooltool-stamp  ## pooltool, so make test runs the billiards comparison
+
+$(VENV)/.peers-stamp: $(VENV)/.pooltool-stamp
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
 	touch $@
 
 peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool): make test then runs their comparisons
