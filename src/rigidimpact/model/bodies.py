@@ -53,22 +53,23 @@ def _expr(value: Any, where: str) -> sp.Expr:
     return expr
 
 
-def as_vector(value: Any, where: str) -> sp.ImmutableMatrix:
-    """A 2-vector (column) of finite expressions.
+def as_vector(value: Any, where: str, size: int = 2) -> sp.ImmutableMatrix:
+    """A vector (column) of `size` finite expressions: 2 in the plane, 3 in space.
 
     Examples
     --------
     >>> as_vector((1, 2), "v").T
     Matrix([[1, 2]])
     """
+    words = {2: "two components [x, y]", 3: "three components [x, y, z]"}[size]
     if isinstance(value, sp.MatrixBase):
         items = list(value)
     elif isinstance(value, Sequence) and not isinstance(value, str):
         items = list(value)
     else:
-        raise InputError(where, f"expected two components [x, y], got {value!r}")
-    if len(items) != 2:
-        raise InputError(where, f"expected two components [x, y], got {len(items)}")
+        raise InputError(where, f"expected {words}, got {value!r}")
+    if len(items) != size:
+        raise InputError(where, f"expected {words}, got {len(items)}")
     return sp.ImmutableMatrix([_expr(c, f"{where}[{i}]") for i, c in enumerate(items)])
 
 

@@ -32,7 +32,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.model.bodies import _expr
+from rigidimpact.model.bodies import _expr, as_vector
 
 __all__ = ["Body3", "as_vector3", "rotation", "SPEEDS"]
 
@@ -47,15 +47,7 @@ def as_vector3(value: Any, where: str) -> sp.ImmutableMatrix:
     >>> as_vector3((1, 2, 3), "v").T
     Matrix([[1, 2, 3]])
     """
-    if isinstance(value, sp.MatrixBase):
-        items = list(value)
-    elif isinstance(value, Sequence) and not isinstance(value, str):
-        items = list(value)
-    else:
-        raise InputError(where, f"expected three components [x, y, z], got {value!r}")
-    if len(items) != 3:
-        raise InputError(where, f"expected three components [x, y, z], got {len(items)}")
-    return sp.ImmutableMatrix([_expr(c, f"{where}[{i}]") for i, c in enumerate(items)])
+    return as_vector(value, where, 3)
 
 
 def rotation(axis: Sequence[Any], angle: Any) -> sp.ImmutableMatrix:

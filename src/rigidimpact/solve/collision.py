@@ -87,18 +87,8 @@ Outcome = Solution  # the one result type (the name several-contact code used fi
 class Collision(ImpactProblem):
     """Bodies in the world frame, the contacts that close together and the joints that
     pin bodies to each other: the impulse problem
-    (:class:`~rigidimpact.solve.problem.ImpactProblem`) with every rule at hand.
-
-    Parameters
-    ----------
-    bodies : tuple of Body
-        Positions (and pivots) from the world origin.
-    contacts : tuple of Contact
-        Each with its two `bodies` named and its `point` (world frame).
-    joints : tuple of Joint
-        Bodies pinned together (:mod:`rigidimpact.model.joints`): each adds two
-        bilateral rows, eliminated by the projected inverse mass (:attr:`M_inverse`),
-        and its impulse is reported.
+    (:class:`~rigidimpact.solve.problem.ImpactProblem`, whose parameters it takes) with
+    every rule at hand.
     """
 
     def simultaneous(self) -> Solution:
