@@ -12,7 +12,7 @@ Examples
 >>> [step.model for step in plan.steps]
 ['impulse', 'free-flight']
 >>> plan.not_simulated
-('rod-compliance', 'contact-compliance', 'gravity')
+('rod-compliance', 'contact-compliance', 'gravity', 'tangential-compliance')
 """
 
 from __future__ import annotations
@@ -101,6 +101,7 @@ class Plan:
         left out: rod-compliance (the barbell's rod is rigid: the impact is instantaneous)
         left out: contact-compliance (the contact is rigid: Newton's e acts in an instant)
         left out: gravity (a horizontal table; asked for (g = 9.81 unless set) it would not change the relative motion, since every body falls alike)
+        left out: tangential-compliance (the contact is rigid across the normal too: it sticks or slides in an instant (Routh's method))
         """  # noqa: E501
         lines = [f"until: {self.until}"]
         lines += [f"{k}. {s.model}: {s.why}" for k, s in enumerate(self.steps, 1)]
