@@ -151,6 +151,9 @@ def test_a_scene_asks_for_tangential_compliance(capsys, tmp_path):
     e_t = float(same["vt"][0]) / (experiment.SPEED * along / math.hypot(along, into))
     assert out["final"]["ball.vx"] / along == pytest.approx(e_t, rel=1e-9)
     assert 0.55 < out["final"]["ball.vx"] / along < 0.62  # measured: about 0.6
+    assert main(["simulate", str(path)]) == 0
+    printed = capsys.readouterr().out
+    assert "the rigid contact gives: ball.vx = " in printed
     text = path.read_text()
     for bad, needle in ((text.replace("stiffness_ratio = 0.7913\n", ""), "needs k_t/k_n"),
                         (text.replace('effects = ["tangential-compliance"]',

@@ -484,6 +484,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if "rule" in outcome.details:
         print(f"rule = {outcome.details['rule']}; contacts that acted: "
               f"{', '.join(outcome.details['acted']) or 'none'}")
+    if "rigid" in outcome.details:  # tangential compliance: the rigid contact beside it
+        print("the rigid contact gives: " + ", ".join(
+            f"{key} = {value:.10g}" for key, value in outcome.details["rigid"].items()))
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
     return 0
 
