@@ -255,7 +255,7 @@ class SystemImpact:
         numbers = self._numbers and all(sp.sympify(x).is_number for x in self.u_before)
         solved = self.M.LUsolve(J.T) if numbers else \
             sp.Matrix(self.M).LUsolve(J.T).applyfunc(sp.simplify)
-        W = (J * solved).applyfunc(sp.nsimplify if not numbers else lambda x: x)
+        W = J * solved if numbers else (J * solved).applyfunc(sp.simplify)
         v = J * self.u_before
         e = c.laws.restitution
         course: str

@@ -164,9 +164,9 @@ class SpaceCollision:
         P = P.applyfunc(sp.radsimp)
         u_after = (self.u_before + self.M_inverse * J.T * P).applyfunc(
             lambda x: sp.piecewise_fold(sp.radsimp(sp.expand(x))))
-        M = self.M_inverse.inv()
-        before = sp.nsimplify(0) + (self.u_before.T * M * self.u_before)[0] / 2
-        lost = sp.simplify(before - (u_after.T * M * u_after)[0] / 2)
+        moved = [b.moved(u_after[6 * k:6 * k + 6, 0]) for k, b in enumerate(self.free)]
+        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
+        lost = sp.simplify(before - sum((b.kinetic_energy for b in moved), sp.Integer(0)))
         tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
         regime = course
         checks = self._checks(c, J, P, u_after, before, lost, course,
