@@ -61,7 +61,8 @@ from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression", "is_spatial"]
+__all__ = ["Scene", "load_scene", "parse_scene", "parse_expression", "is_spatial",
+           "read_toml", "scene_from_data"]
 
 ASSUMPTIONS = ("positive", "nonnegative", "negative", "nonpositive", "real", "nonzero")
 
@@ -685,8 +686,12 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
     InputError
         For malformed TOML or any bad field, naming the field.
     """
-    # a scene far past the budget is refused before its TOML is read (100,000 tables
-    # take seconds to read); the exact count is checked again once it is
+    return scene_from_data(read_toml(text), name)
+
+
+def read_toml(text: str) -> dict[str, Any]:
+    """A scene's TOML, after refusing at once a scene far past the budget (100,000
+    tables take seconds to read; the exact count is checked again once it is read)."""
     headers = max(text.count("[[contacts]]"), text.count("[[bodies]]"))
     if headers > 2 * MAX_BUILT_CONTACTS:
         raise InputError("contacts", f"about {headers} [[bodies]] or [[contacts]] tables: "
@@ -694,9 +699,13 @@ def parse_scene(text: str, name: str = "scene") -> Scene:
                          "a SymPy object, a few milliseconds each); split the scene or use "
                          "fewer contacts")
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", f"malformed TOML: {exc}") from None
+
+
+def scene_from_data(data: dict[str, Any], name: str = "scene") -> Scene:
+    """A planar scene from its TOML, already read (see :func:`parse_scene`)."""
     if is_spatial(data):
         raise InputError("scene", "a 3-D scene (vectors with three components): read it "
                          "with rigidimpact.load_space_scene; derive and evaluate read both")

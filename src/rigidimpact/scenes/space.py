@@ -16,7 +16,6 @@ Text from the file is read by the project's bounded expression parser, never by 
 from __future__ import annotations
 
 import time
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -34,15 +33,16 @@ from rigidimpact.scenes.scene import (
     _table,
     _values_table,
     is_spatial,
-    load_scene,
     parse_expression,
-    parse_scene,
+    read_toml,
+    scene_from_data,
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
 
-__all__ = ["SpaceScene", "parse_space_scene", "load_space_scene", "load_any", "is_spatial"]
+__all__ = ["SpaceScene", "parse_space_scene", "space_scene_from_data", "load_space_scene",
+           "load_any", "is_spatial"]
 
 BODY_FIELDS = {"sphere": ("name", "shape", "mass", "radius", "inertia", "position",
                           "velocity", "spin"),
@@ -280,10 +280,11 @@ def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol]) -> Contact:
 
 def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
     """Read a 3-D scene from TOML text (see the module's text)."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("scene", f"malformed TOML: {exc}") from None
+    return space_scene_from_data(read_toml(text), name)
+
+
+def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
+    """A 3-D scene from its TOML, already read."""
     allowed = {"title", "symbols", "values", "bodies", "contact", "impact"}
     for key in data:
         if key not in allowed:
@@ -323,15 +324,12 @@ def load_space_scene(path: str | Path) -> SpaceScene:
 
 
 def load_any(path: str | Path) -> Scene | SpaceScene:
-    """A scene file, planar or 3-D (three-component vectors make it 3-D)."""
-    text = _read(path)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError:
-        return load_scene(path)  # the planar reader says what is malformed
+    """A scene file, planar or 3-D (three-component vectors make it 3-D); its TOML is
+    read once."""
+    data = read_toml(_read(path))
     if is_spatial(data):
-        return parse_space_scene(text, Path(path).stem)
-    return parse_scene(text, Path(path).stem)
+        return space_scene_from_data(data, Path(path).stem)
+    return scene_from_data(data, Path(path).stem)
 
 
 def _read(path: str | Path) -> str:
