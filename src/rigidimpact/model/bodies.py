@@ -21,6 +21,7 @@ Matrix([[L*cos(theta), L*sin(theta)]])
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -427,8 +428,13 @@ class Body:
             return self
         parts = tuple(replace(p, position=sp.ImmutableMatrix(p.position + d))
                       for p in self.parts)
-        return replace(self, position=self.position + d, parts=parts,
-                       pivot=None if self.pivot is None else self.pivot + d)
+        # every field was checked when the body was made, and a sum of checked points is
+        # one: the copy is not checked again (a scene of a thousand bodies)
+        moved = copy.copy(self)
+        for key, value in (("position", self.position + d), ("parts", parts),
+                           ("pivot", None if self.pivot is None else self.pivot + d)):
+            object.__setattr__(moved, key, value)
+        return moved
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> Body:
         """The same body with numbers (or expressions) put in for its symbols.

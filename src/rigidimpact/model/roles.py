@@ -64,6 +64,8 @@ class Role:
         value = sp.sympify(value)
         if not value.is_number:
             return None
+        if self.zero and value.is_Rational:
+            return bool(value == 0)
         if self.zero:  # exact zeros of sums of radicals need not simplify to 0 by
             # themselves: decided at 60 digits, far beyond any stated number's digits
             return bool(abs(sp.N(value, 60)) < sp.Float("1e-40", 60))
@@ -174,39 +176,41 @@ def _geometry(bodies: tuple[Any, ...], touches: Iterable[Any]) -> list[Role]:
     found: list[Role] = []
     by_name = {b.name: b for b in bodies}
     for touch in touches:
-        point = sp.Matrix(list(touch.point))
-        normal = sp.Matrix(list(touch.normal))
+        # plain pairs of expressions, not matrices: a scene of a thousand contacts
+        # builds its roles in a fraction of a second
+        px, py = touch.point
+        nx, ny = touch.normal
         for side, name in ((1, touch.first), (-1, touch.second)):
             body = by_name.get(name)
             if body is None or getattr(body, "support", "free") == "fixed":
                 continue
             where = f"{touch.name}.point"
             dims = dict(body.dimensions)
-            outward = side * (point - sp.Matrix(list(body.position)))  # along the normal
+            cx, cy = body.position
+            ox, oy = side * (px - cx), side * (py - cy)  # outward, along the normal
             if "radius" in dims:
                 found += [
                     Role(where, f"{name} is round: the contact must lie on its rim, "
                          f"{dims['radius']} from its centre",
-                         outward.dot(outward) - dims["radius"] ** 2, zero=True),
+                         ox ** 2 + oy ** 2 - dims["radius"] ** 2, zero=True),
                     Role(f"{touch.name}.normal", f"{name} is round: the normal must pass "
-                         "through its centre", outward[0] * normal[1] - outward[1] * normal[0],
-                         zero=True),
+                         "through its centre", ox * ny - oy * nx, zero=True),
                     Role(f"{touch.name}.normal", f"the normal must point out of the first "
                          f"body and into the second ({name}'s centre is on the wrong side)",
-                         outward.dot(normal), 0, None, open_low=True)]
+                         ox * nx + oy * ny, 0, None, open_low=True)]
             if body.shape == "rod" and "struck_at" in dims:
                 found.append(Role(f"{name}.struck_at", "the contact must lie on the rod: "
                                   "half the length minus |struck_at|",
                                   dims["length"] / 2 - sp.Abs(dims["struck_at"]), 0))
             if body.shape == "rod" and isinstance(touch, _AtOrigin) is False:
-                axis = sp.Matrix([sp.cos(dims["angle"]), sp.sin(dims["angle"])])
-                offset = point - sp.Matrix(list(body.position))
+                ax, ay = sp.cos(dims["angle"]), sp.sin(dims["angle"])
+                dx, dy = px - cx, py - cy
                 found += [
                     Role(where, f"{name} is a thin rod: the contact must lie on its axis",
-                         offset[0] * axis[1] - offset[1] * axis[0], zero=True),
+                         dx * ay - dy * ax, zero=True),
                     Role(where, f"{name} is a thin rod: the contact must lie between its "
                          "ends (half the length minus the distance from its centre)",
-                         dims["length"] / 2 - sp.Abs(offset.dot(axis)), 0)]
+                         dims["length"] / 2 - sp.Abs(dx * ax + dy * ay), 0)]
     return found
 
 

@@ -549,9 +549,9 @@ def _pair(table: Mapping[str, Any], place: str, default: list[str]) -> list[str]
     return order
 
 
-def _read_contact(table: Mapping[str, Any], place: str,
-                  symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, tuple]:
-    """A contact's laws and its point (the origin offset for one contact)."""
+def _read_contact(table: Mapping[str, Any], place: str, symbols: Mapping[str, sp.Symbol],
+                  bodies: tuple[str, str]) -> Contact:
+    """A contact between `bodies`: its laws and its point (from O)."""
     for key in table:
         if key not in CONTACT_FIELDS:
             raise InputError(f"{place}.{key}", f"unknown field; expected "
@@ -565,11 +565,11 @@ def _read_contact(table: Mapping[str, Any], place: str,
         raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
     coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
                     for key in ("friction", "tangential_restitution") if key in table}
-    contact = Contact(normal, restitution, table.get("tangential", "smooth"),
-                      table.get("law", "newton"), contact_name, **coefficients)
-    origin = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
+    point = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
         else (sp.Integer(0), sp.Integer(0))
-    return contact, origin
+    return Contact(normal, restitution, table.get("tangential", "smooth"),
+                   table.get("law", "newton"), contact_name, bodies=bodies, point=point,
+                   **coefficients)
 
 
 def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...], bool]:
@@ -616,29 +616,30 @@ def _contacts(tables: list[tuple[dict[str, Any], str]], by_name: Mapping[str, An
         raise InputError("bodies", "exactly two [[bodies]] entries are required with one "
                          "contact (or [[joints]] that pin more bodies together)")
     contacts: list[Contact] = []
+    names: set[str] = set()
     for table, place in tables:
         if several and "name" not in table:
             raise InputError(f"{place}.name", "required with several contacts")
-        contact, point = _read_contact(table, place, symbols)
-        if contact.name in (c.name for c in contacts):
-            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
         first, second = _pair(table, place, [] if several else list(by_name))
         for body_name in (first, second):
             if body_name not in by_name:
                 raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
-        contacts.append(replace(contact, bodies=(first, second), point=point))
+        contact = _read_contact(table, place, symbols, (first, second))
+        if contact.name in names:
+            raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
+        names.add(contact.name)
+        contacts.append(contact)
     return tuple(contacts)
 
 
-def _placed(table: dict[str, Any], index: int, contacts: tuple[Contact, ...],
+def _placed(table: dict[str, Any], index: int, touching: Contact | None,
             symbols: Mapping[str, sp.Symbol]) -> Body:
     """A body from its table, in the scene frame (from O). The one frame rule: every
     position, pivot and point is given from O; a shape that places itself (a particle or
     a round body without `position`, a barbell's struck end, a rod's `struck_at`) is
     placed from the point of the first contact that names it, on its own side of that
-    contact's normal."""
+    contact's normal (`touching`: the first contact that names it, or None)."""
     name = table["name"]
-    touching = next((c for c in contacts if name in (c.first, c.second)), None)
     if touching is None:
         origin, side, unit = sp.ImmutableMatrix([0, 0]), 1, sp.ImmutableMatrix([1, 0])
         contact = "O"
@@ -730,7 +731,12 @@ def scene_from_data(data: dict[str, Any], name: str = "scene") -> Scene:
     sample = _sample(impact_table)
     compliance = _compliance(impact_table, len(contacts))
     joints = _joints(data, by_name, symbols)
-    bodies = tuple(_placed(table, index, contacts, symbols) for index, table in by_name.values())
+    first_touch: dict[str, Contact] = {}
+    for c in contacts:
+        first_touch.setdefault(c.first, c)
+        first_touch.setdefault(c.second, c)
+    bodies = tuple(_placed(table, index, first_touch.get(name), symbols)
+                   for name, (index, table) in by_name.items())
     scene = Scene(title, symbols, values, bodies, contacts[0], simulate, name,
                   contacts=contacts, rule=rule, order=order, sample=sample,
                   compliance=compliance, joints=joints)

@@ -227,6 +227,24 @@ def parse_expression(value: Any, where: str,
     rigidimpact.errors.InputError: x: 1e-300 is beyond what the tool supports (1e-100 to 1e100)
     """
     symbols = {} if symbols is None else symbols
+    # a scene repeats its values ("0", "1/2") thousands of times: each text is read once
+    # per set of names (a failure is not kept, so its message names each field)
+    key = (value, type(value), tuple(symbols.items()))
+    try:
+        return _READ[key]
+    except (KeyError, TypeError):
+        pass
+    expr = _parse(value, where, symbols)
+    if len(_READ) > 4096:
+        _READ.clear()
+    _READ[key] = expr
+    return expr
+
+
+_READ: dict[tuple, sp.Expr] = {}
+
+
+def _parse(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> sp.Expr:
     if isinstance(value, bool):
         raise InputError(where, "expected a number or expression, not true/false")
     if isinstance(value, (int, float)):
