@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -299,12 +300,13 @@ def test_a_turned_box_gives_the_same_answer_from_both_sources():
 DERIVATIONS = Path(__file__).resolve().parents[1] / "derivations"
 
 
-@pytest.mark.parametrize("name", ["spinning-ball-floor", "box-corner-floor"])
+@pytest.mark.parametrize("name", ["spinning-ball-floor", "box-corner-floor",
+                                  "cushion-rebound"])
 def test_a_3d_scene_derives_with_equations_that_hold(name):
     scene = ri.load_any(DERIVATIONS / f"{name}.toml")
     assert isinstance(scene, ri.SpaceScene)
     d = scene.derivation()
-    values = dict(scene.values) if name == "box-corner-floor" else {}
+    values = dict(scene.values) if name != "spinning-ball-floor" else {}
     collision = scene.collision(values or None)
     at = unknowns_at(collision, d.solution)
     assert set(d.unknowns) == set(at)
@@ -386,3 +388,67 @@ def test_waltons_rough_law_in_3d_by_hand():
     assert (r["ball.vx"] - r["ball.omega_y"], r["ball.vy"] + r["ball.omega_x"]) == \
         (-1, -sp.Rational(7, 4))
     assert all(v == 0 for v in back.checks.values())
+
+
+# ---- several 3-D contacts: one strikes, the others rest ----
+
+def _resting_ball(velocity, spin, wall_mu=FIFTH, floor_mu=FIFTH, wall_law="newton"):
+    """A unit solid sphere on the floor z = 0 striking the wall x = 1 (normal -x)."""
+    ball = _sphere(velocity, spin)
+    wall = Contact(normal=(-1, 0, 0), restitution=HALF, tangential="coulomb",
+                   friction=wall_mu, law=wall_law, name="wall", bodies=("w", "ball"),
+                   point=(1, 0, 1))
+    floor = Contact(normal=(0, 0, 1), restitution=0, tangential="coulomb",
+                    friction=floor_mu, name="floor", bodies=("floor", "ball"),
+                    point=(0, 0, 0))
+    return SpaceCollision((Body3.fixed("w"), Body3.fixed("floor"), ball), (wall, floor))
+
+
+def test_a_wall_at_the_equator_leaves_the_floor_idle_and_acts_as_alone():
+    # the wall touches the ball at its equator: its normal is horizontal, and so is its
+    # friction (the slip there is horizontal and stays so), so nothing presses the ball
+    # into the floor: the floor takes nothing and the wall acts as it would alone, whose
+    # answer is the one-contact closed form (the slip stops: 1 < mu (7/2) (3/2))
+    out = _resting_ball((1, 1, 0), (0, 0, 0)).solve()
+    alone = SpaceCollision((Body3.fixed("w"), _sphere((1, 1, 0), (0, 0, 0))), (Contact(
+        normal=(-1, 0, 0), restitution=HALF, tangential="coulomb", friction=FIFTH,
+        name="wall", bodies=("w", "ball"), point=(1, 0, 1)),)).solve()
+    r, a = out.results(), alone.results()
+    for key in ("ball.vx", "ball.vy", "ball.omega_z", "wall.normal_impulse"):
+        assert float(r[key]) == pytest.approx(float(a[key]), rel=1e-9)
+    assert float(r["floor.normal_impulse"]) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_several_3d_contacts_are_refused_in_one_line_where_not_solved():
+    ball = _sphere((1, 0, -1), (0, 0, 0))
+    wall = Contact(normal=(-1, 0, 0), restitution=HALF, name="wall", bodies=("w", "ball"),
+                   point=(1, 0, 1))
+    floor = Contact(normal=(0, 0, 1), restitution=HALF, name="floor",
+                    bodies=("floor", "ball"), point=(0, 0, 0))
+    bodies = (Body3.fixed("w"), Body3.fixed("floor"), ball)
+    with pytest.raises(InputError, match="2 approach: several striking at once"):
+        SpaceCollision(bodies, (wall, floor)).solve()
+    with pytest.raises(InputError, match="smooth or coulomb so far"):
+        SpaceCollision(bodies, (wall, replace(floor, tangential="stick")))
+    x = sp.Symbol("x", positive=True)
+    with pytest.raises(InputError, match="give numbers"):
+        SpaceCollision((Body3.fixed("w"), Body3.fixed("floor"), _sphere((x, 0, 0), (0, 0, 0))),
+                       (wall, floor)).solve()
+    with pytest.raises(InputError, match="share a name"):
+        SpaceCollision(bodies, (wall, replace(floor, name="wall")))
+
+
+def test_a_resting_contact_that_would_pull_lets_go():
+    # the wall's nose below the equator pushes the ball up and back: the floor would
+    # have to pull to hold it, so it lets go at once and the ball leaves the floor
+    ball = _sphere((2, 0, 0), (0, 0, 0))
+    c, s = sp.Rational(24, 25), sp.Rational(7, 25)
+    wall = Contact(normal=(-c, 0, s), restitution=HALF, tangential="coulomb",
+                   friction=FIFTH, name="wall", bodies=("w", "ball"), point=(c, 0, 1 - s))
+    floor = Contact(normal=(0, 0, 1), restitution=0, tangential="coulomb", friction=FIFTH,
+                    name="floor", bodies=("floor", "ball"), point=(0, 0, 0))
+    out = SpaceCollision((Body3.fixed("w"), Body3.fixed("floor"), ball), (wall, floor)).solve()
+    r = out.results()
+    assert float(r["floor.normal_impulse"]) == pytest.approx(0.0, abs=1e-12)
+    assert float(r["ball.vz"]) > 0
+    assert "lets go" in out.regime

@@ -32,10 +32,11 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import Body3
 from rigidimpact.solve.space import SpaceCollision
 
-__all__ = ["cut_shot", "alciatore_friction", "RADIUS", "MASS"]
+__all__ = ["cut_shot", "cushion", "alciatore_friction", "RADIUS", "MASS", "CUSHION_HEIGHT"]
 
 RADIUS = 0.028575  # m: a pool ball of 2.25 in
 MASS = 0.170097  # kg: 6 oz
+CUSHION_HEIGHT = 0.036576  # m: the nose of the cushion above the table (1.44 in)
 
 
 def alciatore_friction(speed: float) -> float:
@@ -78,3 +79,46 @@ def cut_shot(cut_degrees: float, speed: float, topspin: float, sidespin: float,
     across = -r["object.vx"] * n[1] + r["object.vy"] * n[0]
     return {**r, "throw_degrees": math.degrees(math.atan2(abs(across), along)),
             "mu": mu, "course": solution.regime}
+
+
+def cushion(speed: float, angle_degrees: float, topspin: float = 0.0, sidespin: float = 0.0,
+            e: float = 0.85, mu_cushion: float = 0.2, mu_table: float = 0.2,
+            height: float = CUSHION_HEIGHT, law: str = "energetic",
+            tolerance: float | None = None) -> dict[str, Any]:
+    """A ball on the table striking a straight cushion: the cushion's contact strikes and
+    the table's rests, both rough, acting together (Mathavan, Jackson and Parkin 2010).
+
+    The cushion runs along x at y = 0 and the ball comes from y < 0 at `speed`, its path
+    making `angle_degrees` with the cushion's normal (0: head on). The cushion's nose is
+    at `height` above the table, so it touches the ball above its equator, at the angle
+    theta with ``sin theta = (height - R) / R``, and its normal (from the cushion into the
+    ball) points back and down through the centre. `topspin` is the spin about the axis
+    across the path in units of rolling (1: rolling, 0: stun), `sidespin` the spin about
+    the vertical in units of speed / R. The cushion's restitution law is `law` (Mathavan
+    use the energetic one). Returns the speeds after (``ball.vx`` ... ``ball.omega_z``),
+    the rebound angle and speed, each contact's impulses and course.
+    """
+    a = math.radians(angle_degrees)
+    R = RADIUS
+    sin_t = (height - R) / R
+    cos_t = math.sqrt(1 - sin_t ** 2)
+    v = (speed * math.sin(a), speed * math.cos(a), 0.0)
+    rolling = speed / R
+    # rolling along the path (sin a, cos a, 0): omega = (v / R) z x path... = (-cos a, sin a) v/R
+    spin = (-topspin * rolling * math.cos(a), topspin * rolling * math.sin(a),
+            sidespin * rolling)
+    ball = Body3.sphere(MASS, R, (0, 0, R), v, spin, name="ball")
+    point = (0.0, R * cos_t, R + R * sin_t)
+    rail = Contact(normal=(0.0, -cos_t, -sin_t), restitution=e, law=law,
+                   tangential="coulomb", friction=mu_cushion, name="cushion",
+                   bodies=("rail", "ball"), point=point)
+    table = Contact(normal=(0, 0, 1), restitution=0, tangential="coulomb",
+                    friction=mu_table, name="table", bodies=("table", "ball"),
+                    point=(0, 0, 0))
+    solution = SpaceCollision((Body3.fixed("rail"), Body3.fixed("table"), ball),
+                              (rail, table), tolerance).solve()
+    r = {k: float(x) for k, x in solution.results().items()}
+    rebound = math.degrees(math.atan2(r["ball.vx"], -r["ball.vy"]))
+    return {**r, "rebound_degrees": rebound,
+            "rebound_speed": math.hypot(r["ball.vx"], r["ball.vy"]),
+            "courses": solution.courses, "solution": solution}

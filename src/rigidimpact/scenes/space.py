@@ -49,6 +49,8 @@ BODY_FIELDS = {"sphere": ("name", "shape", "mass", "radius", "inertia", "positio
                "rigid": ("name", "shape", "mass", "inertia", "orientation", "position",
                          "velocity", "spin"),
                "fixed": ("name", "shape")}
+RESTITUTION_WORDS = {"newton": "Newton's restitution", "poisson": "Poisson's restitution",
+                     "energetic": "the energetic restitution law,"}
 CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
                   "friction", "tangential_restitution")
 
@@ -61,17 +63,22 @@ class SpaceScene:
     symbols: Mapping[str, sp.Symbol]
     values: Mapping[sp.Symbol, sp.Expr]
     bodies: tuple[Body3, ...]
-    contact: Contact
+    contacts: tuple[Contact, ...]
     name: str = "scene"
     tolerance: float | None = None
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
+
+    @property
+    def contact(self) -> Contact:
+        """The (first) contact."""
+        return self.contacts[0]
 
     @property
     def data_symbols(self) -> dict[str, sp.Symbol]:
         return {str(s): s for s in sorted(self.used, key=str)}
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
-        problem = SpaceCollision(self.bodies, (self.contact,), self.tolerance)
+        problem = SpaceCollision(self.bodies, self.contacts, self.tolerance)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -91,10 +98,12 @@ class SpaceScene:
                                  "direction may turn): give the scene [values]") from None
             values = self.values
             solution = self.collision(values).solve()
-            notes = ("solved at the scene's [values]: the slip direction may turn, so the "
-                     "contact is followed numerically",)
+            notes = ("solved at the scene's [values]: " + (
+                "several 3-D contacts are followed numerically" if len(self.contacts) > 1
+                else "the slip direction may turn, so the contact is followed numerically"),)
         collision = self.collision(values)
-        setup = tuple(_described(b) for b in self.bodies) + (_contact_words(self.contact),)
+        setup = tuple(_described(b) for b in self.bodies) + tuple(
+            _contact_words(c) for c in self.contacts)
         setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
         equations = _equations(collision) if printed else ()
         return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
@@ -114,7 +123,9 @@ class SpaceScene:
         solution = self.collision(exact).solve()
         digits = dps or 17
         numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
-        extra: dict[str, Any] = {"rule": "one contact", "acted": list(solution.acted)}
+        extra: dict[str, Any] = {"rule": "one contact" if len(self.contacts) == 1 else
+                                 "one strikes, the others rest",
+                                 "acted": list(solution.acted)}
         if solution.checks:
             extra["checks"] = {k: float(v) for k, v in solution.checks.items()}
         if solution.courses:
@@ -138,39 +149,50 @@ def _contact_words(c: Contact) -> str:
            "rough": f"Walton's rough law, beta = {c.tangential_restitution}, "
                     f"mu = {c.friction}"}[c.tangential]
     return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
-            f"{list(c.normal)}, {c.law.capitalize()}'s restitution e = {c.restitution}, {law}; "
+            f"{list(c.normal)}, {RESTITUTION_WORDS[c.law]} e = {c.restitution}, {law}; "
             "tangents "
             "t1 (the x axis across n, or the y axis's), t2 = n x t1")
 
 
 def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
     """The laws in vector form, each holding at the solution (tested): every free body's
-    momentum and angular momentum about its centre against the contact impulse
+    momentum and angular momentum about its centre against the contact impulses
     ``P = P_n n + P_t1 t1 + P_t2 t2`` (world frame), and the contact's restitution law
-    where it is Newton's."""
-    (c,) = collision.contacts
-    frame = sp.Matrix(c.frame)
-    P = sp.Matrix(IMPULSE)
-    impulse = frame.T * P
+    where it is Newton's (with several contacts: the striking one's)."""
     out = []
+    impulses = {c.name: sp.Matrix(c.frame).T * sp.Matrix(_impulse(collision, c))
+                for c in collision.contacts}
     for body in collision.free:
-        sign = 1 if body.name == c.second else -1
         after = sp.Matrix(_after(collision, body))
-        arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+        force, moment = sp.zeros(3, 1), sp.zeros(3, 1)
+        for c in collision.contacts:
+            sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
+            arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+            force += sign * impulses[c.name]
+            moment += sign * arm.cross(impulses[c.name])
         out.append(Equation(f"momentum of {body.name}", "",
                             sp.ImmutableMatrix(body.mass * (after[:3, 0]
                                                             - sp.Matrix(body.velocity))),
-                            sp.ImmutableMatrix(sign * impulse), law="momentum"))
+                            sp.ImmutableMatrix(force), law="momentum"))
         out.append(Equation(f"angular momentum of {body.name} about its centre", "",
                             sp.ImmutableMatrix(sp.Matrix(body.inertia) * (
                                 after[3:, 0] - sp.Matrix(body.spin))),
-                            sp.ImmutableMatrix(sign * arm.cross(impulse)), law="momentum"))
-    if c.law == "newton":
+                            sp.ImmutableMatrix(moment), law="momentum"))
+    c = collision.contacts[0]
+    if len(collision.contacts) == 1 and c.law == "newton":
         J = collision.rows(c)
         after = sp.Matrix([x for b in collision.free for x in _after(collision, b)])
         out.append(Equation(f"Newton's restitution at {c.name}", "", (J * after)[0],
                             -c.restitution * (J * collision.u_before)[0], law="restitution"))
     return tuple(out)
+
+
+def _impulse(collision: SpaceCollision, c: Contact) -> tuple[sp.Symbol, ...]:
+    """The printed impulse of contact c along n, t1, t2 (named by the contact where
+    there are several)."""
+    if len(collision.contacts) == 1:
+        return IMPULSE
+    return tuple(sp.Symbol(f"{x}^{c.name}") for x in ("P_n", "P_t1", "P_t2"))
 
 
 IMPULSE = sp.symbols("P_n P_t1 P_t2")  # the contact's impulse along n, t1, t2
@@ -186,12 +208,13 @@ def _after(collision: SpaceCollision, body: Body3) -> list[sp.Symbol]:
 
 def unknowns_at(collision: SpaceCollision, solution: Solution) -> dict[sp.Symbol, sp.Expr]:
     """The printed equations' unknowns at the solution (for checking them)."""
-    (c,) = collision.contacts
     r = solution.results()
     values = {x: r[f"{b.name}.{s}"] for b in collision.free
               for x, s in zip(_after(collision, b), SPEEDS, strict=True)}
-    values |= dict(zip(IMPULSE, (r[f"{c.name}.normal_impulse"], r[f"{c.name}.tangential_impulse_1"],
-                           r[f"{c.name}.tangential_impulse_2"]), strict=True))
+    for c in collision.contacts:
+        found = [r.get(f"{c.name}.{k}", sp.Integer(0)) for k in (
+            "normal_impulse", "tangential_impulse_1", "tangential_impulse_2")]
+        values |= dict(zip(_impulse(collision, c), found, strict=True))
     return values
 
 
@@ -253,29 +276,59 @@ def _read_body(table: Any, index: int, symbols: Mapping[str, sp.Symbol]) -> Body
     return Body3.rigid(scalar("mass"), inertia, position, velocity, spin, orientation, name)
 
 
-def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol]) -> Contact:
-    place = "contact"
+def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol], place: str = "contact",
+                  named: bool = False) -> Contact:
     if not isinstance(table, dict):
         raise InputError(place, "must be a table")
     for key in table:
         if key not in CONTACT_FIELDS:
             raise InputError(f"{place}.{key}", f"unknown field; expected "
                              f"{', '.join(CONTACT_FIELDS)}")
-    for key in ("bodies", "normal", "restitution"):
+    for key in ("bodies", "normal", "restitution") + (("name",) if named else ()):
         if key not in table:
-            raise InputError(f"{place}.{key}", "required in a 3-D scene")
+            raise InputError(f"{place}.{key}", "required in a 3-D scene" + (
+                " with several contacts" if key == "name" else ""))
     bodies = table["bodies"]
     if not isinstance(bodies, list) or len(bodies) != 2 or \
             not all(isinstance(b, str) for b in bodies):
         raise InputError(f"{place}.bodies", "two body names")
+    contact_name = table.get("name", "contact")
+    if not isinstance(contact_name, str) or not contact_name.isidentifier():
+        raise InputError(f"{place}.name", "must be an identifier such as \"cushion\"")
     friction = {key: parse_expression(table[key], f"{place}.{key}", symbols)
                 for key in ("friction", "tangential_restitution") if key in table}
-    return Contact(_vector3(table["normal"], f"{place}.normal", symbols),
-                   parse_expression(table["restitution"], f"{place}.restitution", symbols),
-                   table.get("tangential", "smooth"), table.get("law", "newton"),
-                   table.get("name", "contact"), bodies=tuple(bodies),
-                   point=_vector3(table.get("point", [0, 0, 0]), f"{place}.point", symbols),
-                   **friction)
+    try:
+        return Contact(_vector3(table["normal"], f"{place}.normal", symbols),
+                       parse_expression(table["restitution"], f"{place}.restitution",
+                                        symbols),
+                       table.get("tangential", "smooth"), table.get("law", "newton"),
+                       contact_name, bodies=tuple(bodies),
+                       point=_vector3(table.get("point", [0, 0, 0]), f"{place}.point",
+                                      symbols), **friction)
+    except InputError as exc:  # the contact's own field, at its place in the file
+        if place == "contact":
+            raise
+        raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
+
+
+def _read_contacts(data: Mapping[str, Any],
+                   symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, ...]:
+    """``[contact]``, or the ``[[contacts]]`` entries (each named)."""
+    if "contact" in data and "contacts" in data:
+        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
+    if "contacts" not in data:
+        return (_read_contact(data.get("contact"), symbols),)
+    entries = data["contacts"]
+    if not isinstance(entries, list) or not entries:
+        raise InputError("contacts", "[[contacts]] must hold at least one table")
+    contacts = tuple(_read_contact(t, symbols, f"contacts[{k}]", named=len(entries) > 1)
+                     for k, t in enumerate(entries))
+    seen: set[str] = set()
+    for k, c in enumerate(contacts):
+        if c.name in seen:
+            raise InputError(f"contacts[{k}].name", f"two contacts are named {c.name!r}")
+        seen.add(c.name)
+    return contacts
 
 
 def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
@@ -285,7 +338,7 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
-    allowed = {"title", "symbols", "values", "bodies", "contact", "impact"}
+    allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -299,7 +352,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
     if not isinstance(raw, list) or len(raw) < 2:
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
-    contact = _read_contact(data.get("contact"), symbols)
+    contacts = _read_contacts(data, symbols)
     tolerance = None
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
@@ -311,10 +364,11 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         tolerance = float(value)
     used = frozenset().union(*(x.free_symbols for b in bodies for x in (
         b.mass, *b.inertia, *b.position, *b.velocity, *b.spin)
-        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for x in (
-            contact.restitution, contact.friction or 0, *contact.point, *contact.normal)))
-    scene = SpaceScene(title, symbols, values, bodies, contact, name, tolerance, used)
-    SpaceCollision(bodies, (contact,), tolerance)  # its bodies and contact agree
+        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts
+                                       for x in (c.restitution, c.friction or 0,
+                                                 *c.point, *c.normal)))
+    scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used)
+    SpaceCollision(bodies, contacts, tolerance)  # its bodies and contacts agree
     return scene
 
 

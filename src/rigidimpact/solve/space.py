@@ -34,16 +34,19 @@ velocity (1, 1/2, -2), spin (3, -1, 2), Newton's e = 1/2, mu = 1/5):
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
+import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import cone_impact, walton_impact
 from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE
 from rigidimpact.solve.solution import Solution, certified
@@ -73,9 +76,10 @@ class SpaceCollision:
         names = [b.name for b in self.bodies]
         if len(set(names)) != len(names):
             raise InputError("bodies", "two bodies share a name")
-        if len(self.contacts) != 1:
-            raise InputError("contacts", "a 3-D scene has one contact so far (several 3-D "
-                             "contacts acting together are not solved yet)")
+        if not self.contacts:
+            raise InputError("contacts", "at least one contact is needed")
+        if len({c.name for c in self.contacts}) != len(self.contacts):
+            raise InputError("contacts", "two contacts share a name")
         for c in self.contacts:
             if not c.spatial:
                 raise InputError(f"{c.name}.normal", "a 3-D scene's contact needs a normal "
@@ -87,6 +91,9 @@ class SpaceCollision:
                                  f"{', '.join(TANGENTIAL_3D)} so far, not {c.tangential!r}")
             if c.tangential == "stick" and c.law != "newton":
                 raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
+            if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb"):
+                raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
+                                 f"or coulomb so far, not {c.tangential!r}")
         free = [b for b in self.bodies if b.support != "fixed"]
         if not free:
             raise InputError("bodies", "at least one body must be free to move")
@@ -128,7 +135,10 @@ class SpaceCollision:
         return (J * self.M_inverse * J.T).applyfunc(_tidy)
 
     def solve(self) -> Solution:
-        """The impact under the contact's laws (see the module's text)."""
+        """The impact under the contact's laws (see the module's text); several contacts:
+        :meth:`driven`."""
+        if len(self.contacts) > 1:
+            return self.driven()
         (c,) = self.contacts
         J = self.rows(c)
         W = (J * self.M_inverse * J.T).applyfunc(_tidy)
@@ -233,6 +243,104 @@ class SpaceCollision:
         out["_tolerance"] = max(1e-8, 1000 * (self.tolerance or 1e-10)) if not exact else \
             FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
+
+    def driven(self) -> Solution:
+        """Several contacts: the one that approaches strikes, under its restitution law,
+        and every contact touching with zero normal velocity rests, staying closed while
+        it pushes (a ball on the table striking a cushion); contacts moving apart take no
+        part. Followed in the striking contact's normal impulse by
+        :func:`rigidimpact.laws.together.driven_impact`, in floating point."""
+        numbers = [*self.u_before, *self.M_inverse, *(x for c in self.contacts
+                                                       for x in self.rows(c))]
+        if not all(sp.sympify(x).is_number for x in numbers) or not all(
+                sp.sympify(c.friction or 0).is_number for c in self.contacts):
+            raise InputError("contacts", "several 3-D contacts are followed numerically: "
+                             "give numbers for every symbol")
+        rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float) for c in self.contacts}
+        u = np.array(self.u_before.evalf(30), dtype=float).ravel()
+        speeds = {name: J @ u for name, J in rows.items()}
+        size = max(float(np.abs(u).max()), 1e-300)
+        approaching = [c for c in self.contacts if speeds[c.name][0] < -1e-12 * size]
+        resting = [c for c in self.contacts if abs(speeds[c.name][0]) <= 1e-12 * size]
+        if len(approaching) != 1:
+            raise InputError("contacts", "several 3-D contacts are solved where one of them "
+                             "approaches and the others rest (zero normal velocity); here "
+                             f"{len(approaching)} approach" + (
+                                 ": several striking at once in 3-D is not solved yet"
+                                 if approaching else ""))
+        acting = approaching + resting
+        striking = approaching[0]
+        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
+        out = driven_impact(Minv, [rows[c.name] for c in acting], u,
+                            float(striking.restitution), striking.law,
+                            [float(c.friction or 0) for c in acting], self.tolerance)
+        u_after = sp.Matrix([sp.Float(x, 17) for x in out.u_after])
+        P = {c.name: [sp.Float(x, 17) for x in out.impulses[i]]
+             for i, c in enumerate(acting)}
+        moved = [b.moved(u_after[6 * k:6 * k + 6, 0]) for k, b in enumerate(self.free)]
+        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
+        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+        courses = tuple(f"{c.name}: {course}" for c, course in
+                        zip(acting, out.courses, strict=True))
+        left = [c.name for c in self.contacts if c not in acting]
+        notes = [f"{striking.name} strikes and {', '.join(c.name for c in resting)} "
+                 f"rest{'s' if len(resting) == 1 else ''} (closed while pushing): the "
+                 f"impulses are integrated in {striking.name}'s normal impulse to a "
+                 f"relative tolerance of {out.tolerance:g} ({out.steps} steps)"]
+        if left:
+            notes.append(f"moving apart, not acting: {', '.join(left)}")
+        checks = self._driven_checks(acting, rows, P, u, out.u_after, before, lost,
+                                     out.tolerance)
+        solution = Solution(
+            before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
+            tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
+                        for c in acting},
+            contacts=tuple(acting), acted=tuple(c.name for c in acting),
+            regime="; ".join(courses), courses=courses,
+            energies=(before, lost, lost / before), notes=tuple(notes),
+            speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
+            tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
+            given_checks=checks)
+        return certified(solution)
+
+    def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
+                       P: Mapping[str, Sequence[Any]], u: np.ndarray, u_after: np.ndarray,
+                       before: sp.Expr, lost: sp.Expr, tolerance: float) -> dict[str, Any]:
+        """Residuals of the laws from the bodies' momenta and the contacts' impulses, at
+        the integration's precision: momentum, no pull, the cone, the striking contact
+        opening, each resting contact not penetrating, and the energy."""
+        out: dict[str, Any] = {}
+        for k, body in enumerate(self.free):
+            linear = np.array(body.mass * (u_after[6 * k:6 * k + 3] - u[6 * k:6 * k + 3]),
+                              dtype=float)
+            angular = np.array(sp.Matrix(body.inertia).evalf(30), dtype=float) @ (
+                u_after[6 * k + 3:6 * k + 6] - u[6 * k + 3:6 * k + 6])
+            for c in acting:
+                sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
+                if sign == 0:
+                    continue
+                frame = np.array(sp.Matrix(c.frame).evalf(30), dtype=float)
+                impulse = frame.T @ np.array(P[c.name], dtype=float)
+                arm = np.array((sp.Matrix(c.point) - sp.Matrix(body.position)).evalf(30),
+                               dtype=float).ravel()
+                linear -= sign * impulse
+                angular -= sign * np.cross(arm, impulse)
+            for axis, x, y in zip("xyz", linear, angular, strict=True):
+                out[f"{body.name}.momentum_{axis}"] = abs(x)
+                out[f"{body.name}.angular_momentum_{axis}"] = abs(y)
+        for c in acting:
+            Pn, Pt1, Pt2 = (float(x) for x in P[c.name])
+            v_after = rows[c.name] @ u_after
+            out[f"{c.name}.pushes"] = max(0.0, -Pn)
+            out[f"{c.name}.opens"] = max(0.0, -v_after[0])
+            cone = float(c.friction or 0) * Pn
+            out[f"{c.name}.cone"] = max(0.0, math.hypot(Pt1, Pt2) - cone)
+        out["energy"] = max(0.0, -float(lost))
+        out["_scale"] = max(float(np.abs(u).max()), float(np.abs(u_after).max()),
+                            *(abs(float(x)) for p in P.values() for x in p))
+        out["_kinetic"] = float(before)
+        out["_tolerance"] = max(1e-8, 1000 * tolerance)
+        return {k: sp.Float(v, 17) for k, v in out.items()}
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols."""
