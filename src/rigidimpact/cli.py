@@ -448,10 +448,12 @@ def _cmd_critical_angle(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    from rigidimpact.scenes.scene import load_scene
+    from rigidimpact.scenes.space import SpaceScene, load_any
     from rigidimpact.simulate import explain, run
 
-    scene = load_scene(args.scene)
+    scene = load_any(args.scene)
+    if isinstance(scene, SpaceScene):
+        return _simulate_space(scene, args)
     if args.set:
         values, sources = _settings({}, args.set)
         scene = scene.with_values(values, sources)
@@ -485,6 +487,40 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         print(f"rule = {outcome.details['rule']}; contacts that acted: "
               f"{', '.join(outcome.details['acted']) or 'none'}")
     if "rigid" in outcome.details:  # tangential compliance: the rigid contact beside it
+        print("the rigid contact gives: " + ", ".join(
+            f"{key} = {value:.10g}" for key, value in outcome.details["rigid"].items()))
+    print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
+    return 0
+
+
+def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
+    """``simulate`` of a 3-D scene: the impact, or a sphere's tangentially compliant
+    bounce, until separation (no figure yet)."""
+    from rigidimpact.simulate.planner import make_plan
+    from rigidimpact.simulate.space import run_space
+    from rigidimpact.solve.derivation import read_values
+
+    if args.plot or args.animate:
+        raise InputError("--plot" if args.plot else "--animate", "a 3-D scene's simulate "
+                         "gives numbers only so far")
+    settings, sources = _settings(scene.values, args.set or [])
+    values = read_values(settings, dict(sources), scene.data_symbols, (), scene.name)
+    if args.explain:
+        print(make_plan(scene.simulate).explain())
+        if not args.json:
+            return 0
+    outcome = run_space(scene, values)
+    for warning in outcome.details.get("warnings", ()):
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if args.json:
+        _print_json(outcome.as_json())
+        return 0
+    for event in outcome.events:
+        print(f"t = {event['t'] + 0.0:.12g}: {event['kind']}"
+              + (f": {event['why']}" if "why" in event else ""))
+    for key, value in outcome.final.items():
+        print(f"{key} = {value + 0.0 if isinstance(value, float) else value!r}")
+    if "rigid" in outcome.details and scene.simulate.get("effects"):
         print("the rigid contact gives: " + ", ".join(
             f"{key} = {value:.10g}" for key, value in outcome.details["rigid"].items()))
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")

@@ -67,6 +67,7 @@ class SpaceScene:
     name: str = "scene"
     tolerance: float | None = None
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
+    simulate: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
     @property
     def contact(self) -> Contact:
@@ -338,7 +339,8 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
-    allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact"}
+    allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
+               "simulate"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -367,7 +369,9 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts
                                        for x in (c.restitution, c.friction or 0,
                                                  *c.point, *c.normal)))
-    scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used)
+    simulate = _table(data, "simulate", "settings")
+    scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
+                       simulate)
     SpaceCollision(bodies, contacts, tolerance)  # its bodies and contacts agree
     return scene
 
