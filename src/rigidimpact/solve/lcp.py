@@ -39,6 +39,8 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
+from sympy.polys.domains import QQ
+from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -113,6 +115,99 @@ def _lexicographic_min(rows: list[list[Fraction]], candidates: list[int], c: int
         smallest = min(column.values())
         tied = [i for i in tied if column[i] == smallest]
     return tied[0]
+
+
+def lemke_float(M: np.ndarray, q: np.ndarray, max_pivots: int | None = None
+                ) -> np.ndarray | None:
+    """Lemke's method in floating point (a dense tableau, one rank-one update a pivot):
+    the z it ends with, or None where it ends on a ray or runs past its pivots. Its
+    answer is a guess of which unknowns are positive, to be confirmed exactly
+    (:func:`confirm_support`)."""
+    n = len(q)
+    if (q >= 0).all():
+        return np.zeros(n)
+    T = np.hstack([np.eye(n), -M, -np.ones((n, 1)), q.reshape(-1, 1)]).astype(float)
+    basis = list(range(n))
+    artificial, last = 2 * n, 2 * n + 1
+    entering, row = artificial, int(np.argmin(q))
+    scale = max(1.0, float(np.abs(T).max()))
+    for _ in range(max_pivots or 50 * n + 100):
+        T[row] /= T[row, entering]
+        column = T[:, entering].copy()
+        column[row] = 0.0
+        T -= np.outer(column, T[row])
+        left, basis[row] = basis[row], entering
+        if left == artificial:
+            z = np.zeros(n)
+            for i, b in enumerate(basis):
+                if n <= b < 2 * n:
+                    z[b - n] = T[i, last]
+            return z
+        entering = left + n if left < n else left - n
+        a = T[:, entering]
+        candidates = np.nonzero(a > 1e-12 * scale)[0]
+        if not len(candidates):
+            return None
+        ratios = T[candidates, last] / a[candidates]
+        least = ratios.min()
+        tied = candidates[ratios <= least + 1e-11 * max(1.0, abs(least))]
+        for j in range(n):  # ties broken lexicographically, as in the exact tableau
+            if len(tied) == 1:
+                break
+            column = T[tied, j] / a[tied]
+            smallest = column.min()
+            tied = tied[column <= smallest + 1e-11 * max(1.0, abs(smallest))]
+        row = int(tied[0])
+    return None
+
+
+def confirm_support(M: Sequence[dict[int, Fraction]], q: Sequence[Fraction],
+                    support: Sequence[int], raised: Sequence[int] = ()
+                    ) -> list[Fraction] | None:
+    """The exact z whose positive part is on `support` (M given as sparse rows):
+    ``(q + M z)_i = 0`` there, z zero elsewhere, solved in the rationals (python-flint's
+    where installed); each index in `raised` (an unknown the equations leave free, such
+    as a released contact's slack) is then raised to the least value >= 0 that keeps
+    every row it enters non-negative. None unless z >= 0, q + M z >= 0 and
+    z (q + M z) = 0 hold exactly (then z solves the LCP)."""
+    n = len(q)
+    support = list(support)
+    z = [Fraction(0)] * n
+    if support:
+        where = {j: k for k, j in enumerate(support)}
+        block = DomainMatrix({k: {where[j]: QQ(x.numerator, x.denominator)
+                                  for j, x in M[i].items() if j in where}
+                              for k, i in enumerate(support)},
+                             (len(support), len(support)), QQ)
+        rhs = DomainMatrix({k: {0: QQ(-q[i].numerator, q[i].denominator)}
+                            for k, i in enumerate(support) if q[i]},
+                           (len(support), 1), QQ)
+        try:
+            solved = block.to_dense().lu_solve(rhs.to_dense())
+        except Exception:  # noqa: BLE001 - singular: the support does not fix z
+            return None
+        for k, i in enumerate(support):
+            x = solved[k, 0].element
+            z[i] = Fraction(int(x.numerator), int(x.denominator))
+    if any(x < 0 for x in z):
+        return None
+    columns: dict[int, list[tuple[int, Fraction]]] = {}  # M's columns, their nonzeros
+    for i, row in enumerate(M):
+        for j, x in row.items():
+            columns.setdefault(j, []).append((i, x))
+    w = list(q)
+    for j in range(n):
+        if z[j]:
+            for i, m in columns.get(j, ()):
+                w[i] += m * z[j]
+    for k in raised:
+        z[k] = max([Fraction(0), *(-w[i] / m for i, m in columns.get(k, ()) if m > 0)])
+        if z[k]:
+            for i, m in columns.get(k, ()):
+                w[i] += m * z[k]
+    if any(x < 0 for x in w) or any(z[i] and w[i] for i in range(n)):
+        return None
+    return z
 
 
 # ---- floating point at scale, with an exact check ------------------------------------

@@ -17,8 +17,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, ClassVar
 
+import numpy as np
 import sympy as sp
 from sympy.polys.domains import QQ
+from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.errors import InputError
 from rigidimpact.solve.conditions import (
@@ -30,8 +32,10 @@ from rigidimpact.solve.lcp import (
     NoSolution,
     confirm,
     confirm_by_rows,
+    confirm_support,
     least_norm,
     lemke,
+    lemke_float,
     pivoting,
     proximal,
     residual,
@@ -56,6 +60,17 @@ MAX_SYMBOLIC_SECONDS = 20.0
 # (or past MAX_ENUMERATED with irrational numbers) floating point with an exact check
 MAX_LEMKE = 64
 
+
+# the simultaneous rule with friction: every combination of contact states is tried
+# (each answer found, so non-unique ones are said) up to this many combinations; past it
+# one linear complementarity problem (Stewart and Trinkle; Anitescu and Potra) by
+# Lemke's method, exact, which finds one answer
+MAX_FRICTION_STATES = 729
+# the frictional problem (four unknowns a contact): Lemke's method in floating point with
+# an exact confirmation up to MAX_FRICTION_LEMKE contacts (a dense tableau), and where
+# the confirmation fails, Lemke's exact tableau up to MAX_FRICTION_EXACT_LEMKE
+MAX_FRICTION_LEMKE = 400
+MAX_FRICTION_EXACT_LEMKE = 40
 
 _STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
           "slide-": "slides", "mixed": "differs between the solutions"}
@@ -159,13 +174,13 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     v_n, v_t = problem._velocity_before, (problem._J_t * problem.u_before).applyfunc(tidy)
     mu = [law.cone() for law in tangential]
     target = [problem._leaving(i, min(v_n[i], 0)) for i in range(n)]
+    states = [("off",) + law.velocity_states for law in tangential]
+    count = math.prod(len(s) for s in states)
+    if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
+        return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
     rows = sp.Matrix.vstack(problem._J, problem._J_t)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
-    states = [("off",) + law.velocity_states for law in tangential]
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
-    count = math.prod(len(s) for s in states)
-    if count > MAX_SYMBOLIC_CASES:
-        raise InputError("contacts", _too_many_states(n, count))
     deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
     not_unique = False
     for pattern in itertools.product(*states):
@@ -221,6 +236,142 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
                    courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                  zip(problem.contacts, pattern, strict=True)),
                    notes=notes)
+
+
+def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
+                    mu: Sequence[Any], target: Sequence[sp.Expr],
+                    tangential: Sequence[Any]) -> Solution:
+    """Coulomb friction at many contacts acting together as one linear complementarity
+    problem (Stewart and Trinkle 1996; Anitescu and Potra 1997). In the plane the cone
+    has two edges, so the problem is exact, not a faceted approximation. Each contact has
+    four unknowns: its normal impulse p, its friction split into the two edges' parts
+    a, b >= 0 (P_t = a - b), and a slack s, the size of its slip after:
+
+        w_p = v_n+ - target >= 0  with p      (Newton's law, or released and opening)
+        w_a = s + v_t+ >= 0       with a      (friction against a slip one way)
+        w_b = s - v_t+ >= 0       with b      (or the other)
+        w_s = mu p - a - b >= 0   with s      (the cone: sliding on its edge)
+
+    A sticking contact (``tangential = "stick"``) has no cone and no slack: ``w_a = v_t+``
+    and ``w_b = -v_t+``, so its slip after is zero; a smooth one has mu = 0. Lemke's
+    method in floating point finds which unknowns are positive, and the rationals confirm
+    it (then the answer is exact); where they do not, Lemke's exact tableau solves it, up
+    to a size. It finds one answer: with friction there may be others (the outcome says
+    so), which the enumeration of states finds for few contacts.
+    """
+    n = len(problem.contacts)
+    if n > MAX_FRICTION_LEMKE:
+        raise InputError("contacts", f"{n} frictional contacts acting together: the "
+                         f"complementarity problem is solved up to {MAX_FRICTION_LEMKE} "
+                         "so far; try the sequential rule")
+    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    data = [*v_n, *v_t, *target, *(m for m in mu if m is not None)]
+    if rows.free_symbols or problem.M_inverse.free_symbols or not all(
+            sp.sympify(x).is_Rational for x in data):
+        raise InputError("contacts", f"{n} frictional contacts acting together are solved "
+                         "exactly for rational data; these numbers are not rational")
+    try:
+        J = rows.to_DM().convert_to(QQ)
+        Minv = problem.M_inverse.to_DM().convert_to(QQ)
+    except Exception:  # noqa: BLE001 - an irrational entry: not in the rationals
+        raise InputError("contacts", f"{n} frictional contacts acting together are solved "
+                         "exactly for rational data; these numbers are not rational"
+                         ) from None
+    W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
+
+    def f(x: Any) -> Fraction:
+        return Fraction(int(x.numerator), int(x.denominator))
+
+    def g(x: Any) -> Fraction:
+        x = sp.Rational(x)
+        return Fraction(int(x.p), int(x.q))
+
+    sticks = [m is None and law.grips for m, law in zip(mu, tangential, strict=True)]
+    cone = [Fraction(0) if (m is None or not law.grips) else g(m)
+            for m, law in zip(mu, tangential, strict=True)]
+    size = 4 * n
+    M: list[dict[int, Fraction]] = [{} for _ in range(size)]  # sparse rows
+    q = [Fraction(0)] * size
+    for i in range(n):
+        q[i] = g(v_n[i]) - g(target[i])
+        q[n + i], q[2 * n + i] = g(v_t[i]), -g(v_t[i])
+    for i, row in W.items():
+        for j, value in row.items():
+            x = f(value)
+            if i < n and j < n:
+                M[i][j] = x
+            elif i < n:  # W_nt: the tangential impulses' effect on the normal velocity
+                M[i][j] = x
+                M[i][n + j] = -x
+            elif j < n:  # W_tn
+                M[i][j] = x
+                M[n + i][j] = -x
+            else:  # W_tt
+                M[i][j], M[i][n + j] = x, -x
+                M[n + i][j], M[n + i][n + j] = -x, x
+    for i in range(n):
+        if sticks[i]:
+            M[3 * n + i][3 * n + i] = Fraction(1)  # no slack: the slip after is zero
+        else:
+            M[n + i][3 * n + i] = M[2 * n + i][3 * n + i] = Fraction(1)
+            if cone[i]:
+                M[3 * n + i][i] = cone[i]
+            M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = Fraction(-1)
+    dense = np.zeros((size, size))
+    for i, row in enumerate(M):
+        for j, x in row.items():
+            dense[i, j] = float(x)
+    guess = lemke_float(dense, np.array([float(x) for x in q]))
+    z = None
+    if guess is not None:
+        cut = 1e-9 * max(1.0, float(np.abs(guess).max()))
+        support = {int(i) for i in np.nonzero(guess > cut)[0]}
+        for i in range(n):  # a friction with both edges' parts: only their difference
+            if n + i in support and 2 * n + i in support:  # counts (the two columns are
+                support.discard(n + i if guess[n + i] < guess[2 * n + i] else 2 * n + i)
+        # a released contact's slack is any value at least its slip after: raised to it
+        released = [3 * n + i for i in range(n) if i not in support and not sticks[i]]
+        support -= set(released)
+        z = confirm_support(M, q, sorted(int(i) for i in support), released)
+    how = "found in floating point and confirmed in exact arithmetic"
+    if z is None:
+        if n > MAX_FRICTION_EXACT_LEMKE:
+            raise InputError("contacts", f"{n} frictional contacts acting together: "
+                             "floating point found no answer that the exact check "
+                             f"confirms, and Lemke's exact tableau is used up to "
+                             f"{MAX_FRICTION_EXACT_LEMKE} contacts; try the sequential rule")
+        try:
+            z = lemke([[row.get(j, Fraction(0)) for j in range(size)] for row in M], q)
+        except NoSolution as exc:
+            raise InputError("impact.rule", "no impulses satisfy the simultaneous rule "
+                             f"with friction here ({exc}: a Painleve-type inconsistency); "
+                             "try the sequential rule") from None
+        how = "by Lemke's exact tableau"
+    P = [z[i] for i in range(n)] + [z[n + i] - z[2 * n + i] for i in range(n)]
+    impulses = DomainMatrix([[QQ(x.numerator, x.denominator)] for x in P], (2 * n, 1), QQ)
+    u0 = problem.u_before.to_DM().convert_to(QQ)
+    u_dm = u0 + Minv * (J.transpose() * impulses)
+    slip_dm = J * u_dm
+    u = sp.Matrix([QQ.to_sympy(u_dm[k, 0].element) for k in range(u_dm.shape[0])])
+    normal = sp.Matrix([sp.Rational(P[i].numerator, P[i].denominator) for i in range(n)])
+    along = sp.Matrix([sp.Rational(P[n + i].numerator, P[n + i].denominator)
+                       for i in range(n)])
+    acting = [i for i in range(n) if P[i] > 0]
+    if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
+        return _one_acting(problem, acting[0], list(target))
+    slip = [slip_dm[n + i, 0].element for i in range(n)]
+    states = ["off" if P[i] == 0 else "on" if not tangential[i].grips else
+              "stick" if slip[i] == 0 else "slide+" if slip[i] > 0 else "slide-"
+              for i in range(n)]
+    note = (f"{n} frictional contacts: solved as one linear complementarity problem by "
+            f"Lemke's method ({size} unknowns), {how}; it gives one answer, and with "
+            "friction others may exist")
+    return problem._outcome("simultaneous", (), u, problem._named(normal),
+                            tuple(problem.contacts[i].name for i in acting),
+                            tangential=problem._named(along),
+                            courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                                          zip(problem.contacts, states, strict=True)),
+                            notes=(note,), method="lemke")
 
 
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:

@@ -1,0 +1,169 @@
+"""Coulomb friction at many contacts acting together (the simultaneous rule past a few
+contacts: one linear complementarity problem by Lemke's method, exact): its answers
+against the enumeration of states where both apply, and its laws checked exactly on
+rough chains, fans and random clusters, from the bodies' velocities and the impulses
+alone."""
+
+from __future__ import annotations
+
+import random
+from dataclasses import replace
+
+import pytest
+import sympy as sp
+
+import rigidimpact as ri
+import rigidimpact.solve.rules.simultaneous as simultaneous_rule
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.bodies import Body
+from rigidimpact.solve.collision import Collision
+
+HALF, THIRD, QUARTER = sp.Rational(1, 2), sp.Rational(1, 3), sp.Rational(1, 4)
+
+
+def rough(collision: Collision, mu=THIRD) -> Collision:
+    return Collision(collision.bodies, tuple(
+        replace(t, tangential="coulomb", friction=mu) for t in collision.contacts))
+
+
+def spinning_chain(n: int, mu=QUARTER) -> Collision:
+    """A cradle whose balls also move across the line and spin: every contact slips."""
+    chain = ri.chain(n)
+    bodies = tuple(replace(b, velocity=(b.velocity[0], sp.Rational((-1) ** k, k + 2)),
+                           spin=sp.Rational(k % 3 - 1, 2))
+                   for k, b in enumerate(chain.bodies))
+    return rough(Collision(bodies, chain.contacts), mu)
+
+
+def _point_velocity(body, point):
+    """The velocity of `body`'s point at `point`, from its speeds alone (v + w x r)."""
+    if body.support == "fixed":
+        return sp.Matrix([0, 0])
+    r = sp.Matrix(point) - sp.Matrix(body.position)
+    return sp.Matrix(body.velocity) + body.spin * sp.Matrix([-r[1], r[0]])
+
+
+def assert_the_laws_hold(collision: Collision, solution) -> None:
+    """Each contact, exactly: no pull; Newton's law if it acts, opening at least as fast
+    if released; the cone; a sliding impulse on the cone's edge against the slip after;
+    a contact inside the cone not slipping. Momentum of every body from the impulses."""
+    before = {b.name: b for b in collision.bodies}
+    after = {b.name: b for b in solution.after}
+    force = {name: sp.Matrix([0, 0]) for name in before}
+    moment = {name: sp.Integer(0) for name in before}
+    for c in collision.contacts:
+        n = sp.Matrix(c.normal) / sp.sqrt(sp.Matrix(c.normal).dot(sp.Matrix(c.normal)))
+        t = sp.Matrix([-n[1], n[0]])
+        P_n, P_t = solution.impulses[c.name], solution.tangential[c.name]
+        relative = [_point_velocity(b[c.second], c.point) - _point_velocity(b[c.first],
+                                                                            c.point)
+                    for b in (before, after)]
+        v_n, w_n = (sp.nsimplify(r.dot(n)) for r in relative)
+        slip = sp.simplify(relative[1].dot(t))
+        assert P_n >= 0
+        if P_n > 0:
+            assert sp.simplify(w_n + c.restitution * v_n) == 0, c.name
+        else:
+            assert w_n >= -c.restitution * v_n, c.name
+        assert abs(P_t) <= c.friction * P_n
+        if slip != 0:
+            assert P_t == -sp.sign(slip) * c.friction * P_n, c.name
+        if abs(P_t) < c.friction * P_n:
+            assert slip == 0, c.name
+        impulse = P_n * n + P_t * t
+        for name, sign in ((c.second, 1), (c.first, -1)):
+            r = sp.Matrix(c.point) - sp.Matrix(before[name].position)
+            force[name] += sign * impulse
+            moment[name] += sign * (r[0] * impulse[1] - r[1] * impulse[0])
+    for name, body in before.items():
+        if body.support == "fixed":
+            continue
+        change = body.mass * (sp.Matrix(after[name].velocity) - sp.Matrix(body.velocity))
+        assert sp.simplify(change - force[name]) == sp.zeros(2, 1), name
+        turn = body.inertia * (after[name].spin - body.spin)
+        assert sp.simplify(turn - moment[name]) == 0, name
+
+
+def _random_cluster(rng: random.Random, k: int) -> Collision:
+    """A striker meeting k discs at rational directions on its rim (a fan), spinning,
+    with random rational friction and restitution, some discs moving too."""
+    fan = ri.fan(k)
+    bodies = [replace(fan.bodies[0], spin=sp.Rational(rng.randint(-6, 6), 4))]
+    for b in fan.bodies[1:]:
+        bodies.append(replace(b, velocity=(sp.Rational(rng.randint(-2, 2), 4),
+                                           sp.Rational(rng.randint(-2, 2), 4)),
+                              spin=sp.Rational(rng.randint(-4, 4), 4)))
+    contacts = tuple(replace(t, tangential="coulomb",
+                             friction=sp.Rational(rng.randint(1, 8), 8),
+                             restitution=sp.Rational(rng.randint(0, 4), 4))
+                     for t in fan.contacts)
+    return Collision(tuple(bodies), contacts)
+
+
+def test_the_complementarity_problem_finds_what_the_enumeration_finds(monkeypatch):
+    # where the enumeration of states (every combination tried) finds exactly one
+    # answer, the complementarity problem must find that same answer
+    rng = random.Random(34)
+    compared = 0
+    for _ in range(40):
+        collision = _random_cluster(rng, rng.randint(2, 5))
+        try:
+            enumerated = collision.simultaneous()
+        except ri.InputError:
+            continue
+        if any("solutions" in note or "not unique" in note or "mixture" in note
+               for note in enumerated.notes) or len(enumerated.acted) < 2:
+            continue
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
+        by_lcp = collision.simultaneous()
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 729)
+        assert "complementarity" in by_lcp.notes[-1]
+        for b, c in zip(enumerated.after, by_lcp.after, strict=True):
+            assert sp.Matrix(b.velocity) == sp.Matrix(c.velocity) and b.spin == c.spin
+        assert_the_laws_hold(collision, by_lcp)
+        compared += 1
+    assert compared >= 10
+
+
+@pytest.mark.parametrize("n", [8, 31, 101])
+def test_a_rough_spinning_chain_obeys_the_laws_exactly(n):
+    collision = spinning_chain(n)
+    solution = collision.simultaneous()
+    assert "complementarity" in solution.notes[-1]
+    assert max(solution.checks.values()) == 0
+    assert_the_laws_hold(collision, solution)
+
+
+@pytest.mark.parametrize("k", [7, 40])
+def test_a_rough_fan_obeys_the_laws_exactly(k):
+    collision = rough(ri.fan(k))
+    solution = collision.simultaneous()
+    assert max(solution.checks.values()) == 0
+    assert_the_laws_hold(collision, solution)
+    states = {c.split(": ")[1] for c in solution.courses}
+    assert {"sticks", "slides"} <= states  # both kinds occur: the test has teeth
+
+
+def test_a_rough_box_landing_flat_on_its_two_corners_by_hand():
+    # a box (mass 1, inertia 1/3) lands flat on its corners at (-1, 0) and (1, 0), moving
+    # down at 1 and sideways at 1/2, e = 0: every acting contact ends at rest across; by
+    # symmetry both push 1/2 and, if both slide, the friction is mu/2 each; sliding
+    # holds while the sideways speed 1/2 - mu stays positive: mu = 1/4 leaves 1/4
+    box = Body.rigid(1, sp.Rational(1, 3), (0, 0), (HALF, -1), 0, name="box")
+    corners = tuple(Contact((0, -1), 0, "coulomb", name=name, friction=sp.Rational(1, 4),
+                            bodies=("box", "floor"), point=(x, 0))
+                    for name, x in (("left", -1), ("right", 1)))
+    solution = Collision((box, Body.fixed("floor")), corners).simultaneous()
+    r = solution.results()
+    assert r["box.vx"] == sp.Rational(1, 4) and r["box.vy"] == 0 and r["box.omega"] == 0
+    assert r["left.normal_impulse"] == r["right.normal_impulse"] == HALF
+    # the impulses are those on the second body (the floor) along t = (1, 0): the box
+    # gets -1/8 along x at each corner, the floor +1/8
+    assert r["left.tangential_impulse"] == r["right.tangential_impulse"] == \
+        sp.Rational(1, 8)
+
+
+def test_past_the_size_the_rule_refuses_in_one_line(monkeypatch):
+    monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 5)
+    with pytest.raises(ri.InputError, match="solved up to 5"):
+        spinning_chain(8).simultaneous()
