@@ -10,6 +10,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+import rigidimpact as ri
+import rigidimpact.solve.rules.compliant as compliant_rule
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.scenes.scene import load_scene, parse_scene
@@ -247,3 +249,18 @@ def test_gravity_in_a_compliant_run_keeps_the_energy_balance():
     energy = outcome.details["energy"]
     assert abs(energy["balance_error"]) < 1e-6 * energy["initial"]
     assert outcome.final["barbell.vy"] < 0
+
+
+def test_one_integrator_through_the_windows_gives_what_one_per_window_gives(monkeypatch):
+    # past a size the compliant rule keeps one LSODA integrator for every window (its
+    # memory then grows with the contacts, not with the windows): the same answer as a
+    # fresh solve_ivp per window, to the integration's tolerance
+    collision = ri.cluster(4, 4)
+    monkeypatch.setattr(compliant_rule, "PERSISTENT_FROM", 10**9)
+    (fresh,) = collision.solve(ri.Compliant())
+    monkeypatch.setattr(compliant_rule, "PERSISTENT_FROM", 1)
+    (kept,) = collision.solve(ri.Compliant())
+    a, b = fresh.results(), kept.results()
+    speeds = [k for k in a if k.endswith((".vx", ".vy", ".omega"))]
+    assert len(speeds) > 30
+    assert max(abs(float(a[k]) - float(b[k])) for k in speeds) < 1e-8

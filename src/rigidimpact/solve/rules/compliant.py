@@ -8,8 +8,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
+import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
@@ -24,6 +25,7 @@ from rigidimpact.solve.solution import Solution
 COMPLIANT_ENERGY_TOLERANCE = 1e-7
 
 
+PERSISTENT_FROM = 200  # contacts: past it one integrator for every window (see below)
 MAX_WINDOWS = 2000  # the compliant rule's integration windows before it gives up
 
 
@@ -89,7 +91,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
 
     import numpy as np
     import scipy.sparse as sps
-    from scipy.integrate import solve_ivp
+    from scipy.integrate import ode, solve_ivp
     from scipy.sparse.csgraph import reverse_cuthill_mckee
 
     problem._numbers_only("compliant")
@@ -174,12 +176,32 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
 
     times, states, elapsed, window = [], [], 0.0, period
     atol = tolerance * max(speed, 1.0) * period
+    # past PERSISTENT_FROM contacts one LSODA integrator runs on through the windows on
+    # one clock, and restarts on its own work arrays after a free flight: every fresh
+    # start of LSODA (each call of solve_ivp, each set_initial_value) allocates work
+    # arrays the size of the state's band that scipy 1.17 does not give back (see
+    # scipy issue 10070), which grew a 954-contact cluster to 569 MiB
+    persistent, clock, restart = None, 0.0, True
+    if k >= PERSISTENT_FROM and not record:
+        persistent = ode(ordered).set_integrator(
+            "lsoda", rtol=tolerance, atol=atol, lband=band, uband=band, nsteps=10**7)
     for rounds in range(MAX_WINDOWS):  # until every contact has let go, none closing
-        run = solve_ivp(ordered, (0.0, window), y[order], method="LSODA",
-                        rtol=tolerance, atol=atol, lband=band, uband=band,
-                        t_eval=None if record else [window])  # else only the end
-        run.y = run.y[place]
-        y = run.y[:, -1]
+        if persistent is not None:
+            if restart:
+                _restart(persistent, y[order], clock)
+                restart = False
+            clock += window
+            end = persistent.integrate(clock)
+            if not persistent.successful():
+                raise InputError("impact.rule", "the compliant contacts' integration "
+                                 "failed (LSODA); please report the scene")
+            y = end[place]
+        else:
+            run = solve_ivp(ordered, (0.0, window), y[order], method="LSODA",
+                            rtol=tolerance, atol=atol, lband=band, uband=band,
+                            t_eval=None if record else [window])  # else only the end
+            run.y = run.y[place]
+            y = run.y[:, -1]
         if record:
             times.append(run.t + elapsed)
             full = np.repeat(u_all[:, None], len(run.t), axis=1)
@@ -197,6 +219,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
             y = y.copy()
             y[n:n + k] = np.minimum(depth + closing * wait, 0.0)
             elapsed += wait
+            restart = True
             window = period
         elif rounds >= 10:  # a long chain: the windows grow, so they stay few
             window *= 1.5
@@ -213,3 +236,17 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
                    tuple(t.name for t, p in zip(problem.contacts, impulses, strict=True)
                          if p > 0), history=history,
                    energy_tolerance=max(COMPLIANT_ENERGY_TOLERANCE, 10 * k * tolerance))
+
+
+def _restart(solver: Any, y: Any, t: float) -> None:
+    """Start `solver` (scipy's ``ode`` with LSODA) afresh from y at t on the work arrays
+    it already has (LSODA's istate = 1): ``set_initial_value`` would allocate new ones,
+    and the old ones are not given back (scipy 1.17, pinned)."""
+    integrator = getattr(solver, "_integrator", None)
+    if getattr(integrator, "call_args", None) is None or len(solver._y) != len(y):
+        solver.set_initial_value(y, t)
+        return
+    solver._y = np.array(y, dtype=float)
+    solver.t = t
+    integrator.call_args[3] = 1  # istate 1: a new problem, the same arrays
+    integrator.istate = 1
