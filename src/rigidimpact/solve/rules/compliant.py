@@ -242,7 +242,7 @@ def _restart(solver: Any, y: Any, t: float) -> None:
     """Start `solver` (scipy's ``ode`` with LSODA) afresh from y at t on the work arrays
     it already has (LSODA's istate = 1): ``set_initial_value`` would allocate new ones,
     and the old ones are not given back (scipy 1.17, pinned)."""
-    integrator = getattr(solver, "_integrator", None)
+    integrator: Any = getattr(solver, "_integrator", None)
     if getattr(integrator, "call_args", None) is None or len(solver._y) != len(y):
         solver.set_initial_value(y, t)
         return
