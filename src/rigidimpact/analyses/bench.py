@@ -741,11 +741,48 @@ def _measure(solve: Callable[[], Any], memory: bool) -> tuple[float, float | Non
     return seconds, peak
 
 
+ROUGH_CHAIN_FRICTION, ROUGH_FAN_FRICTION = sp.Rational(1, 4), sp.Rational(1, 3)
+
+
+def rough_chain(n: int, friction: Any = ROUGH_CHAIN_FRICTION) -> Collision:
+    """A cradle of n balls that also move across the line and spin, every contact rough
+    (Coulomb, `friction`): each contact slips, so friction acts at every one."""
+    built = chain(n)
+    bodies = tuple(replace(b, velocity=(b.velocity[0], sp.Rational((-1) ** k, k + 2)),
+                           spin=sp.Rational(k % 3 - 1, 2)) for k, b in enumerate(built.bodies))
+    return Collision(bodies, tuple(replace(t, tangential="coulomb", friction=friction)
+                                   for t in built.contacts))
+
+
+def rough_fan(k: int, friction: Any = ROUGH_FAN_FRICTION) -> Collision:
+    """The fan of k discs (:func:`rigidimpact.solve.collision.fan`), every contact rough."""
+    built = fan(k)
+    return Collision(built.bodies, tuple(replace(t, tangential="coulomb", friction=friction)
+                                         for t in built.contacts))
+
+
+def _states_seconds(make: Callable[[], Collision]) -> float:
+    """The rough simultaneous rule by trying every combination of contact states (its
+    method for a few contacts), timed; InputError past its own 20 s budget."""
+    saved = simultaneous_rule.MAX_FRICTION_STATES
+    simultaneous_rule.MAX_FRICTION_STATES = 10**300
+    try:
+        problem = make()
+        begin = time.perf_counter()
+        problem.simultaneous()
+        return time.perf_counter() - begin
+    finally:
+        simultaneous_rule.MAX_FRICTION_STATES = saved
+
+
 def _rules(case: str, size: int, make: Callable[[], Collision],
            baseline: Callable[[str, Callable[[], float | None]], float | None],
            enumeration: Callable[[Collision], float]) -> list[tuple[str, Callable[[], Any],
                                                                     dict[str, Any]]]:
     """The rules timed on one problem, each with its baselines' seconds."""
+    if case.startswith("rough"):  # the simultaneous rule with friction
+        return [("simultaneous (rough)", lambda: make().simultaneous(), {
+            "states_s": baseline(f"{case} states", lambda: _states_seconds(make))})]
     order = tuple(t.name for t in make().contacts)
     exact_step = {"fraction_elimination_s": baseline(  # W dense: the exact step by
         "fraction elimination", lambda: _fraction_elimination_seconds(make()))} \
@@ -765,17 +802,20 @@ def _rules(case: str, size: int, make: Callable[[], Collision],
 
 
 def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = True,
-                    shapes: Iterable[str] = ("cradle", "cluster", "fan")) -> dict[str, Any]:
+                    shapes: Iterable[str] = ("cradle", "cluster", "fan", "rough-chain",
+                                             "rough-fan")) -> dict[str, Any]:
     """Each rule against the number of contacts, on a cradle (a chain of n + 1 balls),
     a hexagonal cluster of discs struck by one ball and a fan (one striker touching k
     discs at once: W dense; the simultaneous rule only), with side by side baselines:
     trying every set of acting contacts (the simultaneous rule's method before Lemke's,
     while it finishes within `limit` seconds), a plain dense solve_ivp of the same Hertz
     chain (the compliant rule's baseline, likewise), pymunk on the same cluster (if
-    installed), and for the fan the exact step by elimination over W in Fractions. One
-    run each. Rows: case, rule, n, seconds, peak MiB, the baselines' seconds (None: not
-    run, past the limit or not installed); and the exponent of a power law fitted to
-    each curve. `shapes` picks the cases."""
+    installed), and for the fan the exact step by elimination over W in Fractions. The
+    rough family (a spinning chain and the fan, every contact Coulomb) times the
+    simultaneous rule with friction (one complementarity problem) beside trying every
+    combination of contact states. One run each. Rows: case, rule, n, seconds, peak
+    MiB, the baselines' seconds (None: not run, past the limit or not installed); and
+    the exponent of a power law fitted to each curve. `shapes` picks the cases."""
     chains: tuple[int, ...] = (8, 32, 128) if quick else (2, 4, 8, 16, 32, 64, 128, 256,
                                                           512, 1024)
     sides: tuple[int, ...] = (2, 4, 8) if quick else CLUSTER_SIDES
@@ -802,7 +842,10 @@ def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = Tru
         return time.perf_counter() - begin
 
     fans: tuple[int, ...] = (16, 64) if quick else (16, 32, 64, 128, 256, 512, 1000)
+    roughs: tuple[int, ...] = (4, 16, 64) if quick else (2, 4, 8, 16, 32, 64, 128, 256)
     cases = [("cradle", n, lambda n=n: chain(n + 1)) for n in chains]
+    cases += [("rough-chain", n, lambda n=n: rough_chain(n + 1)) for n in roughs]
+    cases += [("rough-fan", k, lambda k=k: rough_fan(k)) for k in roughs]
     cases += [("cluster", side, lambda side=side: cluster(side, side)) for side in sides]
     cases += [("fan", k, lambda k=k: fan(k)) for k in fans]
     cases = [c for c in cases if c[0] in set(shapes)]
