@@ -33,7 +33,7 @@ from rigidimpact.model.space import Body3
 from rigidimpact.scenes.space import unknowns_at
 from rigidimpact.solve.space import SpaceCollision
 
-HALF, FIFTH = sp.Rational(1, 2), sp.Rational(1, 5)
+HALF, FIFTH, QUARTER = sp.Rational(1, 2), sp.Rational(1, 5), sp.Rational(1, 4)
 
 
 def _floor(e=HALF, mu=FIFTH, law="newton", tangential="coulomb"):
@@ -426,8 +426,8 @@ def test_several_3d_contacts_are_refused_in_one_line_where_not_solved():
     floor = Contact(normal=(0, 0, 1), restitution=HALF, name="floor",
                     bodies=("floor", "ball"), point=(0, 0, 0))
     bodies = (Body3.fixed("w"), Body3.fixed("floor"), ball)
-    with pytest.raises(InputError, match="2 approach: several striking at once"):
-        SpaceCollision(bodies, (wall, floor)).solve()
+    both = SpaceCollision(bodies, (wall, floor)).solve()  # both strike: the pyramid
+    assert "pyramid of 8 edges" in both.notes[0]
     with pytest.raises(InputError, match="smooth or coulomb so far"):
         SpaceCollision(bodies, (wall, replace(floor, tangential="stick")))
     x = sp.Symbol("x", positive=True)
@@ -452,3 +452,56 @@ def test_a_resting_contact_that_would_pull_lets_go():
     assert float(r["floor.normal_impulse"]) == pytest.approx(0.0, abs=1e-12)
     assert float(r["ball.vz"]) > 0
     assert "lets go" in out.regime
+
+
+# ---- several 3-D contacts striking at once: the cone as a pyramid ----
+
+def _cube(velocity, facets=8, e=0, mu=QUARTER, law="newton"):
+    """A cube of side 2 (mass 1, I = 2/3) landing flat on its four corners."""
+    cube = Body3.rigid(1, (sp.Rational(2, 3),) * 3, (0, 0, 1), velocity, (0, 0, 0),
+                       name="box")
+    corners = tuple(Contact(normal=(0, 0, 1), restitution=e, tangential="coulomb",
+                            friction=mu, law=law, name=f"c{i}", bodies=("floor", "box"),
+                            point=(x, y, 0))
+                    for i, (x, y) in enumerate(((-1, -1), (1, -1), (1, 1), (-1, 1))))
+    return SpaceCollision((Body3.fixed("floor"), cube), corners, facets=facets)
+
+
+@pytest.mark.parametrize("facets", [4, 8, 16])
+@pytest.mark.parametrize("e", [0, HALF])
+def test_a_cube_landing_flat_on_four_corners_by_hand(facets, e):
+    # the corners push in all (1 + e) m v_z, friction mu times that along -x (the slip is
+    # along x, an edge of every pyramid here): v_x = 1/2 - mu (1 + e), no turn
+    out = _cube((HALF, 0, -1), facets, e).solve()
+    r = {k: float(v) for k, v in out.results().items()}
+    assert r["box.vz"] == pytest.approx(float(e), abs=1e-12)
+    assert r["box.vx"] == pytest.approx(0.5 - 0.25 * (1 + float(e)), abs=1e-12)
+    for k in ("vy", "omega_x", "omega_y", "omega_z"):
+        assert r[f"box.{k}"] == pytest.approx(0.0, abs=1e-12)
+    assert max(float(x) for x in out.checks.values()) < 1e-12
+    total = sum(r[f"c{i}.normal_impulse"] for i in range(4))
+    assert total == pytest.approx(1 + float(e), abs=1e-12)
+    for i in range(4):
+        assert r[f"c{i}.tangential_impulse"] <= 0.25 * r[f"c{i}.normal_impulse"] + 1e-12
+
+
+def test_the_pyramid_approaches_the_cone_as_its_edges_multiply():
+    # sliding at 25.7 degrees, between edges: the circular cone's answer keeps the slip's
+    # direction and takes mu m v_z off its speed (by symmetry the cube does not turn);
+    # the pyramid's friction points within 180/facets degrees of it and is no larger, so
+    # the velocity after is within mu (1 + e) v_z pi/facets of the cone's
+    a = math.pi / 7
+    cone = (0.25 * math.cos(a), 0.25 * math.sin(a))
+    for facets in (8, 16, 32, 64, 128):
+        out = _cube((sp.cos(sp.pi / 7) / 2, sp.sin(sp.pi / 7) / 2, -1), facets).solve()
+        r = out.results()
+        gap = math.hypot(float(r["box.vx"]) - cone[0], float(r["box.vy"]) - cone[1])
+        assert gap <= 0.25 * math.pi / facets, facets
+        assert max(float(x) for x in out.checks.values()) < 1e-12
+
+
+def test_several_striking_contacts_are_refused_where_not_solved():
+    with pytest.raises(InputError, match="take Newton's law"):
+        _cube((HALF, 0, -1), law="poisson").solve()
+    with pytest.raises(InputError, match="even whole number"):
+        _cube((HALF, 0, -1), facets=7)

@@ -39,7 +39,7 @@ from rigidimpact.scenes.scene import (
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
 from rigidimpact.solve.solution import Solution
-from rigidimpact.solve.space import SpaceCollision
+from rigidimpact.solve.space import FACETS, SpaceCollision
 
 __all__ = ["SpaceScene", "parse_space_scene", "space_scene_from_data", "load_space_scene",
            "load_any", "is_spatial"]
@@ -68,6 +68,7 @@ class SpaceScene:
     tolerance: float | None = None
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
     simulate: Mapping[str, Any] = field(default_factory=dict, repr=False)
+    facets: int = FACETS
 
     @property
     def contact(self) -> Contact:
@@ -79,7 +80,7 @@ class SpaceScene:
         return {str(s): s for s in sorted(self.used, key=str)}
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
-        problem = SpaceCollision(self.bodies, self.contacts, self.tolerance)
+        problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -355,11 +356,17 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
-    tolerance = None
+    tolerance, facets = None, FACETS
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
+        if key == "facets":
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise InputError("impact.facets", f"a whole number, not {value!r}")
+            facets = value
+            continue
         if key != "tolerance":
-            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes tolerance only")
+            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes tolerance and "
+                             "facets")
         if isinstance(value, bool) or not isinstance(value, (int, float)) or \
                 not 1e-14 <= value <= 1e-2:
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
@@ -371,8 +378,8 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                                                  *c.point, *c.normal)))
     simulate = _table(data, "simulate", "settings")
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate)
-    SpaceCollision(bodies, contacts, tolerance)  # its bodies and contacts agree
+                       simulate, facets)
+    SpaceCollision(bodies, contacts, tolerance, facets)  # its bodies and contacts agree
     return scene
 
 

@@ -49,11 +49,13 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE
+from rigidimpact.solve.lcp import lemke_float
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 
 CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
+FACETS, MAX_FACETS = 8, 256  # the pyramid that stands for the cone at several strikes
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
 TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
@@ -71,6 +73,7 @@ class SpaceCollision:
     bodies: tuple[Body3, ...]
     contacts: tuple[Contact, ...]
     tolerance: float | None = None
+    facets: int = FACETS  # several contacts striking at once: the cone's pyramid
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -94,6 +97,10 @@ class SpaceCollision:
             if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb"):
                 raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
                                  f"or coulomb so far, not {c.tangential!r}")
+        if isinstance(self.facets, bool) or not isinstance(self.facets, int) or \
+                not 4 <= self.facets <= MAX_FACETS or self.facets % 2:
+            raise InputError("impact.facets", f"an even whole number from 4 to {MAX_FACETS}, "
+                             f"not {self.facets!r}")
         free = [b for b in self.bodies if b.support != "fixed"]
         if not free:
             raise InputError("bodies", "at least one body must be free to move")
@@ -262,12 +269,11 @@ class SpaceCollision:
         size = max(float(np.abs(u).max()), 1e-300)
         approaching = [c for c in self.contacts if speeds[c.name][0] < -1e-12 * size]
         resting = [c for c in self.contacts if abs(speeds[c.name][0]) <= 1e-12 * size]
-        if len(approaching) != 1:
-            raise InputError("contacts", "several 3-D contacts are solved where one of them "
-                             "approaches and the others rest (zero normal velocity); here "
-                             f"{len(approaching)} approach" + (
-                                 ": several striking at once in 3-D is not solved yet"
-                                 if approaching else ""))
+        if len(approaching) > 1:
+            return self._faceted(approaching + resting, rows, u)
+        if not approaching:
+            raise InputError("contacts", "several 3-D contacts are solved where one or more "
+                             "of them approach; here none approaches")
         acting = approaching + resting
         striking = approaching[0]
         Minv = np.array(self.M_inverse.evalf(30), dtype=float)
@@ -299,6 +305,112 @@ class SpaceCollision:
             regime="; ".join(courses), courses=courses,
             energies=(before, lost, lost / before), notes=tuple(notes),
             speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
+            tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
+            given_checks=checks)
+        return certified(solution)
+
+    def _faceted(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
+                 u: np.ndarray) -> Solution:
+        """Several contacts striking at once: the simultaneous rule at the velocity level
+        with Newton's law (Stewart and Trinkle's formulation), Coulomb's circular cone
+        replaced by the inscribed pyramid of :attr:`facets` edges ``d_j`` in the tangent
+        plane (along t1 and then every 360/facets degrees). Each contact's unknowns are
+        its normal impulse p, an impulse p_j >= 0 along each edge and a slack s (the
+        slip speed after, as seen by the pyramid):
+
+            w_p = v_n+ + e v_n- >= 0     with p
+            w_j = s + d_j . v_t+ >= 0    with p_j
+            w_s = mu p - sum_j p_j >= 0  with s
+
+        solved by Lemke's method in floating point and checked by the laws' residuals.
+        The pyramid is an accuracy choice: exact where the slip after is along an edge
+        (a body sliding straight along t1 or t2), otherwise its friction is short of the
+        cone's by up to 1 - cos(180/facets degrees)."""
+        late = [c for c in acting if c.law != "newton"]
+        if late:
+            raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
+                             "take Newton's law (the simultaneous rule at the velocity level)")
+        m, k = self.facets, len(acting)
+        angles = np.arange(m) * 2 * np.pi / m
+        D = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # edges in (t1, t2)
+        D[np.abs(D) < 1e-15] = 0.0
+        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
+        J = np.vstack([rows[c.name] for c in acting])  # 3k rows: n, t1, t2 per contact
+        W = J @ Minv @ J.T
+        v = J @ u
+        size = k * (m + 2)
+        # unknowns: p (k), p_j (k m, contact by contact), s (k); impulse = B z in the
+        # contacts' frames
+        B = np.zeros((3 * k, size))
+        for i in range(k):
+            B[3 * i, i] = 1.0
+            B[3 * i + 1:3 * i + 3, k + i * m:k + (i + 1) * m] = D.T
+        WB = W @ B
+        M = np.zeros((size, size))
+        q = np.zeros(size)
+        mu = [float(c.friction or 0) for c in acting]
+        for i, c in enumerate(acting):
+            M[i] = WB[3 * i]
+            q[i] = v[3 * i] * (1 + float(c.restitution)) if v[3 * i] < 0 else v[3 * i]
+            for j in range(m):
+                r = k + i * m + j
+                M[r] = D[j] @ WB[3 * i + 1:3 * i + 3]
+                M[r, k + k * m + i] = 1.0
+                q[r] = D[j] @ v[3 * i + 1:3 * i + 3]
+            last = k + k * m + i
+            M[last, i] = mu[i]
+            M[last, k + i * m:k + (i + 1) * m] = -1.0
+        z = lemke_float(M, q)
+        if z is None:
+            raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
+                             "friction here (Lemke's method ended on a ray: a "
+                             "Painleve-type inconsistency)")
+        impulse = B @ z
+        u_after = u + Minv @ J.T @ impulse
+        P = {c.name: [sp.Float(x, 17) for x in impulse[3 * i:3 * i + 3]]
+             for i, c in enumerate(acting)}
+        moved = [b.moved([sp.Float(x, 17) for x in u_after[6 * j:6 * j + 6]])
+                 for j, b in enumerate(self.free)]
+        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
+        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+        after = J @ u_after
+        states = []
+        for i in range(k):
+            slip = float(np.linalg.norm(after[3 * i + 1:3 * i + 3]))
+            states.append("released" if z[i] <= 0 else "acts" if mu[i] == 0 else
+                          "slides" if slip > 1e-9 * max(1.0, float(np.abs(u).max()))
+                          else "sticks")
+        courses = tuple(f"{c.name}: {state}" for c, state in zip(acting, states,
+                                                                  strict=True))
+        notes = [f"{k} contacts act together (the simultaneous rule, Newton's law at the "
+                 f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
+                 "choice: exact where a slip is along an edge), solved by Lemke's method "
+                 "in floating point; it gives one answer, and with friction or more "
+                 "contacts than freedoms others may exist"]
+        normals = J[0::3][[i for i in range(k) if z[i] > 0]]
+        if len(normals) and np.linalg.matrix_rank(normals @ np.linalg.cholesky(
+                Minv + 1e-300 * np.eye(len(Minv)))) < len(normals):
+            notes.append("more acting contacts than the freedoms they hold (their normal "
+                         "rows are dependent): the impulses shown are one of many that fit "
+                         "the rule")
+        checks = self._driven_checks(acting, rows, P, u, u_after, before, lost, 1e-12)
+        scale = max(1.0, float(np.abs(v).max()))
+        for i, c in enumerate(acting):
+            leave = after[3 * i] + float(c.restitution) * min(v[3 * i], 0.0)
+            checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if z[i] > 0 else
+                                                       max(0.0, -leave), 17)
+            checks[f"{c.name}.complementarity"] = sp.Float(abs(z[i] * leave) / scale, 17)
+        solution = Solution(
+            before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
+            tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
+                        for c in acting},
+            contacts=tuple(acting), acted=tuple(c.name for i, c in enumerate(acting)
+                                                if z[i] > 0),
+            regime="; ".join(courses), courses=courses,
+            energies=(before, lost, lost / before),
+            notes=tuple(notes),
+            speeds_before=self.speeds,
+            speeds_after=sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after]),
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
             given_checks=checks)
         return certified(solution)
@@ -345,7 +457,8 @@ class SpaceCollision:
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols."""
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
-                              tuple(c.at(values) for c in self.contacts), self.tolerance)
+                              tuple(c.at(values) for c in self.contacts), self.tolerance,
+                              self.facets)
 
 
 def _tidy(x: sp.Expr) -> sp.Expr:
