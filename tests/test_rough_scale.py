@@ -14,25 +14,17 @@ import sympy as sp
 
 import rigidimpact as ri
 import rigidimpact.solve.rules.simultaneous as simultaneous_rule
+from rigidimpact.analyses.bench import rough_chain, rough_fan
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision
 
-HALF, THIRD, QUARTER = sp.Rational(1, 2), sp.Rational(1, 3), sp.Rational(1, 4)
+HALF = sp.Rational(1, 2)
 
 
-def rough(collision: Collision, mu=THIRD) -> Collision:
-    return Collision(collision.bodies, tuple(
-        replace(t, tangential="coulomb", friction=mu) for t in collision.contacts))
-
-
-def spinning_chain(n: int, mu=QUARTER) -> Collision:
+def spinning_chain(n: int) -> Collision:
     """A cradle whose balls also move across the line and spin: every contact slips."""
-    chain = ri.chain(n)
-    bodies = tuple(replace(b, velocity=(b.velocity[0], sp.Rational((-1) ** k, k + 2)),
-                           spin=sp.Rational(k % 3 - 1, 2))
-                   for k, b in enumerate(chain.bodies))
-    return rough(Collision(bodies, chain.contacts), mu)
+    return rough_chain(n)
 
 
 def _point_velocity(body, point):
@@ -136,7 +128,7 @@ def test_a_rough_spinning_chain_obeys_the_laws_exactly(n):
 
 @pytest.mark.parametrize("k", [7, 40])
 def test_a_rough_fan_obeys_the_laws_exactly(k):
-    collision = rough(ri.fan(k))
+    collision = rough_fan(k)
     solution = collision.simultaneous()
     assert max(solution.checks.values()) == 0
     assert_the_laws_hold(collision, solution)
