@@ -14,7 +14,7 @@ import sympy as sp
 
 import rigidimpact as ri
 import rigidimpact.solve.rules.simultaneous as simultaneous_rule
-from rigidimpact.analyses.bench import rough_chain, rough_fan
+from rigidimpact.analyses.contacts import rough_chain, rough_fan
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision
