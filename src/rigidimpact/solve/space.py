@@ -297,17 +297,26 @@ class SpaceCollision:
             notes.append(f"moving apart, not acting: {', '.join(left)}")
         checks = self._driven_checks(acting, rows, P, u, out.u_after, before, lost,
                                      out.tolerance)
-        solution = Solution(
+        return self._numeric(acting, tuple(c.name for c in acting), P, u_after, courses,
+                             notes, (before, lost), checks)
+
+    def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
+                 P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
+                 notes: Sequence[str], energy: tuple[Any, Any],
+                 checks: Mapping[str, Any]) -> Solution:
+        """The one Solution of several 3-D contacts solved in floating point, certified
+        by its own residuals."""
+        before, lost = energy
+        return certified(Solution(
             before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
             tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
                         for c in acting},
-            contacts=tuple(acting), acted=tuple(c.name for c in acting),
-            regime="; ".join(courses), courses=courses,
-            energies=(before, lost, lost / before), notes=tuple(notes),
-            speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
+            contacts=tuple(acting), acted=acted, regime="; ".join(courses),
+            courses=courses, energies=(before, lost, lost / before), notes=tuple(notes),
+            speeds_before=self.speeds,
+            speeds_after=sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after]),
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            given_checks=checks)
-        return certified(solution)
+            given_checks=checks))
 
     def _faceted(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
                  u: np.ndarray) -> Solution:
@@ -400,20 +409,8 @@ class SpaceCollision:
             checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if z[i] > 0 else
                                                        max(0.0, -leave), 17)
             checks[f"{c.name}.complementarity"] = sp.Float(abs(z[i] * leave) / scale, 17)
-        solution = Solution(
-            before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
-            tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
-                        for c in acting},
-            contacts=tuple(acting), acted=tuple(c.name for i, c in enumerate(acting)
-                                                if z[i] > 0),
-            regime="; ".join(courses), courses=courses,
-            energies=(before, lost, lost / before),
-            notes=tuple(notes),
-            speeds_before=self.speeds,
-            speeds_after=sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after]),
-            tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            given_checks=checks)
-        return certified(solution)
+        return self._numeric(acting, tuple(c.name for i, c in enumerate(acting) if z[i] > 0),
+                             P, u_after, courses, notes, (before, lost), checks)
 
     def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
                        P: Mapping[str, Sequence[Any]], u: np.ndarray, u_after: np.ndarray,
