@@ -1,4 +1,4 @@
-"""Impacts in three dimensions: bodies with six speeds each and one contact with its
+"""Impacts in three dimensions: bodies with six speeds each and contacts, each with its
 normal and two tangents.
 
 The model is the same as in the plane, one dimension up: the speeds u of every free
@@ -7,7 +7,10 @@ body (``vx, vy, vz, omega_x, omega_y, omega_z``), ``M^-1`` block diagonal
 contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone.tangents`),
 ``v = J u`` and ``W = J M^-1 J^T``. The contact's laws give the impulse P in contact space
 (:func:`rigidimpact.laws.cone.cone_impact` for Coulomb's circular cone), and
-``u+ = u- + M^-1 J^T P``.
+``u+ = u- + M^-1 J^T P``. Several contacts: where one strikes and the others rest, the
+impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
+where several strike, the simultaneous rule with the cone as a pyramid
+(:meth:`SpaceCollision._faceted`).
 
 What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
 named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
@@ -62,8 +65,8 @@ TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
 @dataclass(frozen=True)
 class SpaceCollision:
-    """Bodies in space (:class:`~rigidimpact.model.space.Body3`) and the contact where
-    two of them meet (a :class:`~rigidimpact.laws.contact.Contact` with a 3-D normal and
+    """Bodies in space (:class:`~rigidimpact.model.space.Body3`) and the contacts where
+    they meet (each a :class:`~rigidimpact.laws.contact.Contact` with a 3-D normal and
     point, and its two bodies named).
 
     `tolerance` asks for the contact's path to be integrated numerically with that

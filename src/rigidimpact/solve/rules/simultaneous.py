@@ -2,8 +2,9 @@
 
 With numbers, a linear complementarity problem: Lemke's exact method for rational
 data, block pivoting with an exact confirmation at scale, the acting sets tried
-where numbers are irrational; with Coulomb friction every combination of contact
-states at the velocity level; with symbols, one outcome per case that can hold,
+where numbers are irrational; with Coulomb friction at the velocity level every
+combination of contact states for a few contacts, past them one complementarity
+problem (:func:`_frictional_lcp`); with symbols, one outcome per case that can hold,
 each with its conditions. One implementation for every source of the problem.
 """
 
@@ -150,9 +151,11 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     edge, opposite to the slip it leaves with). This is the model of time-stepping
     codes (Stewart and Trinkle, Anitescu and Potra), not Routh's integration over
     the impact: friction acts on the velocities after, so it agrees with Routh's
-    method when the slip does not change during the impact. Every combination of
-    states is solved exactly; with friction the problem can have several solutions,
-    or none (Painleve's paradox), and the outcome says so.
+    method when the slip does not change during the impact. Up to MAX_FRICTION_STATES
+    combinations every combination of states is solved exactly; with friction the
+    problem can have several solutions, or none (Painleve's paradox), and the outcome
+    says so. Past that, one complementarity problem finds one answer
+    (:func:`_frictional_lcp`).
     """
     if len(problem.contacts) == 1:  # one contact: its own exact answer, under any law
         return _one_acting(problem, 0, [sp.Integer(0)])
