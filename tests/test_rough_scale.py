@@ -1,20 +1,23 @@
 """Coulomb friction at many contacts acting together (the simultaneous rule past a few
-contacts: one linear complementarity problem by Lemke's method, exact): its answers
-against the enumeration of states where both apply, and its laws checked exactly on
-rough chains, fans and random clusters, from the bodies' velocities and the impulses
-alone."""
+contacts: one linear complementarity problem by Lemke's method, exact; at scale or with
+irrational numbers, a semismooth Newton method in floating point): its answers against
+the enumeration of states where both apply, and its laws checked from the bodies'
+velocities and the impulses alone, exactly on rough chains and fans and at 50 digits on
+rough hexagonal clusters."""
 
 from __future__ import annotations
 
 import random
 from dataclasses import replace
 
+import mpmath
 import pytest
 import sympy as sp
 
 import rigidimpact as ri
+import rigidimpact.solve.lcp as lcp
 import rigidimpact.solve.rules.simultaneous as simultaneous_rule
-from rigidimpact.analyses.contacts import rough_chain, rough_fan
+from rigidimpact.analyses.contacts import rough_chain, rough_cluster, rough_fan
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision
@@ -155,7 +158,127 @@ def test_a_rough_box_landing_flat_on_its_two_corners_by_hand():
         sp.Rational(1, 8)
 
 
-def test_past_the_size_the_rule_refuses_in_one_line(monkeypatch):
+def assert_the_laws_hold_at_50_digits(collision: Collision, solution,
+                                      tolerance: float = 1e-12) -> None:
+    """The conditions of :func:`assert_the_laws_hold` for an answer in floats, each
+    evaluated at 50 digits and held to `tolerance` (relative to the closing speed
+    before, 1 in these scenes): rounding is all an answer in floats may carry."""
+    mpmath.mp.dps = 50
+
+    def num(x):
+        return mpmath.mpf(str(sp.N(x, 50)))
+
+    def vec(v):
+        return [num(v[0]), num(v[1])]
+
+    def point_velocity(body, point):
+        if body.support == "fixed":
+            return [mpmath.mpf(0), mpmath.mpf(0)]
+        r = [num(point[0]) - num(body.position[0]), num(point[1]) - num(body.position[1])]
+        v, w = vec(body.velocity), num(body.spin)
+        return [v[0] - w * r[1], v[1] + w * r[0]]
+
+    before = {b.name: b for b in collision.bodies}
+    after = {b.name: b for b in solution.after}
+    force = {name: [mpmath.mpf(0), mpmath.mpf(0)] for name in before}
+    moment = {name: mpmath.mpf(0) for name in before}
+    slides = sticks = 0
+    for c in collision.contacts:
+        normal = vec(c.normal)
+        size = mpmath.sqrt(normal[0] ** 2 + normal[1] ** 2)
+        n = [normal[0] / size, normal[1] / size]
+        t = [-n[1], n[0]]
+        P_n, P_t = num(solution.impulses[c.name]), num(solution.tangential[c.name])
+        e, mu = num(c.restitution), num(c.friction)
+        relative = []
+        for b in (before, after):
+            one, two = (point_velocity(b[name], c.point) for name in (c.first, c.second))
+            relative.append([two[0] - one[0], two[1] - one[1]])
+        v_n = relative[0][0] * n[0] + relative[0][1] * n[1]
+        w_n = relative[1][0] * n[0] + relative[1][1] * n[1]
+        slip = relative[1][0] * t[0] + relative[1][1] * t[1]
+        assert P_n >= -tolerance, c.name
+        if P_n > tolerance:
+            assert abs(w_n + e * v_n) <= tolerance, c.name
+        assert w_n >= -e * v_n - tolerance, c.name
+        assert abs(P_t) <= mu * P_n + tolerance, c.name
+        if abs(P_t) < mu * P_n - 1e-9:
+            assert abs(slip) <= tolerance, c.name
+            sticks += P_n > tolerance
+        if abs(slip) > 1e-9:
+            assert abs(P_t + mpmath.sign(slip) * mu * P_n) <= tolerance, c.name
+            slides += 1
+        impulse = [P_n * n[0] + P_t * t[0], P_n * n[1] + P_t * t[1]]
+        for name, sign in ((c.second, 1), (c.first, -1)):
+            r = [num(c.point[k]) - num(before[name].position[k]) for k in (0, 1)]
+            force[name] = [force[name][k] + sign * impulse[k] for k in (0, 1)]
+            moment[name] += sign * (r[0] * impulse[1] - r[1] * impulse[0])
+    for name, body in before.items():
+        if body.support == "fixed":
+            continue
+        m, inertia = num(body.mass), num(body.inertia)
+        change = [m * (num(after[name].velocity[k]) - num(body.velocity[k])) for k in (0, 1)]
+        assert max(abs(change[k] - force[name][k]) for k in (0, 1)) <= tolerance, name
+        turn = inertia * (num(after[name].spin) - num(body.spin))
+        assert abs(turn - moment[name]) <= tolerance, name
+    assert slides and sticks  # both kinds of friction occur: the check has teeth
+
+
+@pytest.mark.parametrize("side", [4, 8])
+def test_a_rough_hexagonal_cluster_obeys_the_laws_at_50_digits(side):
+    # sqrt(3) in every diagonal contact: the answer is in floats, by the Newton method
+    collision = rough_cluster(side, side)
+    solution = collision.simultaneous()
+    assert solution.method == "newton" and "semismooth Newton" in solution.notes[-1]
+    assert not solution.warnings
+    assert_the_laws_hold_at_50_digits(collision, solution)
+
+
+def test_the_newton_method_finds_what_the_enumeration_finds(monkeypatch):
+    # the same random fans as the complementarity problem's test: where the enumeration
+    # finds exactly one answer, the Newton method in floats finds that answer
+    rng = random.Random(34)
+    compared = 0
+    for _ in range(40):
+        collision = _random_cluster(rng, rng.randint(2, 5))
+        try:
+            enumerated = collision.simultaneous()
+        except ri.InputError:
+            continue
+        if any("solutions" in note or "not unique" in note or "mixture" in note
+               for note in enumerated.notes) or len(enumerated.acted) < 2:
+            continue
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 0)
+        by_newton = collision.simultaneous()
+        monkeypatch.undo()
+        assert by_newton.method == "newton"
+        for b, c in zip(enumerated.after, by_newton.after, strict=True):
+            gap = [abs(float(x - y)) for x, y in zip((*b.velocity, b.spin),
+                                                    (*c.velocity, c.spin), strict=True)]
+            assert max(gap) < 1e-12, (b.name, gap)
+        compared += 1
+    assert compared >= 10
+
+
+def test_past_the_exact_size_the_newton_method_answers(monkeypatch):
     monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 5)
-    with pytest.raises(ri.InputError, match="solved up to 5"):
-        spinning_chain(8).simultaneous()
+    collision = spinning_chain(8)
+    solution = collision.simultaneous()
+    assert solution.method == "newton"
+    exact = spinning_chain(8)
+    monkeypatch.undo()
+    exact_solution = exact.simultaneous()
+    for b, c in zip(exact_solution.after, solution.after, strict=True):
+        assert abs(float(b.velocity[0] - c.velocity[0])) < 1e-12
+        assert abs(float(b.spin - c.spin)) < 1e-12
+
+
+def test_where_the_newton_method_stops_short_the_rule_refuses_in_one_line(monkeypatch):
+    def stops(*args, **kwargs):
+        raise lcp.NoSolution("the semismooth Newton method stopped at a residual of "
+                             "1.0e-03 after 400 steps")
+
+    monkeypatch.setattr(simultaneous_rule, "coulomb_newton", stops)
+    with pytest.raises(ri.InputError, match="stopped at a residual of 1.0e-03"):
+        rough_cluster(2, 2).simultaneous()

@@ -26,7 +26,7 @@ from rigidimpact.solve.collision import Collision, chain, cluster, fan
 from rigidimpact.solve.lcp import confirm
 from rigidimpact.solve.rules import simultaneous as simultaneous_rule
 
-__all__ = ["contacts_family", "rough_chain", "rough_fan", "CLUSTER_SIDES"]
+__all__ = ["contacts_family", "rough_chain", "rough_cluster", "rough_fan", "CLUSTER_SIDES"]
 
 
 CLUSTER_SIDES = (2, 3, 4, 6, 8, 12, 16, 19)  # a side x side cluster: 6 ... 1028 contacts
@@ -122,6 +122,7 @@ def _measure(solve: Callable[[], Any], memory: bool) -> tuple[float, float | Non
 
 
 ROUGH_CHAIN_FRICTION, ROUGH_FAN_FRICTION = sp.Rational(1, 4), sp.Rational(1, 3)
+ROUGH_CLUSTER_FRICTION = sp.Rational(1, 4)
 
 
 def rough_chain(n: int, friction: Any = ROUGH_CHAIN_FRICTION) -> Collision:
@@ -137,6 +138,15 @@ def rough_chain(n: int, friction: Any = ROUGH_CHAIN_FRICTION) -> Collision:
 def rough_fan(k: int, friction: Any = ROUGH_FAN_FRICTION) -> Collision:
     """The fan of k discs (:func:`rigidimpact.solve.collision.fan`), every contact rough."""
     built = fan(k)
+    return Collision(built.bodies, tuple(replace(t, tangential="coulomb", friction=friction)
+                                         for t in built.contacts))
+
+
+def rough_cluster(rows: int, columns: int, friction: Any = ROUGH_CLUSTER_FRICTION
+                  ) -> Collision:
+    """The hexagonal cluster of `rows` x `columns` discs struck by one ball
+    (:func:`rigidimpact.solve.collision.cluster`, elastic), every contact rough."""
+    built = cluster(rows, columns)
     return Collision(built.bodies, tuple(replace(t, tangential="coulomb", friction=friction)
                                          for t in built.contacts))
 

@@ -45,7 +45,7 @@ from sympy.polys.matrices import DomainMatrix
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm",
-           "least_norm", "sparse_solve", "confirm_by_rows"]
+           "least_norm", "sparse_solve", "confirm_by_rows", "coulomb_newton", "coulomb_residual"]
 
 
 class NoSolution(ValueError):
@@ -274,6 +274,140 @@ def proximal(W: Any, q: np.ndarray, shift: float, tolerance: float = 1e-13,
         if residual(W, q, z) < tolerance:
             return z, rounds
     return z, max_rounds
+
+
+def _bound(mu: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """The cone's half-width mu P_n (infinite for a pushing contact that sticks, zero
+    for a released one)."""
+    with np.errstate(invalid="ignore"):
+        return np.where(normal > 0, mu * normal, 0.0)
+
+
+def _alart_curnier(W: Any, b: np.ndarray, mu: np.ndarray, rho: np.ndarray,
+                   lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Alart and Curnier's function of the impulses (normal parts first, then the
+    tangential ones), zero exactly where they solve the frictional problem, with the
+    two projections' arguments and the projected normal impulses."""
+    n = len(mu)
+    g = b + W @ lam
+    sn = lam[:n] - rho[:n] * g[:n]
+    normal = np.maximum(sn, 0.0)
+    st = lam[n:] - rho[n:] * g[n:]
+    bound = _bound(mu, normal)
+    return np.concatenate([lam[:n] - normal, lam[n:] - np.clip(st, -bound, bound)]), sn, st, normal
+
+
+def coulomb_residual(W: Any, b: np.ndarray, mu: np.ndarray, lam: np.ndarray) -> float:
+    """The largest violation of the frictional problem's conditions at the impulses
+    `lam` (see :func:`coulomb_newton`), relative to the largest closing speed: a push,
+    a normal velocity below its target, the normal complementarity, the cone, a slip
+    inside it and a friction along the slip."""
+    n = len(mu)
+    g = b + W @ lam
+    ln, lt, gn, gt = lam[:n], lam[n:], g[:n], g[n:]
+    scale = max(float(np.abs(b).max()), 1e-300)
+    room = mu * ln - np.abs(lt)
+    inside = room > 1e-9 * max(1.0, float(np.abs(lam).max()))
+    worst = max(0.0, -float(ln.min()), -float(gn.min()), float(np.abs(ln * gn).max()),
+                -float(room.min()), float(np.abs(np.where(inside, gt, 0.0)).max()),
+                float((lt * gt).max()))
+    return worst / scale
+
+
+def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
+                   tolerance: float = 1e-14, max_steps: int = 400,
+                   passing: float = 1e-6, accepted: float = 1e-11
+                   ) -> tuple[np.ndarray, int]:
+    """Coulomb friction at many contacts acting together, in floating point: impulses
+    ``lam`` (n normal parts, then n tangential ones) with velocities ``g = b + W lam``
+    (normal ones less their targets, then the slips) such that every normal impulse
+    pushes, its normal velocity is at least its target and one of the two is zero, and
+    every tangential impulse is inside the cone ``|lam_t| <= mu lam_n`` with no slip,
+    or on its edge against the slip. ``mu`` may be ``inf`` (a contact that sticks) or 0
+    (a smooth one).
+
+    The conditions are Alart and Curnier's function ``Phi(lam) = 0`` (Alart and Curnier,
+    Comput. Methods Appl. Mech. Eng. 92, 1991, the form Siconos solves), found by a
+    semismooth Newton method whose steps are damped as Levenberg and Marquardt's: each
+    solves ``(G + eps E) d = -Phi`` with G the function's generalized Jacobian and E
+    the proximal term, one sparse factorisation a step; eps falls after a full step
+    and grows after a failed line search. A singular W (more contact conditions than
+    the bodies' freedoms) is what the damping is for: the impulses it ends at, from
+    zero, stay close to the least-norm ones. With friction the function has stationary
+    points that are not solutions; the cone is opened in `stages` (mu times 0, 1/stages,
+    ..., 1), each stage from the last's impulses, which here leads past them (a stage
+    before the last ends at the residual `passing`: it is only a start). The last stage
+    runs to `tolerance` (relative to the largest ``|b|``) or its steps' end. Returns
+    ``(lam, steps)``; raises :class:`NoSolution` if it ends above `accepted`."""
+    import scipy.sparse as sps
+    from scipy.sparse.linalg import splu
+
+    n = len(mu)
+    W = sps.csr_matrix(W)
+    if not n or (b[:n] >= 0).all() and not np.abs(b[n:]).any():
+        return np.zeros(2 * n), 0
+    diagonal = W.diagonal()
+    rho = 1.0 / np.maximum(diagonal, 1e-300 * max(1.0, float(diagonal.max())))
+    rn, rt = rho[:n], rho[n:]
+    Wn, Wt = W[:n], W[n:]
+    En, Et = sps.eye(n, 2 * n, format="csr"), sps.eye(n, 2 * n, k=n, format="csr")
+    scale = max(float(np.abs(b).max()), 1e-300)
+    top = float(diagonal.max())
+    lam, steps = np.zeros(2 * n), 0
+    finite = np.isfinite(mu)
+    for stage in range(stages + 1):
+        cone = np.where(finite, mu * stage / stages, np.inf)
+        last = stage == stages
+        Phi, sn, st, normal = _alart_curnier(W, b, cone, rho, lam)
+        merit, eps = float(Phi @ Phi), 1e-2 * top
+        enough = (tolerance if last else passing) * scale
+        for _ in range(max_steps if last else max_steps // 4):
+            if np.sqrt(merit) < enough or eps > 1e8 * top:
+                break
+            steps += 1
+            closed = sn > 0
+            stick = np.abs(st) <= _bound(cone, normal)
+            slip = ~stick
+            damped_n, damped_t = Wn + eps * En, Wt + eps * Et
+            Gn = sps.diags(np.where(closed, rn, 0.0)) @ damped_n + sps.diags(
+                (~closed).astype(float)) @ En
+            grows = sps.diags(closed.astype(float)) @ (En - sps.diags(rn) @ damped_n)
+            Gt = (sps.diags(np.where(stick, rt, 0.0)) @ damped_t
+                  + sps.diags(slip.astype(float)) @ Et
+                  - sps.diags(np.where(slip & finite & closed, np.sign(st) * cone, 0.0)
+                              ) @ grows)
+            # a released contact's rows are the identity's: its step is -Phi there, and
+            # only the others' block is factorised
+            known = np.concatenate([~closed, ~closed & slip])
+            step = np.where(known, -Phi, 0.0)
+            rest = np.flatnonzero(~known)
+            if len(rest):
+                G = sps.vstack([Gn, Gt]).tocsr()
+                block = G[rest]
+                try:
+                    step[rest] = splu(block[:, rest].tocsc()).solve(-Phi[rest] - block @ step)
+                except RuntimeError:  # singular even damped: damp more
+                    eps *= 8
+                    continue
+            length = 1.0
+            for _ in range(8):  # a backtracking line search on |Phi|^2
+                trial = _alart_curnier(W, b, cone, rho, lam + length * step)
+                value = float(trial[0] @ trial[0])
+                if value <= (1 - 1e-4 * length) * merit:
+                    break
+                length /= 2
+            if value <= (1 - 1e-4 * length) * merit:
+                lam = lam + length * step
+                Phi, sn, st, normal = trial
+                merit = value
+                if length == 1.0:
+                    eps = max(eps / 4, 1e-12 * top)
+            else:
+                eps *= 8
+    if not np.sqrt(merit) < accepted * scale:
+        raise NoSolution(f"the semismooth Newton method stopped at a residual of "
+                         f"{np.sqrt(merit) / scale:.1e} after {steps} steps")
+    return lam, steps
 
 
 def solve_exactly(rows: dict[int, dict[int, Fraction]], rhs: dict[int, Fraction],

@@ -34,6 +34,8 @@ from rigidimpact.solve.lcp import (
     confirm,
     confirm_by_rows,
     confirm_support,
+    coulomb_newton,
+    coulomb_residual,
     least_norm,
     lemke,
     lemke_float,
@@ -263,23 +265,16 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     so), which the enumeration of states finds for few contacts.
     """
     n = len(problem.contacts)
-    if n > MAX_FRICTION_LEMKE:
-        raise InputError("contacts", f"{n} frictional contacts acting together: the "
-                         f"complementarity problem is solved up to {MAX_FRICTION_LEMKE} "
-                         "so far; try the sequential rule")
     rows = sp.Matrix.vstack(problem._J, problem._J_t)
     data = [*v_n, *v_t, *target, *(m for m in mu if m is not None)]
-    if rows.free_symbols or problem.M_inverse.free_symbols or not all(
+    if n > MAX_FRICTION_LEMKE or rows.free_symbols or problem.M_inverse.free_symbols or not all(
             sp.sympify(x).is_Rational for x in data):
-        raise InputError("contacts", f"{n} frictional contacts acting together are solved "
-                         "exactly for rational data; these numbers are not rational")
+        return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     try:
         J = rows.to_DM().convert_to(QQ)
         Minv = problem.M_inverse.to_DM().convert_to(QQ)
     except Exception:  # noqa: BLE001 - an irrational entry: not in the rationals
-        raise InputError("contacts", f"{n} frictional contacts acting together are solved "
-                         "exactly for rational data; these numbers are not rational"
-                         ) from None
+        return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
 
     def f(x: Any) -> Fraction:
@@ -338,11 +333,8 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         z = confirm_support(M, q, sorted(int(i) for i in support), released)
     how = "found in floating point and confirmed in exact arithmetic"
     if z is None:
-        if n > MAX_FRICTION_EXACT_LEMKE:
-            raise InputError("contacts", f"{n} frictional contacts acting together: "
-                             "floating point found no answer that the exact check "
-                             f"confirms, and Lemke's exact tableau is used up to "
-                             f"{MAX_FRICTION_EXACT_LEMKE} contacts; try the sequential rule")
+        if n > MAX_FRICTION_EXACT_LEMKE:  # too large for the exact tableau
+            return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
         try:
             z = lemke([[row.get(j, Fraction(0)) for j in range(size)] for row in M], q)
         except NoSolution as exc:
@@ -375,6 +367,76 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                             courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                           zip(problem.contacts, states, strict=True)),
                             notes=(note,), method="lemke")
+
+
+def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
+                       v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
+                       tangential: Sequence[Any]) -> Solution:
+    """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
+    cluster): the same conditions as :func:`_frictional_lcp`, in floating point, by a
+    damped semismooth Newton method on Alart and Curnier's function
+    (:func:`rigidimpact.solve.lcp.coulomb_newton`), one sparse factorisation a step. The
+    answer is in floats with its residual in a note, and the certificate checks it at
+    50 digits like every answer; where the method stops short it refuses in one line."""
+    import scipy.sparse as sps
+
+    n = len(problem.contacts)
+    if rows.free_symbols or problem.M_inverse.free_symbols or any(
+            sp.sympify(x).free_symbols for x in (*v_n, *v_t, *target)):
+        raise InputError("contacts", f"{n} frictional contacts acting together are "
+                         "solved for numbers; these hold symbols")
+    J = sps.csr_matrix(([float(x) for _, _, x in rows.row_list()],
+                        ([i for i, _, _ in rows.row_list()],
+                         [j for _, j, _ in rows.row_list()])), shape=rows.shape)
+    if problem._dense:
+        Minv = sps.csr_matrix(np.array(problem.M_inverse.evalf(), dtype=float))
+    else:
+        Minv = sps.diags([float(x) for x in problem._inverse_inertia]).tocsr()
+    W = (J @ Minv @ J.T).tocsr()
+    b = np.array([float(v_n[i] - target[i]) for i in range(n)]
+                 + [float(v_t[i]) for i in range(n)])
+    cone = np.array([np.inf if m is None and law.grips else
+                     0.0 if m is None or not law.grips else float(m)
+                     for m, law in zip(mu, tangential, strict=True)])
+    try:
+        lam, steps = coulomb_newton(W, b, cone)
+    except NoSolution as exc:
+        raise InputError("impact.rule", f"{n} frictional contacts acting together: {exc}, "
+                         "so no answer is given; try the sequential rule") from None
+    u0 = np.array([float(x) for x in problem.u_before])
+    u = u0 + Minv @ (J.T @ lam)
+    error = coulomb_residual(W, b, cone, lam)
+    slip = (J @ u)[n:]
+    big = max(1.0, float(np.abs(lam).max()))
+    on = lam[:n] > 1e-12 * big
+    inside = np.abs(lam[n:]) < cone * lam[:n] - 1e-9 * big
+    acting = [i for i in range(n) if on[i]]
+    states = ["off" if not on[i] else "on" if not tangential[i].grips else
+              "stick" if inside[i] or not np.isfinite(cone[i]) else
+              "slide+" if slip[i] > 0 else "slide-" for i in range(n)]
+
+    def number(x: float) -> sp.Float:
+        return sp.Float(float(x), 17)
+
+    normal = sp.Matrix([number(x) if on[i] else sp.Integer(0)
+                        for i, x in enumerate(lam[:n])])
+    along = sp.Matrix([number(x) if on[i] else sp.Integer(0)
+                       for i, x in enumerate(lam[n:])])
+    note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
+            f"Newton method on Alart and Curnier's function ({2 * n} unknowns, {steps} "
+            f"steps), residual {error:.1e} of the largest closing speed; it gives one "
+            "answer, and with friction others may exist" + (
+                "; more contact conditions than freedoms, so the impulses are not unique "
+                "(those shown stay close to the least-norm ones)"
+                if len(acting) + states.count("stick") > len(problem.coordinates)
+                else ""))
+    return problem._outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
+                            problem._named(normal), tuple(problem.contacts[i].name
+                                                          for i in acting),
+                            tangential=problem._named(along),
+                            courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                                          zip(problem.contacts, states, strict=True)),
+                            notes=(note,), method="newton")
 
 
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
