@@ -30,6 +30,8 @@ __all__ = ["contacts_family", "rough_chain", "rough_cluster", "rough_fan", "CLUS
 
 
 CLUSTER_SIDES = (2, 3, 4, 6, 8, 12, 16, 19)  # a side x side cluster: 6 ... 1028 contacts
+ROUGH_CHAIN_FRICTION, ROUGH_FAN_FRICTION = sp.Rational(1, 4), sp.Rational(1, 3)
+ROUGH_CLUSTER_FRICTION = sp.Rational(1, 4)
 
 
 def _dense_chain_seconds(n: int) -> float:
@@ -84,6 +86,43 @@ def _pymunk_cluster_seconds(side: int) -> float | None:
     return time.perf_counter() - begin
 
 
+def pymunk_rough_cluster(rows: int, columns: int, iterations: int,
+                         friction: Any = ROUGH_CLUSTER_FRICTION
+                         ) -> tuple[float, list[tuple[float, float, float]]] | None:
+    """The rough cluster of :func:`rough_cluster` in pymunk: one step of its impulse
+    solver with `iterations` sweeps, no gravity. pymunk aims each contact at a normal
+    velocity of -e times its closing one (Newton's law at the velocity level) and
+    clamps friction to the cone, the conditions of the simultaneous rule with friction,
+    sweep by sweep (projected Gauss-Seidel) rather than exactly. Discs are made 1e-9
+    larger, so that touching pairs count as contacts (pymunk leaves overlaps below its
+    slop alone). Returns (seconds, each body's (vx, vy, omega) after, striker first,
+    in :func:`rigidimpact.solve.collision.cluster`'s order), or None without pymunk."""
+    try:
+        import pymunk
+    except ImportError:
+        return None
+    radius, grip = 0.5 * (1 + 1e-9), math.sqrt(float(friction))
+    begin = time.perf_counter()
+    space = pymunk.Space()
+    space.iterations = iterations
+    middle = (rows - 1) // 2
+    places = [(0.5 * (middle % 2) - 1, middle * math.sqrt(3) / 2)]
+    places += [(j + 0.5 * (i % 2), i * math.sqrt(3) / 2)
+               for i in range(rows) for j in range(columns)]
+    bodies = []
+    for k, place in enumerate(places):
+        body = pymunk.Body(1.0, 0.125)  # mass 1, radius 1/2: inertia 1/8
+        body.position = place
+        body.velocity = (1.0, 0.0) if k == 0 else (0.0, 0.0)
+        shape = pymunk.Circle(body, radius)
+        shape.elasticity, shape.friction = 1.0, grip  # pymunk multiplies the two
+        space.add(body, shape)
+        bodies.append(body)
+    space.step(1e-6)
+    seconds = time.perf_counter() - begin
+    return seconds, [(b.velocity.x, b.velocity.y, b.angular_velocity) for b in bodies]
+
+
 def _fraction_elimination_seconds(problem: Collision) -> float:
     """The exact step as it was before the saddle-point elimination: the acting block
     of W (every contact of a fan acts) eliminated over Python's Fractions, timed alone
@@ -121,8 +160,6 @@ def _measure(solve: Callable[[], Any], memory: bool) -> tuple[float, float | Non
     return seconds, peak
 
 
-ROUGH_CHAIN_FRICTION, ROUGH_FAN_FRICTION = sp.Rational(1, 4), sp.Rational(1, 3)
-ROUGH_CLUSTER_FRICTION = sp.Rational(1, 4)
 
 
 def rough_chain(n: int, friction: Any = ROUGH_CHAIN_FRICTION) -> Collision:

@@ -129,9 +129,13 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
 
         def root(x: Any) -> Any:
             return sp.sqrt(x)
-    else:
+    else:  # each number evaluated once (a body's position enters each of its contacts)
+        known: dict[Any, Any] = {}
+
         def num(x: Any) -> Any:
-            return mpmath.mpf(sp.N(x, DIGITS + 10)._to_mpmath(mpmath.mp.prec))
+            if x not in known:
+                known[x] = mpmath.mpf(sp.N(x, DIGITS + 10)._to_mpmath(mpmath.mp.prec))
+            return known[x]
 
         def root(x: Any) -> Any:
             return mpmath.sqrt(x)

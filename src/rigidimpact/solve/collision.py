@@ -248,7 +248,9 @@ def fan(k: int) -> Collision:
 def cluster(rows: int, columns: int, restitution: Any = 1, speed: Any = 1) -> Collision:
     """A striker hitting a hexagonal cluster of equal discs (mass 1, radius 1/2), `rows`
     rows of `columns` each, every touching pair a contact; the striker, moving along x
-    at `speed`, touches the middle row's first disc.
+    at `speed`, touches the middle row's first disc (and, where that row is one of the
+    odd ones, half a disc to the right, the first discs of the rows either side: it
+    lies in their notch).
 
     Examples
     --------
@@ -273,6 +275,13 @@ def cluster(rows: int, columns: int, restitution: Any = 1, speed: Any = 1) -> Co
     touches = [Contact(restitution=restitution, name="hit",
                        bodies=("striker", f"d{middle}_0"),
                        point=(first[0] - sp.Rational(1, 2), first[1]))]
+    striker = (first[0] - 1, first[1])
+    for row in (middle - 1, middle + 1):  # an odd middle row sits half a disc right: the
+        if middle % 2 and (row, 0) in centres:  # striker lies in the notch and also
+            x, y = centres[row, 0]  # touches the first discs of the rows either side
+            touches.append(Contact((x - striker[0], y - striker[1]), restitution,
+                                   name=f"hit_d{row}_0", bodies=("striker", f"d{row}_0"),
+                                   point=((x + striker[0]) / 2, (y + striker[1]) / 2)))
     for (i, j), (x, y) in sorted(centres.items()):  # right, then the two above
         shift = i % 2  # odd rows sit half a disc to the right
         for other in ((i, j + 1), (i + 1, j - 1 + shift), (i + 1, j + shift)):

@@ -176,7 +176,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
                          "has no form for contacts acting together: use the "
                          "sequential rule (each contact's own impact)")
     n = len(problem.contacts)
-    v_n, v_t = problem._velocity_before, (problem._J_t * problem.u_before).applyfunc(tidy)
+    v_n, v_t = problem._velocity_before, _sparse_times(problem._J_t, problem.u_before)
     mu = [law.cone() for law in tangential]
     target = [problem._leaving(i, min(v_n[i], 0)) for i in range(n)]
     states = [("off",) + law.velocity_states for law in tangential]
@@ -241,6 +241,15 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
                    courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                  zip(problem.contacts, pattern, strict=True)),
                    notes=notes)
+
+
+def _sparse_times(rows: sp.Matrix, u: sp.Matrix) -> sp.Matrix:
+    """``rows * u`` over the nonzero entries of `rows` only (a contact's row touches two
+    bodies), tidied."""
+    out: list[Any] = [sp.Integer(0)] * rows.rows
+    for i, j, x in rows.row_list():
+        out[i] += x * u[j]
+    return sp.Matrix([tidy(x) for x in out])
 
 
 def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
@@ -385,9 +394,10 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
             sp.sympify(x).free_symbols for x in (*v_n, *v_t, *target)):
         raise InputError("contacts", f"{n} frictional contacts acting together are "
                          "solved for numbers; these hold symbols")
-    J = sps.csr_matrix(([float(x) for _, _, x in rows.row_list()],
-                        ([i for i, _, _ in rows.row_list()],
-                         [j for _, j, _ in rows.row_list()])), shape=rows.shape)
+    entries = rows.row_list()
+    J = sps.csr_matrix(([float(x) for _, _, x in entries],
+                        ([i for i, _, _ in entries], [j for _, j, _ in entries])),
+                       shape=rows.shape)
     if problem._dense:
         Minv = sps.csr_matrix(np.array(problem.M_inverse.evalf(), dtype=float))
     else:
