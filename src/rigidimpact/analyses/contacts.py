@@ -32,6 +32,8 @@ __all__ = ["contacts_family", "rough_chain", "rough_cluster", "rough_fan", "CLUS
 CLUSTER_SIDES = (2, 3, 4, 6, 8, 12, 16, 19)  # a side x side cluster: 6 ... 1028 contacts
 ROUGH_CHAIN_FRICTION, ROUGH_FAN_FRICTION = sp.Rational(1, 4), sp.Rational(1, 3)
 ROUGH_CLUSTER_FRICTION = sp.Rational(1, 4)
+# rows x columns of the rough cluster: up to 1,000 discs (2,872 contacts)
+ROUGH_CLUSTERS = ((2, 2), (4, 4), (8, 8), (12, 12), (16, 16), (25, 40))
 
 
 def _dense_chain_seconds(n: int) -> float:
@@ -121,6 +123,31 @@ def pymunk_rough_cluster(rows: int, columns: int, iterations: int,
     space.step(1e-6)
     seconds = time.perf_counter() - begin
     return seconds, [(b.velocity.x, b.velocity.y, b.angular_velocity) for b in bodies]
+
+
+def _given(seconds: float) -> Callable[[], float]:
+    """A baseline already run: its seconds."""
+    return lambda: seconds
+
+
+def _beside_pymunk(shape: tuple[int, int], solution: Any,
+                   baseline: Callable[[str, Callable[[], float | None]], float | None]
+                   ) -> dict[str, Any]:
+    """pymunk's one step on the same rough cluster with 10 and 1,000 sweeps: its
+    seconds and the largest difference of its speeds (vx, vy, omega) from `solution`'s."""
+    ours = [(float(b.velocity[0]), float(b.velocity[1]), float(b.spin))
+            for b in solution.after]
+    found: dict[str, Any] = {}
+    for sweeps in (10, 1000):
+        ran = pymunk_rough_cluster(*shape, sweeps)
+        if ran is None:
+            continue
+        seconds, theirs = ran
+        found[f"pymunk_{sweeps}_s"] = baseline(f"pymunk {sweeps}", _given(seconds))
+        found[f"pymunk_{sweeps}_gap"] = max(abs(a - b) for p, q in zip(ours, theirs,
+                                                                        strict=True)
+                                            for a, b in zip(p, q, strict=True))
+    return found
 
 
 def _fraction_elimination_seconds(problem: Collision) -> float:
@@ -230,7 +257,7 @@ def _rules(case: str, size: int, make: Callable[[], Collision],
 
 def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = True,
                     shapes: Iterable[str] = ("cradle", "cluster", "fan", "rough-chain",
-                                             "rough-fan")) -> dict[str, Any]:
+                                             "rough-fan", "rough-cluster")) -> dict[str, Any]:
     """Each rule against the number of contacts, on a cradle (a chain of n + 1 balls),
     a hexagonal cluster of discs struck by one ball and a fan (one striker touching k
     discs at once: W dense; the simultaneous rule only), with side by side baselines:
@@ -238,11 +265,13 @@ def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = Tru
     while it finishes within `limit` seconds), a plain dense solve_ivp of the same Hertz
     chain (the compliant rule's baseline, likewise), pymunk on the same cluster (if
     installed), and for the fan the exact step by elimination over W in Fractions. The
-    rough family (a spinning chain and the fan, every contact Coulomb) times the
-    simultaneous rule with friction (one complementarity problem) beside trying every
-    combination of contact states. One run each. Rows: case, rule, n, seconds, peak
-    MiB, the baselines' seconds (None: not run, past the limit or not installed); and
-    the exponent of a power law fitted to each curve. `shapes` picks the cases."""
+    rough family (a spinning chain, the fan and the cluster, every contact Coulomb)
+    times the simultaneous rule with friction beside trying every combination of
+    contact states, and for the cluster pymunk's impulse solver (10 and 1,000 sweeps),
+    with the largest difference of its speeds from ours. One run each. Rows: case,
+    rule, n, seconds, peak MiB, the baselines' seconds (None: not run, past the limit
+    or not installed); and the exponent of a power law fitted to each curve. `shapes`
+    picks the cases."""
     chains: tuple[int, ...] = (8, 32, 128) if quick else (2, 4, 8, 16, 32, 64, 128, 256,
                                                           512, 1024)
     sides: tuple[int, ...] = (2, 4, 8) if quick else CLUSTER_SIDES
@@ -269,16 +298,27 @@ def contacts_family(quick: bool = False, limit: float = 60.0, memory: bool = Tru
         return time.perf_counter() - begin
 
     fans: tuple[int, ...] = (16, 64) if quick else (16, 32, 64, 128, 256, 512, 1000)
-    roughs: tuple[int, ...] = (4, 16, 64) if quick else (2, 4, 8, 16, 32, 64, 128, 256)
-    cases = [("cradle", n, lambda n=n: chain(n + 1)) for n in chains]
+    roughs: tuple[int, ...] = (4, 16, 64) if quick else (2, 4, 8, 16, 32, 64, 128, 256, 512,
+                                                         1024)
+    cases: list[tuple[str, Any, Any]] = [("cradle", n, lambda n=n: chain(n + 1))
+                                         for n in chains]
     cases += [("rough-chain", n, lambda n=n: rough_chain(n + 1)) for n in roughs]
     cases += [("rough-fan", k, lambda k=k: rough_fan(k)) for k in roughs]
     cases += [("cluster", side, lambda side=side: cluster(side, side)) for side in sides]
+    cases += [("rough-cluster", shape, lambda shape=shape: rough_cluster(*shape))
+              for shape in (ROUGH_CLUSTERS[:3] if quick else ROUGH_CLUSTERS)]
     cases += [("fan", k, lambda k=k: fan(k)) for k in fans]
     cases = [c for c in cases if c[0] in set(shapes)]
     for case, size, make in cases:
         for rule, solve, baselines in _rules(case, size, make, baseline, enumeration):
-            seconds, peak = _measure(solve, memory)
+            answer: list[Any] = []
+
+            def kept(solve: Callable[[], Any] = solve, answer: list[Any] = answer) -> None:
+                answer.append(solve())
+
+            seconds, peak = _measure(kept, memory)
+            if case == "rough-cluster":  # pymunk on the same cluster, and how far apart
+                baselines.update(_beside_pymunk(size, answer[0], baseline))
             rows.append({"case": case, "rule": rule, "n": len(make().contacts),
                          "seconds": seconds, "peak_mib": peak, **baselines})
     exponents = {}
