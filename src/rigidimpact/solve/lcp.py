@@ -331,13 +331,14 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
     semismooth Newton method whose steps are damped as Levenberg and Marquardt's: each
     solves ``(G + eps E) d = -Phi`` with G the function's generalized Jacobian and E
     the proximal term, one sparse factorisation a step; eps falls after a full step
-    and grows after a failed line search. A singular W (more contact conditions than
-    the bodies' freedoms) is what the damping is for: the impulses it ends at, from
-    zero, stay close to the least-norm ones. With friction the function has stationary
-    points that are not solutions; the cone is opened in `stages` (mu times 0, 1/stages,
-    ..., 1), each stage from the last's impulses, which here leads past them (a stage
-    before the last ends at the residual `passing`: it is only a start). The last stage
-    runs to `tolerance` (relative to the largest ``|b|``) or its steps' end. Returns
+    and grows after a failed line search. A singular W (more contact conditions than the
+    bodies' freedoms) is what the damping is for; the impulses are then not unique, and
+    it ends at one set of them, reached from zero (not the least-norm one). With
+    friction the function has stationary points that are not solutions; the cone is
+    opened in `stages` (mu times 0, 1/stages, ..., 1), each stage from the last's
+    impulses, which here leads past them (a stage before the last ends at the residual
+    `passing`: it is only a start). The last stage runs to `tolerance` (relative to the
+    largest ``|b|``) or its steps' end. Returns
     ``(lam, steps)``; raises :class:`NoSolution` if it ends above `accepted`."""
     import scipy.sparse as sps
     from scipy.sparse.linalg import splu

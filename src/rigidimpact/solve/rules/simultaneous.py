@@ -436,8 +436,9 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
             f"Newton method on Alart and Curnier's function ({2 * n} unknowns, {steps} "
             f"steps), residual {error:.1e} of the largest closing speed; it gives one "
             "answer, and with friction others may exist" + (
-                "; more contact conditions than freedoms, so the impulses are not unique "
-                "(those shown stay close to the least-norm ones)"
+                "; more contact conditions than freedoms, so the impulses are not unique: "
+                "those shown are the ones the method reached from zero, not the least-norm "
+                "ones"
                 if len(acting) + states.count("stick") > len(problem.coordinates)
                 else ""))
     return problem._outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
