@@ -314,6 +314,27 @@ def coulomb_residual(W: Any, b: np.ndarray, mu: np.ndarray, lam: np.ndarray) -> 
     return worst / scale
 
 
+def _smooth_start(W: Any, q: np.ndarray) -> np.ndarray:
+    """The normal impulses of the smooth problem (every mu zero), the first stage's
+    start: block principal pivoting, or the proximal point method where W is singular,
+    as the smooth rule solves it; zeros where neither ends (the stage then starts
+    there)."""
+    from scipy.sparse.linalg import splu
+
+    W = W.tocsc()
+    try:
+        pivots = np.abs(splu(W, permc_spec="MMD_AT_PLUS_A").U.diagonal())
+        singular = bool(pivots.min() < 1e-11 * pivots.max())
+    except RuntimeError:  # exactly singular
+        singular = True
+    try:
+        if singular:
+            return proximal(W, q, 1e-2 * float(W.diagonal().max()))[0]
+        return pivoting(W, q)[0]
+    except (NoSolution, RuntimeError):
+        return np.zeros(len(q))
+
+
 def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                    tolerance: float = 1e-14, max_steps: int = 400,
                    passing: float = 1e-6, accepted: float = 1e-11
@@ -355,6 +376,7 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
     scale = max(float(np.abs(b).max()), 1e-300)
     top = float(diagonal.max())
     lam, steps = np.zeros(2 * n), 0
+    lam[:n] = _smooth_start(W[:n][:, :n], b[:n])
     finite = np.isfinite(mu)
     for stage in range(stages + 1):
         cone = np.where(finite, mu * stage / stages, np.inf)
