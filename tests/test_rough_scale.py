@@ -304,6 +304,27 @@ def test_the_newton_method_finds_what_the_enumeration_finds(monkeypatch):
     assert compared >= 10
 
 
+def test_a_wedged_box_gets_the_least_norm_impulses_by_hand(monkeypatch):
+    # a box (mass 1, inertia 1/3) lands flat, e = 0, on corners at x = -1 and x = 2,
+    # moving down at 1 and sideways at 1/4, mu = 1: both corners stick and the box
+    # stops. Its momentum and its moment about the centre fix the normal impulses
+    # (P_L + P_R = 1, 2 P_R = P_L: 2/3 and 1/3) and the friction's sum (1/4), not its
+    # split: any split inside both cones fits, and the least-norm one is 1/8 each
+    monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
+    monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 0)
+    box = Body.rigid(1, sp.Rational(1, 3), (0, 0), (sp.Rational(1, 4), -1), 0, name="box")
+    corners = tuple(Contact((0, -1), 0, "coulomb", name=name, friction=1,
+                            bodies=("box", "floor"), point=(x, 0))
+                    for name, x in (("left", -1), ("right", 2)))
+    solution = Collision((box, Body.fixed("floor")), corners).simultaneous()
+    assert solution.method == "newton" and "least-norm" in solution.notes[-1]
+    r = {k: float(v) for k, v in solution.results().items()}
+    assert max(abs(r[k]) for k in ("box.vx", "box.vy", "box.omega")) < 1e-14
+    expected = {"left.normal_impulse": 2 / 3, "right.normal_impulse": 1 / 3,
+                "left.tangential_impulse": 1 / 8, "right.tangential_impulse": 1 / 8}
+    assert max(abs(r[k] - v) for k, v in expected.items()) < 1e-14
+
+
 def test_past_the_exact_size_the_newton_method_answers(monkeypatch):
     monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 5)
     collision = spinning_chain(8)

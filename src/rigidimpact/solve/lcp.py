@@ -45,7 +45,8 @@ from sympy.polys.matrices import DomainMatrix
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm",
-           "least_norm", "sparse_solve", "confirm_by_rows", "coulomb_newton", "coulomb_residual"]
+           "least_norm", "sparse_solve", "confirm_by_rows", "coulomb_newton", "coulomb_residual",
+           "least_norm_rough"]
 
 
 class NoSolution(ValueError):
@@ -431,6 +432,59 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
         raise NoSolution(f"the semismooth Newton method stopped at a residual of "
                          f"{np.sqrt(merit) / scale:.1e} after {steps} steps")
     return lam, steps
+
+
+def least_norm_rough(J: Any, mass: np.ndarray, change: np.ndarray, lam: np.ndarray,
+                     mu: np.ndarray, slip: np.ndarray) -> np.ndarray | None:
+    """Of the impulses that give the same velocity `change` (``M du = J^T lam``, J's n
+    normal rows then its n tangential ones, M diagonal: `mass`) with each contact in
+    the state it has in `lam`, the least-norm ones, or None where they break a law.
+
+    A released contact has none; a sliding one (its slip after not zero) has one, its
+    normal impulse, with its friction on the cone's edge against the slip; a sticking
+    one (no slip after) its normal and tangential impulses. The least-norm solution of
+    that consistent linear system is LSMR's from zero (Fong and Saunders 2011), each
+    sliding contact's column scaled so that its unknown's size is its impulse's; it is
+    returned only if every normal impulse pushes and every sticking one stays inside
+    its cone, to 1e-12 of the largest impulse, and it gives `change` to 1e-12."""
+    import scipy.sparse as sps
+    from scipy.sparse.linalg import lsmr
+
+    n = len(mu)
+    J = sps.csr_matrix(J)
+    big = max(1.0, float(np.abs(lam).max()))
+    still = np.abs(slip) <= 1e-12 * max(1.0, float(np.abs(slip).max()))
+    columns, where = [], []
+    for i in np.flatnonzero(lam[:n] > 1e-12 * big):
+        if mu[i] == 0:  # smooth: its normal impulse only
+            columns.append(J[i])
+            where.append((i, 0.0, 1.0))
+        elif still[i]:
+            columns += [J[i], J[n + i]]
+            where += [(i, 0.0, 1.0), (n + i, 0.0, 1.0)]
+        else:  # sliding: friction on the cone's edge, P_t = side mu P_n
+            side = float(np.sign(lam[n + i])) * float(mu[i])
+            size = float(np.hypot(1.0, side))
+            columns.append((J[i] + side * J[n + i]) / size)
+            where.append((i, side, size))
+    if not columns:
+        return None
+    A = sps.vstack(columns).T.tocsr()
+    target = mass * change
+    x = lsmr(A, target, atol=1e-16, btol=1e-16, maxiter=20 * A.shape[1])[0]
+    if np.abs(A @ x - target).max() > 1e-12 * max(1.0, float(np.abs(target).max())):
+        return None
+    out = np.zeros(2 * n)
+    for value, (k, side, size) in zip(x, where, strict=True):
+        if k < n and side:  # a sliding contact's one unknown
+            out[k], out[n + k] = value / size, side * value / size
+        else:
+            out[k] = value
+    room = mu * out[:n] - np.abs(out[n:])
+    tolerance = 1e-12 * big
+    if (out[:n] < -tolerance).any() or (np.isfinite(mu) & (room < -tolerance)).any():
+        return None
+    return out
 
 
 def solve_exactly(rows: dict[int, dict[int, Fraction]], rhs: dict[int, Fraction],

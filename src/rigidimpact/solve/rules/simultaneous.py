@@ -37,6 +37,7 @@ from rigidimpact.solve.lcp import (
     coulomb_newton,
     coulomb_residual,
     least_norm,
+    least_norm_rough,
     lemke,
     lemke_float,
     pivoting,
@@ -425,6 +426,17 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
               "stick" if inside[i] or not np.isfinite(cone[i]) else
               "slide+" if slip[i] > 0 else "slide-" for i in range(n)]
 
+    shared = ""
+    if not problem._dense:  # the least-norm impulses with this motion, if others fit it
+        least = least_norm_rough(J, 1.0 / Minv.diagonal(), u - u0, lam, cone, slip)
+        if least is not None and np.abs(least - lam).max() > 1e-9 * big:
+            lam, shared = least, (
+                "; other impulses give the same motion after (more contact conditions "
+                "than the bodies' freedoms): shown are the least-norm ones with these "
+                "contact states")
+            u = u0 + Minv @ (J.T @ lam)
+            error = max(error, coulomb_residual(W, b, cone, lam))
+
     def number(x: float) -> sp.Float:
         return sp.Float(float(x), 17)
 
@@ -435,12 +447,7 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
             f"Newton method on Alart and Curnier's function ({2 * n} unknowns, {steps} "
             f"steps), residual {error:.1e} of the largest closing speed; it gives one "
-            "answer, and with friction others may exist" + (
-                "; more contact conditions than freedoms, so the impulses are not unique: "
-                "those shown are the ones the method reached from zero, not the least-norm "
-                "ones"
-                if len(acting) + states.count("stick") > len(problem.coordinates)
-                else ""))
+            "answer, and with friction others may exist" + shared)
     return problem._outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
                             problem._named(normal), tuple(problem.contacts[i].name
                                                           for i in acting),
