@@ -278,40 +278,58 @@ def proximal(W: Any, q: np.ndarray, shift: float, tolerance: float = 1e-13,
 
 
 def _bound(mu: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    """The cone's half-width mu P_n (infinite for a pushing contact that sticks, zero
-    for a released one)."""
+    """The cone's radius mu P_n (infinite for a pushing contact that sticks, zero for a
+    released one)."""
     with np.errstate(invalid="ignore"):
         return np.where(normal > 0, mu * normal, 0.0)
 
 
+def _disc(sigma: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each contact's row of `sigma` (its tangential components) projected on the disc
+    (in the plane: the interval) of its `radius`, and each row's length."""
+    size = np.sqrt((sigma ** 2).sum(axis=1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        shrink = np.where(size > radius, radius / np.where(size > 0, size, 1.0), 1.0)
+    return sigma * shrink[:, None], size
+
+
 def _alart_curnier(W: Any, b: np.ndarray, mu: np.ndarray, rho: np.ndarray,
                    lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Alart and Curnier's function of the impulses (normal parts first, then the
-    tangential ones), zero exactly where they solve the frictional problem, with the
-    two projections' arguments and the projected normal impulses."""
+    """Alart and Curnier's function of the impulses (n normal parts, then each
+    contact's tangential components in turn), zero exactly where they solve the
+    frictional problem, with the two projections' arguments (the tangential ones one
+    row a contact) and the projected normal impulses."""
     n = len(mu)
     g = b + W @ lam
     sn = lam[:n] - rho[:n] * g[:n]
     normal = np.maximum(sn, 0.0)
-    st = lam[n:] - rho[n:] * g[n:]
-    bound = _bound(mu, normal)
-    return np.concatenate([lam[:n] - normal, lam[n:] - np.clip(st, -bound, bound)]), sn, st, normal
+    st = (lam[n:] - rho[n:] * g[n:]).reshape(n, -1)
+    projected, _ = _disc(st, _bound(mu, normal))
+    return (np.concatenate([lam[:n] - normal, lam[n:] - projected.ravel()]), sn, st,
+            normal)
 
 
 def coulomb_residual(W: Any, b: np.ndarray, mu: np.ndarray, lam: np.ndarray) -> float:
     """The largest violation of the frictional problem's conditions at the impulses
     `lam` (see :func:`coulomb_newton`), relative to the largest closing speed: a push,
     a normal velocity below its target, the normal complementarity, the cone, a slip
-    inside it and a friction along the slip."""
+    inside it and a friction not on the cone's edge against the slip."""
     n = len(mu)
     g = b + W @ lam
-    ln, lt, gn, gt = lam[:n], lam[n:], g[:n], g[n:]
+    ln, gn = lam[:n], g[:n]
+    lt, gt = lam[n:].reshape(n, -1), g[n:].reshape(n, -1)
+    big = max(1.0, float(np.abs(lam).max()))
     scale = max(float(np.abs(b).max()), 1e-300)
-    room = mu * ln - np.abs(lt)
-    inside = room > 1e-9 * max(1.0, float(np.abs(lam).max()))
+    friction, slip = np.sqrt((lt ** 2).sum(axis=1)), np.sqrt((gt ** 2).sum(axis=1))
+    with np.errstate(invalid="ignore"):
+        room = np.where(np.isfinite(mu), mu * ln - friction, np.inf)
+    inside = room > 1e-9 * big
+    sliding = ~inside & (slip > 1e-9 * scale) & np.isfinite(mu)
+    against = lt + (np.where(sliding, mu * ln, 0.0) / np.where(slip > 0, slip, 1.0)
+                    )[:, None] * gt
     worst = max(0.0, -float(ln.min()), -float(gn.min()), float(np.abs(ln * gn).max()),
-                -float(room.min()), float(np.abs(np.where(inside, gt, 0.0)).max()),
-                float((lt * gt).max()))
+                -float(room.min()), float(np.where(inside, slip, 0.0).max()),
+                float(np.abs(np.where(sliding[:, None], against, 0.0)).max()))
     return worst / scale
 
 
@@ -341,12 +359,13 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                    passing: float = 1e-6, accepted: float = 1e-11
                    ) -> tuple[np.ndarray, int]:
     """Coulomb friction at many contacts acting together, in floating point: impulses
-    ``lam`` (n normal parts, then n tangential ones) with velocities ``g = b + W lam``
-    (normal ones less their targets, then the slips) such that every normal impulse
-    pushes, its normal velocity is at least its target and one of the two is zero, and
-    every tangential impulse is inside the cone ``|lam_t| <= mu lam_n`` with no slip,
-    or on its edge against the slip. ``mu`` may be ``inf`` (a contact that sticks) or 0
-    (a smooth one).
+    ``lam`` (n normal parts, then each contact's tangential components in turn: one in
+    the plane, two in space) with velocities ``g = b + W lam`` (normal ones less their
+    targets, then the slips) such that every normal impulse pushes, its normal velocity
+    is at least its target and one of the two is zero, and every tangential impulse is
+    inside the circular cone ``|lam_t| <= mu lam_n`` with no slip, or on its edge
+    against the slip (in space, pointing straight against it). ``mu`` may be ``inf`` (a
+    contact that sticks) or 0 (a smooth one).
 
     The conditions are Alart and Curnier's function ``Phi(lam) = 0`` (Alart and Curnier,
     Comput. Methods Appl. Mech. Eng. 92, 1991, the form Siconos solves), found by a
@@ -367,18 +386,25 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
 
     n = len(mu)
     W = sps.csr_matrix(W)
+    d = (len(b) - n) // n if n else 1  # tangential components a contact: 1 or 2
     if not n or (b[:n] >= 0).all() and not np.abs(b[n:]).any():
-        return np.zeros(2 * n), 0
+        return np.zeros(len(b)), 0
     diagonal = W.diagonal()
     rho = 1.0 / np.maximum(diagonal, 1e-300 * max(1.0, float(diagonal.max())))
     rn, rt = rho[:n], rho[n:]
     Wn, Wt = W[:n], W[n:]
-    En, Et = sps.eye(n, 2 * n, format="csr"), sps.eye(n, 2 * n, k=n, format="csr")
+    size = n + n * d
+    En = sps.eye(n, size, format="csr")
+    Et = sps.eye(n * d, size, k=n, format="csr")
     scale = max(float(np.abs(b).max()), 1e-300)
     top = float(diagonal.max())
-    lam, steps = np.zeros(2 * n), 0
+    lam, steps = np.zeros(size), 0
     lam[:n] = _smooth_start(W[:n][:, :n], b[:n])
     finite = np.isfinite(mu)
+    # each contact's d x d block, row by row: the (row, column) of its entries
+    block_rows = np.repeat(np.arange(n * d), d)
+    block_columns = (np.arange(n * d).reshape(n, d)[:, None, :]
+                     .repeat(d, axis=1).reshape(-1))
     for stage in range(stages + 1):
         cone = np.where(finite, mu * stage / stages, np.inf)
         last = stage == stages
@@ -390,19 +416,38 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                 break
             steps += 1
             closed = sn > 0
-            stick = np.abs(st) <= _bound(cone, normal)
+            radius = _bound(cone, normal)
+            length = np.sqrt((st ** 2).sum(axis=1))
+            stick = length <= radius
             slip = ~stick
             damped_n, damped_t = Wn + eps * En, Wt + eps * Et
             Gn = sps.diags(np.where(closed, rn, 0.0)) @ damped_n + sps.diags(
                 (~closed).astype(float)) @ En
             grows = sps.diags(closed.astype(float)) @ (En - sps.diags(rn) @ damped_n)
-            Gt = (sps.diags(np.where(stick, rt, 0.0)) @ damped_t
-                  + sps.diags(slip.astype(float)) @ Et
-                  - sps.diags(np.where(slip & finite & closed, np.sign(st) * cone, 0.0)
-                              ) @ grows)
+            # outside the disc the projection is radius sigma/|sigma|: its derivative
+            # is radius/|sigma| (I - s s^T) in sigma (zero in the plane) and s in radius
+            with np.errstate(invalid="ignore", divide="ignore"):
+                unit = st / np.where(length > 0, length, 1.0)[:, None]
+                ratio = np.where(slip & (length > 0), radius / np.where(
+                    length > 0, length, 1.0), 0.0)
+            ratio = np.where(np.isfinite(ratio), ratio, 0.0)
+            blocks = ratio[:, None, None] * (np.eye(d)[None] - unit[:, :, None]
+                                             * unit[:, None, :])
+            turn = sps.csr_matrix((blocks.reshape(-1), (block_rows, block_columns)),
+                                  shape=(n * d, n * d))
+            along = np.where((slip & finite & closed)[:, None], unit * cone[:, None], 0.0)
+            lift = sps.csr_matrix((along.reshape(-1), (np.arange(n * d),
+                                                       np.repeat(np.arange(n), d))),
+                                  shape=(n * d, n))
+            inside = np.repeat(stick, d)
+            Gt = (sps.diags(np.where(inside, rt, 0.0)) @ damped_t
+                  + sps.diags((~inside).astype(float)) @ Et
+                  - turn @ sps.diags((~inside).astype(float)) @ (Et - sps.diags(rt)
+                                                                 @ damped_t)
+                  - lift @ grows)
             # a released contact's rows are the identity's: its step is -Phi there, and
             # only the others' block is factorised
-            known = np.concatenate([~closed, ~closed & slip])
+            known = np.concatenate([~closed, np.repeat(~closed & slip, d)])
             step = np.where(known, -Phi, 0.0)
             rest = np.flatnonzero(~known)
             if len(rest):
@@ -413,18 +458,18 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                 except RuntimeError:  # singular even damped: damp more
                     eps *= 8
                     continue
-            length = 1.0
+            scaled = 1.0
             for _ in range(8):  # a backtracking line search on |Phi|^2
-                trial = _alart_curnier(W, b, cone, rho, lam + length * step)
+                trial = _alart_curnier(W, b, cone, rho, lam + scaled * step)
                 value = float(trial[0] @ trial[0])
-                if value <= (1 - 1e-4 * length) * merit:
+                if value <= (1 - 1e-4 * scaled) * merit:
                     break
-                length /= 2
-            if value <= (1 - 1e-4 * length) * merit:
-                lam = lam + length * step
+                scaled /= 2
+            if value <= (1 - 1e-4 * scaled) * merit:
+                lam = lam + scaled * step
                 Phi, sn, st, normal = trial
                 merit = value
-                if length == 1.0:
+                if scaled == 1.0:
                     eps = max(eps / 4, 1e-12 * top)
             else:
                 eps *= 8
