@@ -426,7 +426,9 @@ def test_several_3d_contacts_are_refused_in_one_line_where_not_solved():
     floor = Contact(normal=(0, 0, 1), restitution=HALF, name="floor",
                     bodies=("floor", "ball"), point=(0, 0, 0))
     bodies = (Body3.fixed("w"), Body3.fixed("floor"), ball)
-    both = SpaceCollision(bodies, (wall, floor)).solve()  # both strike: the pyramid
+    both = SpaceCollision(bodies, (wall, floor)).solve()  # both strike: the circular cone
+    assert "circular cone" in both.notes[0]
+    both = SpaceCollision(bodies, (wall, floor), facets=8).solve()  # or a pyramid
     assert "pyramid of 8 edges" in both.notes[0]
     with pytest.raises(InputError, match="smooth or coulomb so far"):
         SpaceCollision(bodies, (wall, replace(floor, tangential="stick")))
@@ -456,7 +458,7 @@ def test_a_resting_contact_that_would_pull_lets_go():
 
 # ---- several 3-D contacts striking at once: the cone as a pyramid ----
 
-def _cube(velocity, facets=8, e=0, mu=QUARTER, law="newton"):
+def _cube(velocity, facets=8, e=0, mu=QUARTER, law="newton"):  # facets None: the cone
     """A cube of side 2 (mass 1, I = 2/3) landing flat on its four corners."""
     cube = Body3.rigid(1, (sp.Rational(2, 3),) * 3, (0, 0, 1), velocity, (0, 0, 0),
                        name="box")
@@ -498,6 +500,37 @@ def test_the_pyramid_approaches_the_cone_as_its_edges_multiply():
         gap = math.hypot(float(r["box.vx"]) - cone[0], float(r["box.vy"]) - cone[1])
         assert gap <= 0.25 * math.pi / facets, facets
         assert max(float(x) for x in out.checks.values()) < 1e-12
+
+
+@pytest.mark.parametrize("angle", [0, sp.pi / 7, sp.pi / 3])
+@pytest.mark.parametrize("e", [0, HALF])
+def test_the_circular_cone_gives_the_hand_answer_at_every_angle(angle, e):
+    # with no facets the cone itself: every corner slides straight against the slip,
+    # which keeps its direction (by symmetry the cube does not turn), and the speed
+    # across loses mu (1 + e) v_z whatever the direction
+    velocity = (sp.cos(angle) / 2, sp.sin(angle) / 2, -1)
+    out = _cube(velocity, facets=None, e=e).solve()
+    r = {k: float(v) for k, v in out.results().items()}
+    left = 0.5 - 0.25 * (1 + float(e))
+    assert r["box.vx"] == pytest.approx(left * math.cos(float(angle)), abs=1e-12)
+    assert r["box.vy"] == pytest.approx(left * math.sin(float(angle)), abs=1e-12)
+    assert r["box.vz"] == pytest.approx(float(e), abs=1e-12)
+    for k in ("omega_x", "omega_y", "omega_z"):
+        assert r[f"box.{k}"] == pytest.approx(0.0, abs=1e-12)
+    assert "circular cone" in out.notes[0]
+    assert max(float(x) for x in out.checks.values()) < 1e-12
+    assert {c.split(": ")[1] for c in out.courses} == {"slides"}
+
+
+def test_the_circular_cone_holds_a_corner_that_sticks():
+    # slower across than the cone can stop (mu (1 + e) v_z = 1/4 > 1/5): every corner
+    # sticks and the cube stops across, inside its cone
+    out = _cube((sp.Rational(1, 5), 0, -1), facets=None).solve()
+    r = {k: float(v) for k, v in out.results().items()}
+    assert max(abs(r[f"box.{k}"]) for k in ("vx", "vy", "vz")) < 1e-12
+    for i in range(4):
+        assert r[f"c{i}.tangential_impulse"] < 0.25 * r[f"c{i}.normal_impulse"]
+    assert {c.split(": ")[1] for c in out.courses} == {"sticks"}
 
 
 def test_several_striking_contacts_are_refused_where_not_solved():

@@ -39,7 +39,7 @@ from rigidimpact.scenes.scene import (
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
 from rigidimpact.solve.solution import Solution
-from rigidimpact.solve.space import FACETS, SpaceCollision
+from rigidimpact.solve.space import SpaceCollision
 
 __all__ = ["SpaceScene", "parse_space_scene", "space_scene_from_data", "load_space_scene",
            "load_any", "is_spatial"]
@@ -68,7 +68,7 @@ class SpaceScene:
     tolerance: float | None = None
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
     simulate: Mapping[str, Any] = field(default_factory=dict, repr=False)
-    facets: int = FACETS
+    facets: int | None = None
 
     @property
     def contact(self) -> Contact:
@@ -356,7 +356,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
-    tolerance, facets = None, FACETS
+    tolerance, facets = None, None
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
         if key == "facets":

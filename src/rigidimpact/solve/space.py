@@ -9,8 +9,9 @@ contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone
 (:func:`rigidimpact.laws.cone.cone_impact` for Coulomb's circular cone), and
 ``u+ = u- + M^-1 J^T P``. Several contacts: where one strikes and the others rest, the
 impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
-where several strike, the simultaneous rule with the cone as a pyramid
-(:meth:`SpaceCollision._faceted`).
+where several strike, the simultaneous rule with Coulomb's circular cone
+(:meth:`SpaceCollision._circular`), or with the cone as a pyramid of a stated number of
+edges (:meth:`SpaceCollision._faceted`).
 
 What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
 named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
@@ -52,13 +53,13 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE
-from rigidimpact.solve.lcp import lemke_float
+from rigidimpact.solve.lcp import NoSolution, coulomb_newton, coulomb_residual, lemke_float
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 
 CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
-FACETS, MAX_FACETS = 8, 256  # the pyramid that stands for the cone at several strikes
+MAX_FACETS = 256  # the most edges of a pyramid standing for the cone at several strikes
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
 TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
@@ -76,7 +77,8 @@ class SpaceCollision:
     bodies: tuple[Body3, ...]
     contacts: tuple[Contact, ...]
     tolerance: float | None = None
-    facets: int = FACETS  # several contacts striking at once: the cone's pyramid
+    facets: int | None = None  # several contacts striking at once: the cone itself
+    # (None) or a pyramid of this many edges
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -100,8 +102,9 @@ class SpaceCollision:
             if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb"):
                 raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
                                  f"or coulomb so far, not {c.tangential!r}")
-        if isinstance(self.facets, bool) or not isinstance(self.facets, int) or \
-                not 4 <= self.facets <= MAX_FACETS or self.facets % 2:
+        if self.facets is not None and (
+                isinstance(self.facets, bool) or not isinstance(self.facets, int)
+                or not 4 <= self.facets <= MAX_FACETS or self.facets % 2):
             raise InputError("impact.facets", f"an even whole number from 4 to {MAX_FACETS}, "
                              f"not {self.facets!r}")
         free = [b for b in self.bodies if b.support != "fixed"]
@@ -272,8 +275,10 @@ class SpaceCollision:
         size = max(float(np.abs(u).max()), 1e-300)
         approaching = [c for c in self.contacts if speeds[c.name][0] < -1e-12 * size]
         resting = [c for c in self.contacts if abs(speeds[c.name][0]) <= 1e-12 * size]
-        if len(approaching) > 1:
-            return self._faceted(approaching + resting, rows, u)
+        if len(approaching) > 1:  # the circular cone, or a pyramid of stated edges
+            if self.facets is None:
+                return self._circular(approaching + resting, rows, u)
+            return self._faceted(approaching + resting, rows, u, self.facets)
         if not approaching:
             raise InputError("contacts", "several 3-D contacts are solved where one or more "
                              "of them approach; here none approaches")
@@ -322,11 +327,11 @@ class SpaceCollision:
             given_checks=checks))
 
     def _faceted(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
-                 u: np.ndarray) -> Solution:
+                 u: np.ndarray, m: int) -> Solution:
         """Several contacts striking at once: the simultaneous rule at the velocity level
         with Newton's law (Stewart and Trinkle's formulation), Coulomb's circular cone
-        replaced by the inscribed pyramid of :attr:`facets` edges ``d_j`` in the tangent
-        plane (along t1 and then every 360/facets degrees). Each contact's unknowns are
+        replaced by the inscribed pyramid of `m` edges ``d_j`` in the tangent plane
+        (along t1 and then every 360/m degrees). Each contact's unknowns are
         its normal impulse p, an impulse p_j >= 0 along each edge and a slack s (the
         slip speed after, as seen by the pyramid):
 
@@ -337,12 +342,12 @@ class SpaceCollision:
         solved by Lemke's method in floating point and checked by the laws' residuals.
         The pyramid is an accuracy choice: exact where the slip after is along an edge
         (a body sliding straight along t1 or t2), otherwise its friction is short of the
-        cone's by up to 1 - cos(180/facets degrees)."""
+        cone's by up to 1 - cos(180/m degrees)."""
         late = [c for c in acting if c.law != "newton"]
         if late:
             raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
                              "take Newton's law (the simultaneous rule at the velocity level)")
-        m, k = self.facets, len(acting)
+        k = len(acting)
         angles = np.arange(m) * 2 * np.pi / m
         D = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # edges in (t1, t2)
         D[np.abs(D) < 1e-15] = 0.0
@@ -377,7 +382,61 @@ class SpaceCollision:
             raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
                              "friction here (Lemke's method ended on a ray: a "
                              "Painleve-type inconsistency)")
-        impulse = B @ z
+        note = (f"{k} contacts act together (the simultaneous rule, Newton's law at the "
+                f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
+                "choice: exact where a slip is along an edge), solved by Lemke's method "
+                "in floating point; it gives one answer, and with friction or more "
+                "contacts than freedoms others may exist")
+        return self._together(acting, rows, J, Minv, u, B @ z, note)
+
+    def _circular(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
+                  u: np.ndarray) -> Solution:
+        """Several contacts striking at once with Coulomb's circular cone itself: the
+        simultaneous rule at the velocity level with Newton's law, each contact's
+        friction on the disc ``|P_t| <= mu P_n`` in its tangent plane, sticking inside it
+        or on its rim straight against the slip after, solved by the damped semismooth
+        Newton method on Alart and Curnier's function
+        (:func:`rigidimpact.solve.lcp.coulomb_newton`) and checked by the laws'
+        residuals. Exact to rounding where the method ends (to 1e-14 of the closing
+        speed); it refuses in one line where it does not."""
+        late = [c for c in acting if c.law != "newton"]
+        if late:
+            raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
+                             "take Newton's law (the simultaneous rule at the velocity level)")
+        k = len(acting)
+        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
+        J = np.vstack([rows[c.name] for c in acting])  # 3k rows: n, t1, t2 per contact
+        order = [3 * i for i in range(k)] + [3 * i + j for i in range(k) for j in (1, 2)]
+        W = (J @ Minv @ J.T)[np.ix_(order, order)]
+        v = (J @ u)[order]
+        b = v.copy()
+        for i, c in enumerate(acting):  # Newton's law: leave at -e times the approach
+            b[i] = v[i] * (1 + float(c.restitution)) if v[i] < 0 else v[i]
+        mu = np.array([float(c.friction or 0) for c in acting])
+        try:
+            lam, steps = coulomb_newton(W, b, mu)
+        except NoSolution as exc:
+            raise InputError("impact.rule", f"{k} contacts striking at once: {exc}, so no "
+                             "answer is given; give `[impact] facets` for the cone as a "
+                             "pyramid") from None
+        impulse = np.zeros(3 * k)
+        impulse[order] = lam
+        note = (f"{k} contacts act together (the simultaneous rule, Newton's law at the "
+                "velocity level) with Coulomb's circular cone, solved in floating point by "
+                f"a damped semismooth Newton method ({steps} steps), residual "
+                f"{coulomb_residual(W, b, mu, lam):.1e} of the largest closing speed; it "
+                "gives one answer, and with friction or more contacts than freedoms "
+                "others may exist")
+        return self._together(acting, rows, J, Minv, u, impulse, note)
+
+    def _together(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
+                  J: np.ndarray, Minv: np.ndarray, u: np.ndarray, impulse: np.ndarray,
+                  note: str) -> Solution:
+        """The Solution of contacts acting together with the `impulse` found (each
+        contact's normal, t1 and t2 parts in turn): the bodies after, each contact's
+        course, and the laws' residuals, Newton's law and complementarity among them."""
+        k = len(acting)
+        v = J @ u
         u_after = u + Minv @ J.T @ impulse
         P = {c.name: [sp.Float(x, 17) for x in impulse[3 * i:3 * i + 3]]
              for i, c in enumerate(acting)}
@@ -386,20 +445,17 @@ class SpaceCollision:
         before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
         lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
         after = J @ u_after
+        size = max(1.0, float(np.abs(u).max()))
+        pushing = [bool(impulse[3 * i] > 1e-12 * size) for i in range(k)]
         states = []
-        for i in range(k):
+        for i, c in enumerate(acting):
             slip = float(np.linalg.norm(after[3 * i + 1:3 * i + 3]))
-            states.append("released" if z[i] <= 0 else "acts" if mu[i] == 0 else
-                          "slides" if slip > 1e-9 * max(1.0, float(np.abs(u).max()))
-                          else "sticks")
+            states.append("released" if not pushing[i] else "acts" if not c.friction else
+                          "slides" if slip > 1e-9 * size else "sticks")
         courses = tuple(f"{c.name}: {state}" for c, state in zip(acting, states,
                                                                   strict=True))
-        notes = [f"{k} contacts act together (the simultaneous rule, Newton's law at the "
-                 f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
-                 "choice: exact where a slip is along an edge), solved by Lemke's method "
-                 "in floating point; it gives one answer, and with friction or more "
-                 "contacts than freedoms others may exist"]
-        normals = J[0::3][[i for i in range(k) if z[i] > 0]]
+        notes = [note]
+        normals = J[0::3][[i for i in range(k) if pushing[i]]]
         if len(normals) and np.linalg.matrix_rank(normals @ np.linalg.cholesky(
                 Minv + 1e-300 * np.eye(len(Minv)))) < len(normals):
             notes.append("more acting contacts than the freedoms they hold (their normal "
@@ -409,10 +465,12 @@ class SpaceCollision:
         scale = max(1.0, float(np.abs(v).max()))
         for i, c in enumerate(acting):
             leave = after[3 * i] + float(c.restitution) * min(v[3 * i], 0.0)
-            checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if z[i] > 0 else
+            checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if pushing[i] else
                                                        max(0.0, -leave), 17)
-            checks[f"{c.name}.complementarity"] = sp.Float(abs(z[i] * leave) / scale, 17)
-        return self._numeric(acting, tuple(c.name for i, c in enumerate(acting) if z[i] > 0),
+            checks[f"{c.name}.complementarity"] = sp.Float(
+                abs(impulse[3 * i] * leave) / scale, 17)
+        return self._numeric(acting, tuple(c.name for i, c in enumerate(acting)
+                                           if pushing[i]),
                              P, u_after, courses, notes, (before, lost), checks)
 
     def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
