@@ -398,20 +398,21 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
     Et = sps.eye(n * d, size, k=n, format="csr")
     scale = max(float(np.abs(b).max()), 1e-300)
     top = float(diagonal.max())
-    lam, steps = np.zeros(size), 0
+    lam = np.zeros(size)
     lam[:n] = _smooth_start(W[:n][:, :n], b[:n])
     finite = np.isfinite(mu)
     # each contact's d x d block, row by row: the (row, column) of its entries
     block_rows = np.repeat(np.arange(n * d), d)
     block_columns = (np.arange(n * d).reshape(n, d)[:, None, :]
                      .repeat(d, axis=1).reshape(-1))
-    for stage in range(stages + 1):
-        cone = np.where(finite, mu * stage / stages, np.inf)
-        last = stage == stages
+
+    def descend(cone: np.ndarray, lam: np.ndarray, enough: float, limit: int
+                ) -> tuple[np.ndarray, float, int]:
+        """Damped Newton steps on the problem of the cone `cone` from `lam`, until the
+        residual is below `enough`, the damping stalls or `limit` steps are taken."""
         Phi, sn, st, normal = _alart_curnier(W, b, cone, rho, lam)
-        merit, eps = float(Phi @ Phi), 1e-2 * top
-        enough = (tolerance if last else passing) * scale
-        for _ in range(max_steps if last else max_steps // 4):
+        merit, eps, steps = float(Phi @ Phi), 1e-2 * top, 0
+        for _ in range(limit):
             if np.sqrt(merit) < enough or eps > 1e8 * top:
                 break
             steps += 1
@@ -473,10 +474,30 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                     eps = max(eps / 4, 1e-12 * top)
             else:
                 eps *= 8
+        return lam, merit, steps
+
+    # the cone opened in stages, each from the last's impulses; a stage that stalls
+    # short of its residual is approached again through the stage halfway to it
+    fractions = [k / stages for k in range(stages + 1)]
+    reached, used, merit = 0.0, 0, float("inf")
+    while fractions:
+        fraction = fractions[0]
+        last = fraction == 1.0
+        cone = np.where(finite, mu * fraction, np.inf)
+        enough = (tolerance if last else passing) * scale
+        tried, merit, steps = descend(cone, lam, enough,
+                                      max_steps if last else max_steps // 4)
+        used += steps
+        if np.sqrt(merit) < (accepted if last else passing) * scale or \
+                fraction - reached < 1.0 / 64 or used > 4 * max_steps:
+            lam, reached = tried, fraction
+            fractions.pop(0)
+        else:
+            fractions.insert(0, (reached + fraction) / 2)
     if not np.sqrt(merit) < accepted * scale:
         raise NoSolution(f"the semismooth Newton method stopped at a residual of "
-                         f"{np.sqrt(merit) / scale:.1e} after {steps} steps")
-    return lam, steps
+                         f"{np.sqrt(merit) / scale:.1e} after {used} steps")
+    return lam, used
 
 
 def least_norm_rough(J: Any, mass: np.ndarray, change: np.ndarray, lam: np.ndarray,
