@@ -325,13 +325,8 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
             if cone[i]:
                 M[3 * n + i][i] = cone[i]
             M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = Fraction(-1)
-    dense = np.zeros((size, size))
-    for i, row in enumerate(M):
-        for j, x in row.items():
-            dense[i, j] = float(x)
-    guess = lemke_float(dense, np.array([float(x) for x in q]))
-    z = None
-    if guess is not None:
+    def confirmed(guess: np.ndarray) -> list[Fraction] | None:
+        """The exact solution on the support of a floating-point `guess`, if it is one."""
         cut = 1e-9 * max(1.0, float(np.abs(guess).max()))
         support = {int(i) for i in np.nonzero(guess > cut)[0]}
         for i in range(n):  # a friction with both edges' parts: only their difference
@@ -340,8 +335,28 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         # a released contact's slack is any value at least its slip after: raised to it
         released = [3 * n + i for i in range(n) if i not in support and not sticks[i]]
         support -= set(released)
-        z = confirm_support(M, q, sorted(int(i) for i in support), released)
-    how = "found in floating point and confirmed in exact arithmetic"
+        return confirm_support(M, q, sorted(int(i) for i in support), released)
+
+    z, how = None, ("found in floating point by a semismooth Newton method and confirmed "
+                    "in exact arithmetic")
+    try:  # the sparse Newton method's answer, in the problem's four unknowns a contact
+        J_f, Minv_f, W_f, b_f, cone_f, u0_f = _float_problem(problem, rows, v_n, v_t, mu,
+                                                             target, tangential)
+        lam = coulomb_newton(W_f, b_f, cone_f)[0]
+        slip_f = (J_f @ (u0_f + Minv_f @ (J_f.T @ lam)))[n:]
+        z = confirmed(np.concatenate([lam[:n], np.maximum(lam[n:], 0.0),
+                                      np.maximum(-lam[n:], 0.0),
+                                      np.where(sticks, 0.0, np.abs(slip_f))]))
+    except NoSolution:
+        z = None
+    if z is None:  # Lemke's method in floating point on the dense tableau
+        dense = np.zeros((size, size))
+        for i, row in enumerate(M):
+            for j, x in row.items():
+                dense[i, j] = float(x)
+        guess = lemke_float(dense, np.array([float(x) for x in q]))
+        z = None if guess is None else confirmed(guess)
+        how = "found in floating point by Lemke's method and confirmed in exact arithmetic"
     if z is None:
         if n > MAX_FRICTION_EXACT_LEMKE:  # too large for the exact tableau
             return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
@@ -351,7 +366,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
             raise InputError("impact.rule", "no impulses satisfy the simultaneous rule "
                              f"with friction here ({exc}: a Painleve-type inconsistency); "
                              "try the sequential rule") from None
-        how = "by Lemke's exact tableau"
+        how = "solved by Lemke's exact tableau"
     P = [z[i] for i in range(n)] + [z[n + i] - z[2 * n + i] for i in range(n)]
     impulses = DomainMatrix([[QQ(x.numerator, x.denominator)] for x in P], (2 * n, 1), QQ)
     u0 = problem.u_before.to_DM().convert_to(QQ)
@@ -368,9 +383,9 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     states = ["off" if P[i] == 0 else "on" if not tangential[i].grips else
               "stick" if slip[i] == 0 else "slide+" if slip[i] > 0 else "slide-"
               for i in range(n)]
-    note = (f"{n} frictional contacts: solved as one linear complementarity problem by "
-            f"Lemke's method ({size} unknowns), {how}; it gives one answer, and with "
-            "friction others may exist")
+    note = (f"{n} frictional contacts: solved as one linear complementarity problem "
+            f"({size} unknowns), {how}; it gives one answer, and with friction others "
+            "may exist")
     return problem._outcome("simultaneous", (), u, problem._named(normal),
                             tuple(problem.contacts[i].name for i in acting),
                             tangential=problem._named(along),
@@ -379,22 +394,15 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                             notes=(note,), method="lemke")
 
 
-def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
-                       v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
-                       tangential: Sequence[Any]) -> Solution:
-    """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
-    cluster): the same conditions as :func:`_frictional_lcp`, in floating point, by a
-    damped semismooth Newton method on Alart and Curnier's function
-    (:func:`rigidimpact.solve.lcp.coulomb_newton`), one sparse factorisation a step. The
-    answer is in floats with its residual in a note, and the certificate checks it at
-    50 digits like every answer; where the method stops short it refuses in one line."""
+def _float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t: sp.Matrix,
+                   mu: Sequence[Any], target: Sequence[sp.Expr], tangential: Sequence[Any]
+                   ) -> tuple[Any, Any, Any, np.ndarray, np.ndarray, np.ndarray]:
+    """The frictional problem in float64: J (normal rows, then tangential) and M^-1 as
+    SciPy sparse matrices, W, the velocities b before (normal ones less their targets,
+    then the slips), each contact's cone (inf: it sticks; 0: smooth) and u before."""
     import scipy.sparse as sps
 
     n = len(problem.contacts)
-    if rows.free_symbols or problem.M_inverse.free_symbols or any(
-            sp.sympify(x).free_symbols for x in (*v_n, *v_t, *target)):
-        raise InputError("contacts", f"{n} frictional contacts acting together are "
-                         "solved for numbers; these hold symbols")
     entries = rows.row_list()
     J = sps.csr_matrix(([float(x) for _, _, x in entries],
                         ([i for i, _, _ in entries], [j for _, j, _ in entries])),
@@ -409,12 +417,29 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     cone = np.array([np.inf if m is None and law.grips else
                      0.0 if m is None or not law.grips else float(m)
                      for m, law in zip(mu, tangential, strict=True)])
+    return J, Minv, W, b, cone, np.array([float(x) for x in problem.u_before])
+
+
+def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
+                       v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
+                       tangential: Sequence[Any]) -> Solution:
+    """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
+    cluster): the same conditions as :func:`_frictional_lcp`, in floating point, by a
+    damped semismooth Newton method on Alart and Curnier's function
+    (:func:`rigidimpact.solve.lcp.coulomb_newton`), one sparse factorisation a step. The
+    answer is in floats with its residual in a note, and the certificate checks it at
+    50 digits like every answer; where the method stops short it refuses in one line."""
+    n = len(problem.contacts)
+    if rows.free_symbols or problem.M_inverse.free_symbols or any(
+            sp.sympify(x).free_symbols for x in (*v_n, *v_t, *target)):
+        raise InputError("contacts", f"{n} frictional contacts acting together are "
+                         "solved for numbers; these hold symbols")
+    J, Minv, W, b, cone, u0 = _float_problem(problem, rows, v_n, v_t, mu, target, tangential)
     try:
         lam, steps = coulomb_newton(W, b, cone)
     except NoSolution as exc:
         raise InputError("impact.rule", f"{n} frictional contacts acting together: {exc}, "
                          "so no answer is given; try the sequential rule") from None
-    u0 = np.array([float(x) for x in problem.u_before])
     u = u0 + Minv @ (J.T @ lam)
     error = coulomb_residual(W, b, cone, lam)
     slip = (J @ u)[n:]
