@@ -168,8 +168,11 @@ def assert_the_laws_hold_at_50_digits(collision: Collision, solution,
     """The conditions of :func:`assert_the_laws_hold` for an answer in floats, each
     evaluated at 50 digits and held to `tolerance` (relative to the closing speed
     before, 1 in these scenes): rounding is all an answer in floats may carry."""
-    mpmath.mp.dps = 50
+    with mpmath.workdps(50):  # the precision set for this check only
+        _check_at_50_digits(collision, solution, tolerance)
 
+
+def _check_at_50_digits(collision: Collision, solution, tolerance: float) -> None:
     def num(x):
         return mpmath.mpf(str(sp.N(x, 50)))
 
