@@ -333,11 +333,13 @@ def coulomb_residual(W: Any, b: np.ndarray, mu: np.ndarray, lam: np.ndarray) -> 
     return worst / scale
 
 
+START_ROUNDS = 100  # the proximal point method's rounds for a start (not an answer)
+
+
 def _smooth_start(W: Any, q: np.ndarray) -> np.ndarray:
     """The normal impulses of the smooth problem (every mu zero), the first stage's
-    start: block principal pivoting, or the proximal point method where W is singular,
-    as the smooth rule solves it; zeros where neither ends (the stage then starts
-    there)."""
+    start: block principal pivoting, or where W is singular a few rounds of the proximal
+    point method (a start need not be the answer); zeros where neither ends."""
     from scipy.sparse.linalg import splu
 
     W = W.tocsc()
@@ -348,7 +350,7 @@ def _smooth_start(W: Any, q: np.ndarray) -> np.ndarray:
         singular = True
     try:
         if singular:
-            return proximal(W, q, 1e-2 * float(W.diagonal().max()))[0]
+            return proximal(W, q, 1e-2 * float(W.diagonal().max()), max_rounds=START_ROUNDS)[0]
         return pivoting(W, q)[0]
     except (NoSolution, RuntimeError):
         return np.zeros(len(q))
