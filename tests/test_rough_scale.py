@@ -280,6 +280,15 @@ def test_a_striker_in_the_notch_of_an_odd_row_touches_three_discs():
         assert sp.simplify(gap.norm()) == 1
 
 
+@pytest.mark.slow
+def test_a_rough_cluster_of_a_thousand_discs_obeys_the_laws_at_50_digits():
+    # 25 rows of 40 discs, 2,872 contacts (the scene; minutes, so `make bench`)
+    collision = rough_cluster(25, 40)
+    solution = collision.simultaneous()
+    assert len(collision.contacts) == 2872 and solution.method == "newton"
+    assert_the_laws_hold_at_50_digits(collision, solution)
+
+
 def test_the_newton_method_finds_what_the_enumeration_finds(monkeypatch):
     # the same random fans as the complementarity problem's test: where the enumeration
     # finds exactly one answer, the Newton method in floats finds that answer

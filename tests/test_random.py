@@ -1,0 +1,120 @@
+"""Random inputs (issue: restitution as a random quantity): the exact distribution of
+an output by a change of variables against independent routes, and the seeded Monte
+Carlo within its standard error. The barbell of Mungan (Eur. J. Phys. 28, 2007) falls
+flat at unit speed onto a floor, its rod at a uniform random angle to the floor."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from rigidimpact.errors import InputError
+from rigidimpact.scenes.scene import parse_scene
+from rigidimpact.symbolic.distributions import distribution, monte_carlo, pushforward
+
+BARBELL_DROP = '''
+[[bodies]]
+name = "barbell"
+shape = "barbell"
+mass = "m"
+half_length = "L"
+angle = "theta"
+struck = "A"
+velocity = ["0", "-1"]
+
+[[bodies]]
+name = "floor"
+shape = "fixed"
+
+[contact]
+bodies = ["barbell", "floor"]
+normal = ["0", "-1"]
+restitution = "e"
+'''
+
+
+@pytest.fixture(scope="module")
+def barbell():
+    scene = parse_scene(BARBELL_DROP)
+    g = scene.derivation().results["barbell.vy"]
+    theta, e = scene.symbols["theta"], scene.symbols["e"]
+    angle = distribution({"uniform": ["0", "pi/2"]}, "theta")
+    return g, theta, e, angle, pushforward(g, theta, angle, {e: sp.Rational(1, 2)})
+
+
+def test_the_centre_rebounds_between_minus_half_of_one_less_e_and_e(barbell):
+    # flat (theta = 0) both ends would strike: the limit of one end striking is
+    # (e - 1)/2; upright (pi/2) the barbell rebounds as a ball, at e
+    g, theta, e, _, out = barbell
+    assert sp.simplify(g - ((1 + e) / (1 + sp.cos(theta) ** 2) - 1)) == 0  # by hand
+    assert [sp.simplify(s - t) for s, t in zip(out.support, ((e - 1) / 2, e),
+                                                strict=True)] == [0, 0]
+
+
+def test_the_mean_and_the_chance_of_falling_on(barbell):
+    # by hand: the integral of 1/(1 + cos^2) over a quarter turn is pi/(2 sqrt 2), so
+    # the mean is (1 + e)/sqrt(2) - 1; the centre keeps falling where cos^2 > e, a
+    # fraction 2 acos(sqrt e)/pi of the angles
+    _, theta, e, angle, out = barbell
+    assert sp.simplify(out.mean - ((1 + e) / sp.sqrt(2) - 1)) == 0
+    below = out.probability_below(0, angle.density(theta), theta)
+    assert sp.simplify(below - 2 * sp.acos(sp.sqrt(e)) / sp.pi) == 0
+
+
+@pytest.mark.parametrize("e_value", [0.1, 0.5, 0.9])
+def test_the_density_against_the_angles_measure(barbell, e_value):
+    # an independent route: the distribution function at y is the measure of the angles
+    # whose rebound is below y, found by a root of g(theta) = y (no inverse from SymPy),
+    # against the density integrated numerically; and the density's total is 1
+    g, theta, e, _, out = barbell
+    rebound = sp.lambdify(theta, g.subs(e, e_value))
+    density = sp.lambdify(out.variable, out.density.subs(e, e_value))
+    low, high = (e_value - 1) / 2, e_value
+    total = quad(density, low, high, limit=200)[0]
+    assert total == pytest.approx(1, abs=1e-6)
+    for y in np.linspace(low, high, 7)[1:-1]:
+        edge = brentq(lambda t, y=y: rebound(t) - y, 0, math.pi / 2, xtol=1e-14)
+        measured = edge / (math.pi / 2)
+        assert quad(density, low, y, limit=200)[0] == pytest.approx(measured, abs=1e-6)
+
+
+def test_a_seeded_monte_carlo_within_its_standard_error(barbell):
+    g, theta, e, angle, out = barbell
+    e_value = 0.3
+    drawn = monte_carlo(g, {theta: angle}, {e: e_value}, 400_000, seed=35,
+                        chunk=100_000)
+    exact_mean = float(out.mean.subs(e, e_value))
+    assert abs(drawn["mean"] - exact_mean) < 4 * drawn["standard_error"]
+    chance = 2 * math.acos(math.sqrt(e_value)) / math.pi
+    assert abs(drawn["below_zero"] - chance) < 4 * math.sqrt(chance * (1 - chance) / 4e5)
+    # the same seed gives the same draws whatever the chunks
+    again = monte_carlo(g, {theta: angle}, {e: e_value}, 400_000, seed=35, chunk=400_000)
+    assert again["mean"] == drawn["mean"]
+
+
+def test_an_output_not_monotone_in_pieces_found_in_closed_form_is_left_to_monte_carlo():
+    x = sp.Symbol("x")
+    assert pushforward(x, x, distribution({"normal": ["0", "1"]}, "x")) is None
+    square = pushforward(x ** 2, x, distribution({"uniform": ["-1", "1"]}, "x"))
+    assert square.support == (0, 1) and len(square.pieces) == 2  # two monotone pieces
+    y = square.variable
+    assert sp.simplify(square.density.subs(y, sp.Rational(1, 4)) - 1) == 0  # 2 * 1/2 / (2 * 1/2)
+
+
+@pytest.mark.parametrize(("table", "message"), [
+    ({"uniform": ["1", "0"]}, "second end must be above"),
+    ({"normal": ["0", "-1"]}, "spread must be positive"),
+    ({"uniform": ["0"]}, "two numbers"),
+    ({"triangular": ["0", "1"]}, "one of uniform"),
+    ({"discrete": ["0", "1"], "weights": ["1"]}, "one weight for each"),
+    ({"uniform": ["0", "__import__('os')"]}, "random.theta.uniform"),
+    ("0..1", "a table such as"),
+])
+def test_a_bad_random_entry_is_one_line(table, message):
+    with pytest.raises(InputError, match=message):
+        distribution(table, "theta")
