@@ -118,3 +118,46 @@ def test_an_output_not_monotone_in_pieces_found_in_closed_form_is_left_to_monte_
 def test_a_bad_random_entry_is_one_line(table, message):
     with pytest.raises(InputError, match=message):
         distribution(table, "theta")
+
+
+def test_derive_prints_the_shipped_scenes_distribution(capsys):
+    # derivations/random-barbell.toml: derive --json gives the density, support and
+    # mean as SymPy strings, equal to the hand forms, and the Monte Carlo beside them
+    import json
+    from pathlib import Path
+
+    from rigidimpact.cli import main
+
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    assert main(["derive", str(scene), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    e, y = sp.Symbol("e", nonnegative=True), sp.Symbol("y", real=True)
+    names = {"e": e, "y": y}
+    hand = (1 + e) / (sp.pi * (1 + y) * sp.sqrt((e - y) * (1 + 2 * y - e)))
+    assert sp.simplify(sp.sympify(out["density"], locals=names) - hand) == 0
+    assert [sp.simplify(sp.sympify(s, locals=names) - t) for s, t in
+            zip(out["support"], ((e - 1) / 2, e), strict=True)] == [0, 0]
+    assert sp.simplify(sp.sympify(out["mean"], locals=names) - ((1 + e) / sp.sqrt(2) - 1)) == 0
+    mc = out["monte_carlo"]
+    exact = (1.5 / math.sqrt(2)) - 1  # e = 1/2 under [values]
+    assert mc["samples"] == 1_000_000 and mc["seed"] == 2011
+    assert abs(mc["mean"] - exact) < 4 * mc["standard_error"]
+    assert main(["derive", str(scene)]) == 0
+    text = capsys.readouterr().out
+    assert "Distributions (random: theta uniform" in text and "P(barbell.vy < 0)" in text
+
+
+@pytest.mark.parametrize(("entry", "message"), [
+    ('e = { uniform = ["0", "2"] }', "random.e"),  # restitution above 1: its role
+    ('zeta = { uniform = ["0", "1"] }', "not a symbol of the scene"),
+    ('theta = { uniform = ["0", "1"] }\nsamples = 0', "random.samples"),
+    ('theta = { uniform = ["0", "1"] }\noutputs = ["barbell.vz"]', "no result"),
+])
+def test_a_bad_random_table_in_a_scene_is_one_line(tmp_path, capsys, entry, message):
+    from rigidimpact.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BARBELL_DROP + "\n[values]\ne = 0.5\n\n[random]\n" + entry + "\n")
+    assert main(["derive", str(path)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err

@@ -110,10 +110,70 @@ def _checks_line(checks: dict[str, Any]) -> str:
                 f"largest residual {float(checks[worst]):.3g} ({worst})"))
 
 
+def _random_of(target: str) -> Any:
+    """The scene's [random] table and the scene, or (None, None)."""
+    from rigidimpact.paper.problems import PROBLEMS
+    from rigidimpact.scenes.space import load_any
+
+    if target in PROBLEMS:
+        return None, None
+    scene = load_any(target)
+    return getattr(scene, "random", None), scene
+
+
+def _distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, entry in found.items():
+        row: dict[str, Any] = {"random": entry["random"]}
+        for name in ("variable", "density", "mean", "below_zero"):
+            if name in entry:
+                row[name] = str(entry[name])
+        if "support" in entry:
+            row["support"] = [str(x) for x in entry["support"]]
+        row["monte_carlo"] = entry["monte_carlo"]
+        row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
+        if "exact_seconds" in entry:
+            row["exact_seconds"] = round(entry["exact_seconds"], 4)
+        out[key] = row
+    return out
+
+
+def _print_distributions(table: Any, scene: Any, found: dict[str, dict[str, Any]]) -> None:
+    import sympy as sp
+
+    laws = "; ".join(f"{s} {law.kind} on {list(law.parameters)}" if law.kind == "uniform"
+                     else f"{s} {law.kind} {list(law.parameters)}"
+                     for s, law in table.inputs.items())
+    print(f"\nDistributions (random: {laws}; Monte Carlo at [values], {table.samples} "
+          f"samples, seed {table.seed}):")
+    for key, entry in found.items():
+        print(f"  {key}:")
+        mc = entry["monte_carlo"]
+        if "density" in entry:
+            y = entry["variable"]
+            low, high = entry["support"]
+            print(f"      density at {y}: {entry['density']}")
+            print(f"      for {low} < {y} < {high}")
+            at = float(sp.N(entry["mean"].subs(dict(scene.values))))
+            print(f"      mean: {entry['mean']}  (= {at:.10g} at [values]; "
+                  f"{entry['exact_seconds']:.2f} s)")
+            if "below_zero" in entry:
+                chance = float(sp.N(entry["below_zero"].subs(dict(scene.values))))
+                print(f"      P({key} < 0) = {entry['below_zero']}  (= {chance:.10g})")
+        elif "exact_seconds" in entry:
+            print("      no closed form found (not monotone in pieces in closed form)")
+        print(f"      Monte Carlo: mean {mc['mean']:.10g} +- {mc['standard_error']:.2g} "
+              f"(standard error), P(< 0) {mc['below_zero']:.6g}; "
+              f"{entry['monte_carlo_seconds']:.2f} s")
+
+
 def _cmd_derive(args: argparse.Namespace) -> int:
+    from rigidimpact.analyses.distributions import scene_distributions
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
 
     d = _derivation(args.target)
+    table, scene = _random_of(args.target)
+    found = scene_distributions(scene, dict(d.results)) if table else {}
     for warning in d.warnings:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
@@ -130,6 +190,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "seconds": round(d.seconds, 4),
             "warnings": list(d.warnings),
             **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
+            **({"distributions": _distributions_json(found)} if found else {}),
             **({"outcomes": [{"rule": o.rule, "order": list(o.order), "acted": list(o.acted),
                               "results": {k: _expr_json(v) for k, v in o.results().items()},
                               **({"checks": {k: str(v) for k, v in o.checks.items()},
@@ -193,6 +254,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         print(f"\nWith {key} = {value}:")
         for name, named in d.named.items():
             print(f"  {name} = {named}")
+    if found:
+        _print_distributions(table, scene, found)
     print(f"\n({d.seconds:.2f} s)")
     return 0
 

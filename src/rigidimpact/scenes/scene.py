@@ -57,6 +57,7 @@ from rigidimpact.solve.impact import Impact
 from rigidimpact.solve.rules.sequential import MAX_SAMPLED_ORDERS
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
+from rigidimpact.symbolic.distributions import RandomInputs, random_table
 from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
 from rigidimpact.symbolic.rewrite import tidy
@@ -135,6 +136,7 @@ class Scene:
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
     sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
     joints: tuple[Joint, ...] = ()  # [[joints]]: bodies pinned together
+    random: RandomInputs | None = None  # [random]: symbols with a distribution
 
     @cached_property
     def roles(self) -> tuple[Role, ...]:
@@ -711,7 +713,7 @@ def scene_from_data(data: dict[str, Any], name: str = "scene") -> Scene:
         raise InputError("scene", "a 3-D scene (vectors with three components): read it "
                          "with rigidimpact.load_space_scene; derive and evaluate read both")
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate", "joints"}
+               "simulate", "joints", "random"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section; expected {', '.join(sorted(allowed))}")
@@ -720,6 +722,7 @@ def scene_from_data(data: dict[str, Any], name: str = "scene") -> Scene:
         raise InputError("title", "must be text")
     symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
     values = _values_table(_table(data, "values", "name = number"), symbols)
+    randoms = random_table(_table(data, "random", "name = { uniform = [a, b] }"), symbols)
 
     by_name = _body_tables(data)
     simulate = _table(data, "simulate", "settings")
@@ -739,7 +742,7 @@ def scene_from_data(data: dict[str, Any], name: str = "scene") -> Scene:
                    for name, (index, table) in by_name.items())
     scene = Scene(title, symbols, values, bodies, contacts[0], simulate, name,
                   contacts=contacts, rule=rule, order=order, sample=sample,
-                  compliance=compliance, joints=joints)
+                  compliance=compliance, joints=joints, random=randoms)
     _check_scene(scene)
     return scene
 
@@ -803,9 +806,14 @@ def _joints(data: Mapping[str, Any], by_name: Mapping[str, Any],
 
 
 def _check_scene(scene: Scene) -> None:
-    """Checks that need the whole scene: roles and approach with the given values."""
+    """Checks that need the whole scene: roles and approach with the given values, and
+    each random symbol's support inside what its role allows."""
     # geometry first (a normal pointing the wrong way also makes the bodies recede)
     check_roles(scene.roles, scene.values, {s: f"values.{s.name}" for s in scene.values})
+    for symbol, law in (scene.random.inputs.items() if scene.random else ()):
+        for end in law.support:  # an unbounded end: a value far out
+            value = end if end.is_finite else sp.sign(end) * sp.Integer(10) ** 9
+            check_roles(scene.roles, {symbol: value}, {symbol: f"random.{symbol.name}"})
     if scene.joints:  # each joint on its bodies, holding them together before
         scene.collision()
         if scene.values:

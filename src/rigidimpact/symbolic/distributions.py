@@ -34,10 +34,11 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.symbolic.expr import parse_expression
 
-__all__ = ["Distribution", "Pushforward", "distribution", "pushforward", "monte_carlo",
-           "KINDS"]
+__all__ = ["Distribution", "Pushforward", "RandomInputs", "distribution", "pushforward",
+           "monte_carlo", "random_table", "KINDS", "SAMPLES"]
 
 KINDS = ("uniform", "normal", "lognormal", "discrete")
+SAMPLES, MAX_SAMPLES = 1_000_000, 10**9  # the Monte Carlo beside each exact answer
 
 
 @dataclass(frozen=True)
@@ -130,6 +131,53 @@ def distribution(table: Any, name: str,
     if kind == "discrete" and not all(p.is_number for p in parameters):
         raise InputError(f"{where}.discrete", "numbers")
     return Distribution(kind, parameters, weights)
+
+
+@dataclass(frozen=True)
+class RandomInputs:
+    """A scene's ``[random]`` table: each random symbol's distribution, the outputs
+    whose distributions are asked for (empty: every result driven by one random
+    input), and the Monte Carlo's `samples` and `seed`."""
+
+    inputs: Mapping[sp.Symbol, Distribution]
+    outputs: tuple[str, ...] = ()
+    samples: int = SAMPLES
+    seed: int = 0
+
+
+def random_table(table: Mapping[str, Any], symbols: Mapping[str, sp.Symbol]
+                 ) -> RandomInputs | None:
+    """A scene's ``[random]`` table read: ``NAME = { uniform = [a, b] }`` (or normal,
+    lognormal, discrete; see :func:`distribution`) for each random symbol, and the
+    settings ``outputs = ["KEY", ...]``, ``samples = N`` and ``seed = S``. None when the
+    table is empty."""
+    if not table:
+        return None
+    inputs: dict[sp.Symbol, Distribution] = {}
+    outputs: tuple[str, ...] = ()
+    samples, seed = SAMPLES, 0
+    for name, entry in table.items():
+        if name == "outputs":
+            if not isinstance(entry, list) or not all(isinstance(k, str) for k in entry):
+                raise InputError("random.outputs", "a list of result keys such as "
+                                 "[\"barbell.vy\"]")
+            outputs = tuple(entry)
+        elif name in ("samples", "seed"):
+            low = 1 if name == "samples" else 0
+            high = MAX_SAMPLES if name == "samples" else 2**63 - 1
+            if isinstance(entry, bool) or not isinstance(entry, int) or \
+                    not low <= entry <= high:
+                raise InputError(f"random.{name}", f"a whole number from {low} to {high}, "
+                                 f"not {entry!r}")
+            samples, seed = (entry, seed) if name == "samples" else (samples, entry)
+        elif name not in symbols:
+            raise InputError(f"random.{name}", "not a symbol of the scene; declare it "
+                             "under [symbols]")
+        else:
+            inputs[symbols[name]] = distribution(entry, name)
+    if not inputs:
+        raise InputError("random", "names no random symbol")
+    return RandomInputs(inputs, outputs, samples, seed)
 
 
 @dataclass(frozen=True)
@@ -236,15 +284,28 @@ def pushforward(g: sp.Expr, x: sp.Symbol, input_distribution: Distribution,
 def _clean(density: sp.Expr, y: sp.Symbol, least: sp.Expr, greatest: sp.Expr,
            at: Mapping[sp.Symbol, Any]) -> sp.Expr:
     """The density with |h'(y)| written without Abs where its sign is one across the
-    support (judged at its middle)."""
-    if not density.has(sp.Abs):
-        return density
+    support (judged at its middle), and its powers combined as if their bases were
+    positive, which they are inside the support: kept only if it agrees with the
+    density as derived at three points inside the support."""
     middle = (least + greatest) / 2
 
     def unsigned(arg: sp.Expr) -> sp.Expr:
         return arg if _sample_point(arg.subs(y, middle), at) >= 0 else -arg
 
-    return sp.simplify(density.replace(sp.Abs, unsigned))
+    if density.has(sp.Abs):
+        density = sp.simplify(density.replace(sp.Abs, unsigned))
+    if density.has(sp.Piecewise):
+        return density
+    combined = sp.simplify(sp.powsimp(sp.powdenest(density, force=True), force=True))
+    for share in (sp.Rational(1, 4), sp.Rational(1, 2), sp.Rational(3, 4)):
+        point = {**at, y: (least + share * (greatest - least)).subs(at)}
+        try:
+            a, b = _sample_point(density, point), _sample_point(combined, point)
+        except (TypeError, ValueError):
+            return density
+        if not abs(a - b) <= 1e-12 * max(1.0, abs(a)):
+            return density
+    return combined
 
 
 def monte_carlo(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],

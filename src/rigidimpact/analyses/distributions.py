@@ -1,0 +1,68 @@
+"""The distributions of a scene's outputs under its ``[random]`` inputs: the exact
+density, support and mean where an output is monotone in pieces of one continuous
+random input (a change of variables, :func:`rigidimpact.symbolic.distributions.pushforward`),
+and beside it a seeded Monte Carlo with its standard error, each timed (what accuracy
+costs in time). ``derive`` prints them and ``derive --json`` adds them under
+``"distributions"``.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.symbolic.distributions import monte_carlo, pushforward
+
+__all__ = ["scene_distributions"]
+
+
+def scene_distributions(scene: Any, results: dict[str, sp.Expr]) -> dict[str, dict[str, Any]]:
+    """Each asked output's distribution (the ``[random]`` table's `outputs`, or every
+    result driven by exactly one random input): ``random`` (its random symbols), and
+    where found in closed form ``variable``, ``density``, ``support`` and ``mean`` (SymPy
+    expressions), ``below_zero`` (P(output < 0), where 0 lies inside the support at the
+    scene's [values]); always ``monte_carlo`` (mean, standard_error, below_zero,
+    samples, seed) at the scene's [values], and the seconds each took."""
+    table = scene.random
+    inputs = dict(table.inputs)
+    unknown = [k for k in table.outputs if k not in results]
+    if unknown:
+        raise InputError("random.outputs", f"no result {unknown[0]!r}; the results are "
+                         f"{', '.join(results)}")
+    keys = table.outputs or tuple(k for k, v in results.items()
+                                  if len(v.free_symbols & set(inputs)) == 1)
+    values = {s: v for s, v in scene.values.items() if s not in inputs}
+    found: dict[str, dict[str, Any]] = {}
+    for key in keys:
+        g = results[key]
+        drivers = sorted(g.free_symbols & set(inputs), key=str)
+        if not drivers:
+            continue
+        missing = sorted(g.free_symbols - set(inputs) - set(values), key=str)
+        if missing:
+            raise InputError("values", f"{key} needs a number for {missing[0]} under "
+                             "[values] (its Monte Carlo, and the signs its closed form "
+                             "is judged by)")
+        entry: dict[str, Any] = {"random": [str(s) for s in drivers]}
+        if len(drivers) == 1 and inputs[drivers[0]].kind != "discrete":
+            begin = time.perf_counter()
+            exact = pushforward(g, drivers[0], inputs[drivers[0]], values,
+                                sp.Symbol("y", real=True))
+            entry["exact_seconds"] = time.perf_counter() - begin
+            if exact is not None:
+                entry.update(variable=exact.variable, density=exact.density,
+                             support=exact.support, mean=exact.mean)
+                low, high = (float(sp.N(e.subs(values))) for e in exact.support)
+                if low < 0 < high:
+                    entry["below_zero"] = exact.probability_below(
+                        0, inputs[drivers[0]].density(drivers[0]), drivers[0])
+        begin = time.perf_counter()
+        entry["monte_carlo"] = {**monte_carlo(g, {s: inputs[s] for s in drivers}, values,
+                                              table.samples, table.seed),
+                                "seed": table.seed}
+        entry["monte_carlo_seconds"] = time.perf_counter() - begin
+        found[key] = entry
+    return found
