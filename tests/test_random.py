@@ -161,3 +161,44 @@ def test_a_bad_random_table_in_a_scene_is_one_line(tmp_path, capsys, entry, mess
     assert main(["derive", str(path)]) != 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0], err
+
+
+ROD_DROP = '''
+[[bodies]]
+name = "rod"
+shape = "rod"
+mass = "m"
+length = "2*L"
+angle = "theta"
+struck_at = "L"
+velocity = ["0", "-1"]
+
+[[bodies]]
+name = "floor"
+shape = "fixed"
+
+[contact]
+bodies = ["rod", "floor"]
+normal = ["0", "-1"]
+restitution = "e"
+'''
+
+
+def test_a_uniform_rod_dropped_at_a_random_angle_by_hand():
+    # a uniform rod (I = m L^2/3) striking with one end: 1/m_eff = (1 + 3 cos^2)/m, so
+    # the centre leaves at (1 + e)/(1 + 3 cos^2) - 1, from (e - 3)/4 (flat) to e; the
+    # integral of 1/(1 + 3 cos^2) over a quarter turn is pi/4, so the mean is (e - 1)/2,
+    # and the centre keeps falling where cos^2 > e/3
+    scene = parse_scene(ROD_DROP)
+    theta, e = scene.symbols["theta"], scene.symbols["e"]
+    g = scene.derivation().results["rod.vy"]
+    assert sp.simplify(g - ((1 + e) / (1 + 3 * sp.cos(theta) ** 2) - 1)) == 0
+    angle = distribution({"uniform": ["0", "pi/2"]}, "theta")
+    out = pushforward(g, theta, angle, {e: sp.Rational(1, 2)})
+    assert [sp.simplify(s - t) for s, t in zip(out.support, ((e - 3) / 4, e),
+                                                strict=True)] == [0, 0]
+    assert sp.simplify(out.mean - (e - 1) / 2) == 0
+    below = out.probability_below(0, angle.density(theta), theta)
+    assert sp.simplify(below - 2 * sp.acos(sp.sqrt(e / 3)) / sp.pi) == 0
+    density = sp.lambdify(out.variable, out.density.subs(e, 0.5))
+    assert quad(density, -0.625, 0.5, limit=200)[0] == pytest.approx(1, abs=1e-6)

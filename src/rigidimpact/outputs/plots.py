@@ -741,3 +741,22 @@ def order_spread(rows: Sequence[dict[str, float]], sample: dict) -> Figure:
                  f"{sample['distinct']} distinct)", fontsize="medium")
     fig.tight_layout()
     return fig
+
+
+def random_rebound(curves: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray,
+                                          np.ndarray]], title: str) -> Figure:
+    """Histograms of sampled outputs over their exact densities: each curve is (label,
+    bin edges, sampled density per bin, points, exact density at the points)."""
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for k, (label, edges, sampled, points, exact) in enumerate(curves):
+        colour = f"C{k}"
+        ax.stairs(sampled, edges, color=colour, alpha=0.45, fill=True,
+                  label=f"{label}: sampled")
+        ax.plot(points, exact, color=colour, lw=1.2, label=f"{label}: exact density")
+    ax.set_xlabel("rebound velocity of the centre / falling speed")
+    ax.set_ylabel("probability density")
+    ax.set_title(title, fontsize="medium")
+    ax.set_ylim(0, 8)  # the densities' ends are infinite (integrable): the body shown
+    ax.legend(fontsize="small")
+    fig.tight_layout()
+    return fig
