@@ -92,9 +92,11 @@ def test_a_seeded_monte_carlo_within_its_standard_error(barbell):
     assert abs(drawn["mean"] - exact_mean) < 4 * drawn["standard_error"]
     chance = 2 * math.acos(math.sqrt(e_value)) / math.pi
     assert abs(drawn["below_zero"] - chance) < 4 * math.sqrt(chance * (1 - chance) / 4e5)
-    # the same seed gives the same draws whatever the chunks
-    again = monte_carlo(g, {theta: angle}, {e: e_value}, 400_000, seed=35, chunk=400_000)
-    assert again["mean"] == drawn["mean"]
+    # the same seed and chunks give the same draws; another seed others
+    again = monte_carlo(g, {theta: angle}, {e: e_value}, 400_000, seed=35, chunk=100_000)
+    assert again == drawn
+    other = monte_carlo(g, {theta: angle}, {e: e_value}, 400_000, seed=36, chunk=100_000)
+    assert other["mean"] != drawn["mean"]
 
 
 def test_an_output_not_monotone_in_pieces_found_in_closed_form_is_left_to_monte_carlo():
@@ -202,3 +204,38 @@ def test_a_uniform_rod_dropped_at_a_random_angle_by_hand():
     assert sp.simplify(below - 2 * sp.acos(sp.sqrt(e / 3)) / sp.pi) == 0
     density = sp.lambdify(out.variable, out.density.subs(e, 0.5))
     assert quad(density, -0.625, 0.5, limit=200)[0] == pytest.approx(1, abs=1e-6)
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_the_dask_path_equals_one_process_for_the_same_seed(barbell, workers):
+    # one task a chunk, each from its own stream of the seed, summed in order: the same
+    # numbers to the last bit whatever the number of workers (threads here, to start fast)
+    pytest.importorskip("dask.distributed")
+    from rigidimpact.analyses.distributions import monte_carlo_on_dask
+
+    g, theta, e, angle, _ = barbell
+    alone = monte_carlo(g, {theta: angle}, {e: 0.5}, 300_000, seed=7, chunk=50_000)
+    spread = monte_carlo_on_dask(g, {theta: angle}, {e: 0.5}, 300_000, seed=7,
+                                 chunk=50_000, workers=workers, processes=False)
+    assert spread == alone
+
+
+def test_derive_on_dask_workers_and_a_missing_scheduler(capsys):
+    from pathlib import Path
+
+    from rigidimpact.cli import main
+
+    pytest.importorskip("dask.distributed")
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    assert main(["derive", str(scene), "--json", "--workers", "2"]) == 0
+    import json
+
+    on_dask = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert main(["derive", str(scene), "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert on_dask["monte_carlo"] == alone["monte_carlo"]
+    assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:1"]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no Dask scheduler at tcp://127.0.0.1:1" in err[0]
+    assert main(["derive", "barbell", "--workers", "2"]) != 0
+    assert "only a scene with a [random] table" in capsys.readouterr().err

@@ -171,9 +171,14 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     from rigidimpact.analyses.distributions import scene_distributions
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
 
+    if args.workers is not None and not 1 <= args.workers <= 1024:
+        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
     d = _derivation(args.target)
     table, scene = _random_of(args.target)
-    found = scene_distributions(scene, dict(d.results)) if table else {}
+    if (args.workers is not None or args.scheduler) and not table:
+        raise InputError("--workers", "only a scene with a [random] table runs on Dask")
+    found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
+                                progress=not args.json) if table else {}
     for warning in d.warnings:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
@@ -812,6 +817,11 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="barbell, sticking, discs, two-body, or a scene file")
     p.add_argument("--format", choices=("text", "latex"), default="text")
     p.add_argument("--json", action="store_true")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="a scene's [random] Monte Carlo on N local Dask workers (the "
+                        "same answer as one process for the same seed)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="... or on the Dask cluster at ADDRESS (tcp://host:8786)")
     p.set_defaults(run=_cmd_derive)
 
     p = sub.add_parser("verify", help="check every result of the paper")

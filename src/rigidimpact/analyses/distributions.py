@@ -14,12 +14,68 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.symbolic.distributions import monte_carlo, pushforward
+from rigidimpact.symbolic.distributions import (
+    Distribution,
+    chunk_sizes,
+    chunk_sums,
+    combine,
+    monte_carlo,
+    pushforward,
+)
 
-__all__ = ["scene_distributions"]
+__all__ = ["scene_distributions", "monte_carlo_on_dask"]
+
+CHUNK = 1_000_000  # draws a task
 
 
-def scene_distributions(scene: Any, results: dict[str, sp.Expr]) -> dict[str, dict[str, Any]]:
+def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
+                        values: dict[sp.Symbol, Any], samples: int, seed: int,
+                        chunk: int = CHUNK, workers: int | None = None,
+                        scheduler: str | None = None, processes: bool = True,
+                        progress: bool = False) -> dict[str, float]:
+    """:func:`rigidimpact.symbolic.distributions.monte_carlo` spread over Dask workers:
+    one task a chunk, each drawing from its own stream of the seed, their sums added
+    in the chunks' order, so the answer equals the one-process answer for the same
+    seed and chunk, whatever the number of workers. With no `scheduler` a local
+    cluster of `workers` processes (default: one a core) is started and closed; with
+    one (``tcp://host:8786``) its cluster is used. `progress` draws Dask's progress bar
+    on the standard error."""
+    try:
+        from dask.distributed import Client, LocalCluster
+        from dask.distributed import progress as bar
+    except ImportError:
+        raise InputError("--workers", "Dask is not installed: pip install "
+                         "'rigidimpact[dask]'") from None
+    sizes = chunk_sizes(samples, chunk)
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                               processes=processes, dashboard_address=None)
+        client = Client(cluster)
+    else:
+        cluster = None
+        try:
+            client = Client(scheduler, timeout=10)
+        except OSError as exc:
+            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
+                             f"{exc}") from None
+    try:
+        futures = client.map(chunk_sums, [g] * len(sizes), [inputs] * len(sizes),
+                             [values] * len(sizes), [seed] * len(sizes),
+                             range(len(sizes)), [len(sizes)] * len(sizes), sizes,
+                             pure=False)
+        if progress:
+            bar(futures)
+        sums = client.gather(futures)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return combine(sums, samples)
+
+
+def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | None = None,
+                        scheduler: str | None = None,
+                        progress: bool = False) -> dict[str, dict[str, Any]]:
     """Each asked output's distribution (the ``[random]`` table's `outputs`, or every
     result driven by exactly one random input): ``random`` (its random symbols), and
     where found in closed form ``variable``, ``density``, ``support`` and ``mean`` (SymPy
@@ -60,9 +116,13 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr]) -> dict[str, di
                     entry["below_zero"] = exact.probability_below(
                         0, inputs[drivers[0]].density(drivers[0]), drivers[0])
         begin = time.perf_counter()
-        entry["monte_carlo"] = {**monte_carlo(g, {s: inputs[s] for s in drivers}, values,
-                                              table.samples, table.seed),
-                                "seed": table.seed}
+        drawn = {s: inputs[s] for s in drivers}
+        if workers is None and scheduler is None:
+            stats = monte_carlo(g, drawn, values, table.samples, table.seed, CHUNK)
+        else:
+            stats = monte_carlo_on_dask(g, drawn, values, table.samples, table.seed, CHUNK,
+                                        workers, scheduler, progress=progress)
+        entry["monte_carlo"] = {**stats, "seed": table.seed}
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
         found[key] = entry
     return found

@@ -24,7 +24,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -35,7 +35,8 @@ from rigidimpact.errors import InputError
 from rigidimpact.symbolic.expr import parse_expression
 
 __all__ = ["Distribution", "Pushforward", "RandomInputs", "distribution", "pushforward",
-           "monte_carlo", "histogram", "random_table", "KINDS", "SAMPLES"]
+           "monte_carlo", "histogram", "random_table", "chunk_sizes", "chunk_sums",
+           "combine", "KINDS", "SAMPLES"]
 
 KINDS = ("uniform", "normal", "lognormal", "discrete")
 SAMPLES, MAX_SAMPLES = 1_000_000, 10**9  # the Monte Carlo beside each exact answer
@@ -308,31 +309,53 @@ def _clean(density: sp.Expr, y: sp.Symbol, least: sp.Expr, greatest: sp.Expr,
     return combined
 
 
-def monte_carlo(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
-                values: Mapping[sp.Symbol, Any], samples: int, seed: int,
-                chunk: int = 1_000_000) -> dict[str, float]:
-    """The mean of g over `samples` seeded draws of its random `inputs` (the other
-    symbols at `values`), with its standard error and the fraction below zero; drawn
-    in chunks of `chunk` from one ``numpy.random.Generator`` (PCG64, `seed`), so the
-    answer is the same for any chunk size that divides the samples alike."""
-    rng = np.random.default_rng(seed)
+def chunk_sizes(samples: int, chunk: int) -> list[int]:
+    """The draws of each chunk: `chunk` each, the last one what is left."""
+    return [min(chunk, samples - start) for start in range(0, samples, chunk)]
+
+
+def chunk_sums(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
+               values: Mapping[sp.Symbol, Any], seed: int, index: int, count: int,
+               size: int) -> tuple[float, float, float]:
+    """One chunk of a Monte Carlo: the sum, the sum of squares and the count below
+    zero of `size` draws of g from chunk `index` of `count`'s own stream (the seed's
+    `index`-th child, ``numpy.random.SeedSequence(seed).spawn(count)``), so a chunk
+    draws the same numbers in any process and any order."""
+    stream = np.random.SeedSequence(seed).spawn(count)[index]
+    rng = np.random.default_rng(stream)
     order = sorted(inputs, key=str)
     fixed = {s: v for s, v in values.items() if s not in inputs}
     function = sp.lambdify(order, g.subs(fixed), "numpy")
+    drawn = [inputs[s].sample(rng, size, fixed) for s in order]
+    out = np.broadcast_to(np.asarray(function(*drawn), dtype=float), (size,))
+    return float(out.sum()), float((out * out).sum()), float((out < 0).sum())
+
+
+def combine(sums: Sequence[tuple[float, float, float]], samples: int) -> dict[str, float]:
+    """The Monte Carlo's mean, standard error and fraction below zero from its chunks'
+    sums, added in the chunks' order (so the answer does not depend on where they ran)."""
     total = square = below = 0.0
-    done = 0
-    while done < samples:
-        size = min(chunk, samples - done)
-        drawn = [inputs[s].sample(rng, size, fixed) for s in order]
-        out = np.broadcast_to(np.asarray(function(*drawn), dtype=float), (size,))
-        total += float(out.sum())
-        square += float((out * out).sum())
-        below += float((out < 0).sum())
-        done += size
+    for part in sums:
+        total += part[0]
+        square += part[1]
+        below += part[2]
     mean = total / samples
     spread = max(square / samples - mean * mean, 0.0) * samples / max(samples - 1, 1)
     return {"mean": mean, "standard_error": float(np.sqrt(spread / samples)),
             "below_zero": below / samples, "samples": float(samples)}
+
+
+def monte_carlo(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
+                values: Mapping[sp.Symbol, Any], samples: int, seed: int,
+                chunk: int = 1_000_000) -> dict[str, float]:
+    """The mean of g over `samples` seeded draws of its random `inputs` (the other
+    symbols at `values`), with its standard error and the fraction below zero; drawn in
+    chunks of `chunk`, each from its own stream of the seed (:func:`chunk_sums`), so the
+    same seed and chunk give the same answer in one process or spread over workers
+    (:func:`rigidimpact.analyses.distributions.monte_carlo_on_dask`)."""
+    sizes = chunk_sizes(samples, chunk)
+    return combine([chunk_sums(g, inputs, values, seed, k, len(sizes), size)
+                    for k, size in enumerate(sizes)], samples)
 
 
 def histogram(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
@@ -341,16 +364,15 @@ def histogram(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
     """The density of g estimated from `samples` seeded draws (as :func:`monte_carlo`
     draws them), in the bins between `edges`: counts over samples and bin width, a
     chunk at a time (ten million draws need no more memory than one chunk)."""
-    rng = np.random.default_rng(seed)
     order = sorted(inputs, key=str)
     fixed = {s: v for s, v in values.items() if s not in inputs}
     function = sp.lambdify(order, g.subs(fixed), "numpy")
     counts = np.zeros(len(edges) - 1)
-    done = 0
-    while done < samples:
-        size = min(chunk, samples - done)
+    sizes = chunk_sizes(samples, chunk)
+    streams = np.random.SeedSequence(seed).spawn(len(sizes))
+    for stream, size in zip(streams, sizes, strict=True):
+        rng = np.random.default_rng(stream)
         drawn = [inputs[s].sample(rng, size, fixed) for s in order]
         out = np.broadcast_to(np.asarray(function(*drawn), dtype=float), (size,))
         counts += np.histogram(out, bins=edges)[0]
-        done += size
     return counts / (samples * np.diff(edges))
