@@ -100,12 +100,11 @@ def _random_cluster(rng: random.Random, k: int) -> Collision:
     return Collision(tuple(bodies), contacts)
 
 
-def test_the_complementarity_problem_finds_what_the_enumeration_finds(monkeypatch):
-    # where the enumeration of states (every combination tried) finds exactly one
-    # answer, the complementarity problem must find that same answer
-    rng = random.Random(34)
-    compared = 0
-    for _ in range(40):
+def _single_answers(seed: int, count: int = 40):
+    """Seeded random rough fans whose enumeration of states finds exactly one answer
+    with two or more contacts acting, each with that answer."""
+    rng = random.Random(seed)
+    for _ in range(count):
         collision = _random_cluster(rng, rng.randint(2, 5))
         try:
             enumerated = collision.simultaneous()
@@ -114,6 +113,14 @@ def test_the_complementarity_problem_finds_what_the_enumeration_finds(monkeypatc
         if any("solutions" in note or "not unique" in note or "mixture" in note
                for note in enumerated.notes) or len(enumerated.acted) < 2:
             continue
+        yield collision, enumerated
+
+
+def test_the_complementarity_problem_finds_what_the_enumeration_finds(monkeypatch):
+    # where the enumeration of states (every combination tried) finds exactly one
+    # answer, the complementarity problem must find that same answer
+    compared = 0
+    for collision, enumerated in _single_answers(34):
         monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
         by_lcp = collision.simultaneous()
         monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 729)
@@ -292,17 +299,8 @@ def test_a_rough_cluster_of_a_thousand_discs_obeys_the_laws_at_50_digits():
 def test_the_newton_method_finds_what_the_enumeration_finds(monkeypatch):
     # the same random fans as the complementarity problem's test: where the enumeration
     # finds exactly one answer, the Newton method in floats finds that answer
-    rng = random.Random(34)
     compared = 0
-    for _ in range(40):
-        collision = _random_cluster(rng, rng.randint(2, 5))
-        try:
-            enumerated = collision.simultaneous()
-        except ri.InputError:
-            continue
-        if any("solutions" in note or "not unique" in note or "mixture" in note
-               for note in enumerated.notes) or len(enumerated.acted) < 2:
-            continue
+    for collision, enumerated in _single_answers(34):
         monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
         monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 0)
         by_newton = collision.simultaneous()
