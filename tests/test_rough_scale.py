@@ -15,7 +15,6 @@ import pytest
 import sympy as sp
 
 import rigidimpact as ri
-import rigidimpact.solve.lcp as lcp
 import rigidimpact.solve.rules.simultaneous as simultaneous_rule
 from rigidimpact.analyses.contacts import (
     pymunk_rough_cluster,
@@ -26,6 +25,7 @@ from rigidimpact.analyses.contacts import (
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision
+from rigidimpact.solve.lcp import NoSolution
 
 HALF = sp.Rational(1, 2)
 
@@ -350,7 +350,7 @@ def test_past_the_exact_size_the_newton_method_answers(monkeypatch):
 
 def test_where_the_newton_method_stops_short_the_rule_refuses_in_one_line(monkeypatch):
     def stops(*args, **kwargs):
-        raise lcp.NoSolution("the semismooth Newton method stopped at a residual of "
+        raise NoSolution("the semismooth Newton method stopped at a residual of "
                              "1.0e-03 after 400 steps")
 
     monkeypatch.setattr(simultaneous_rule, "coulomb_newton", stops)

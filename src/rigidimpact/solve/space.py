@@ -53,7 +53,8 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE
-from rigidimpact.solve.lcp import NoSolution, coulomb_newton, coulomb_residual, lemke_float
+from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
+from rigidimpact.solve.lcp import NoSolution, lemke_float
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
@@ -396,7 +397,7 @@ class SpaceCollision:
         friction on the disc ``|P_t| <= mu P_n`` in its tangent plane, sticking inside it
         or on its rim straight against the slip after, solved by the damped semismooth
         Newton method on Alart and Curnier's function
-        (:func:`rigidimpact.solve.lcp.coulomb_newton`) and checked by the laws'
+        (:func:`rigidimpact.solve.coulomb.coulomb_newton`) and checked by the laws'
         residuals. Exact to rounding where the method ends (to 1e-14 of the closing
         speed); it refuses in one line where it does not."""
         late = [c for c in acting if c.law != "newton"]

@@ -29,15 +29,13 @@ from rigidimpact.solve.conditions import (
     exact_solve,
     tidied,
 )
+from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual, least_norm_rough
 from rigidimpact.solve.lcp import (
     NoSolution,
     confirm,
     confirm_by_rows,
     confirm_support,
-    coulomb_newton,
-    coulomb_residual,
     least_norm,
-    least_norm_rough,
     lemke,
     lemke_float,
     pivoting,
@@ -426,7 +424,7 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
     cluster): the same conditions as :func:`_frictional_lcp`, in floating point, by a
     damped semismooth Newton method on Alart and Curnier's function
-    (:func:`rigidimpact.solve.lcp.coulomb_newton`), one sparse factorisation a step. The
+    (:func:`rigidimpact.solve.coulomb.coulomb_newton`), one sparse factorisation a step. The
     answer is in floats with its residual in a note, and the certificate checks it at
     50 digits like every answer; where the method stops short it refuses in one line."""
     n = len(problem.contacts)
