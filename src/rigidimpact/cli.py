@@ -737,8 +737,11 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             last[0] = percent
             _progress_bar(done, count, "parameter sets")
 
+    if args.workers is not None and not 1 <= args.workers <= 1024:
+        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
     summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress,
-                        kept=chosen if args.keys else None)
+                        kept=chosen if args.keys else None, workers=args.workers,
+                        scheduler=args.scheduler)
     for warning in summary["warnings"]:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
@@ -895,6 +898,11 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="numba (an optional extra): a compiled loop over the cores")
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="on N local Dask workers, a block of 2^20 sets a task (the same "
+                        "numbers as one process)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="... or on the Dask cluster at ADDRESS (tcp://host:8786)")
     p.set_defaults(run=_cmd_sweep)
 
     p = sub.add_parser("stability", help="the hard-case suite against mpmath references")

@@ -14,6 +14,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.outputs.workers import dask_client
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
@@ -40,36 +41,17 @@ def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     cluster of `workers` processes (default: one a core) is started and closed; with
     one (``tcp://host:8786``) its cluster is used. `progress` draws Dask's progress bar
     on the standard error."""
-    try:
-        from dask.distributed import Client, LocalCluster
-        from dask.distributed import progress as bar
-    except ImportError:
-        raise InputError("--workers", "Dask is not installed: pip install "
-                         "'rigidimpact[dask]'") from None
     sizes = chunk_sizes(samples, chunk)
-    if scheduler is None:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                               processes=processes, dashboard_address=None)
-        client = Client(cluster)
-    else:
-        cluster = None
-        try:
-            client = Client(scheduler, timeout=10)
-        except OSError as exc:
-            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
-                             f"{exc}") from None
-    try:
+    with dask_client(workers, scheduler, processes) as client:
         futures = client.map(chunk_sums, [g] * len(sizes), [inputs] * len(sizes),
                              [values] * len(sizes), [seed] * len(sizes),
                              range(len(sizes)), [len(sizes)] * len(sizes), sizes,
                              pure=False)
         if progress:
+            from dask.distributed import progress as bar
+
             bar(futures)
         sums = client.gather(futures)
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
     return combine(sums, samples)
 
 

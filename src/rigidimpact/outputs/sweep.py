@@ -32,10 +32,13 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import replace_folder
+from rigidimpact.outputs.workers import dask_client
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
 
-__all__ = ["parse_grid", "run_sweep", "MAX_SETS"]
+__all__ = ["parse_grid", "run_sweep", "sweep_block", "MAX_SETS", "BLOCK"]
+
+BLOCK = 1 << 20  # sets a Dask task
 
 MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
 
@@ -80,10 +83,14 @@ def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[s
 def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
               fixed: Mapping[str, float], folder: Path, backend: str = "numpy",
               progress: Callable[[int, int], None] | None = None,
-              kept: Sequence[str] | None = None) -> dict[str, Any]:
+              kept: Sequence[str] | None = None, workers: int | None = None,
+              scheduler: str | None = None, processes: bool = True) -> dict[str, Any]:
     """Evaluate `results` over `grid` into ``folder/KEY.npy`` files; return the summary.
     With `kept`, only those keys are written; the others are evaluated for their
-    statistics and warnings only (in a scratch folder removed at the end).
+    statistics and warnings only (in a scratch folder removed at the end). With
+    `workers` or a `scheduler` the grid is cut into blocks of :data:`BLOCK` sets, one
+    Dask task each (:func:`sweep_block`), written in place as they come back: the
+    same numbers as in one process, since each set is computed alone.
 
     Raises
     ------
@@ -124,7 +131,24 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
             for k in kernel.keys}
         start = time.perf_counter()
         grid_or_point = dict(grid) if grid else {}
-        if grid_or_point:
+        if grid_or_point and (workers is not None or scheduler is not None):
+            with dask_client(workers, scheduler, processes) as client:
+                from dask.distributed import as_completed
+
+                blocks = [(start, min(start + BLOCK, total))
+                          for start in range(0, total, BLOCK)]
+                futures = {client.submit(sweep_block, dict(results), grid_or_point,
+                                         dict(fixed), backend, a, b, pure=False): (a, b)
+                           for a, b in blocks}
+                done = 0
+                for future in as_completed(futures):
+                    a, b = futures[future]
+                    for k, values in future.result().items():
+                        outputs[k][a:b] = values
+                    done += b - a
+                    if progress:
+                        progress(done, total)
+        elif grid_or_point:
             kernel.sweep(grid_or_point, fixed, outputs, progress)
         else:
             one = kernel(**fixed)
@@ -153,6 +177,30 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
         if scratch is not None:
             scratch.cleanup()
     return summary
+
+
+def sweep_block(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
+                fixed: Mapping[str, float], backend: str, start: int,
+                stop: int) -> dict[str, np.ndarray]:
+    """Sets `start` to `stop` of the grid (flat, the last range fastest), every result
+    at each: one Dask task of :func:`run_sweep`, its fused kernel built where it runs.
+    The block is run in the kernel's own chunks, which line up with the one-process
+    sweep's (a block starts at a multiple of the chunk), so every number is the same."""
+    kernel = fused(results, backend)
+    names = list(grid)
+    axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
+    shape = tuple(len(a) for a in axes)
+    out = {k: np.empty(stop - start) for k in kernel.keys}
+    targets = [out[k] for k in kernel.keys]
+
+    def work(a: int, b: int) -> None:
+        coordinates = np.unravel_index(np.arange(start + a, start + b), shape)
+        chunk = {n: x[c] for n, x, c in zip(names, axes, coordinates, strict=True)}
+        inputs = [chunk[n] if n in chunk else float(fixed[n]) for n in kernel.arguments]
+        kernel._run(inputs, [t[a:b] for t in targets])
+
+    kernel._chunks(stop - start, work, None)
+    return out
 
 
 NEGATIVE = 1e-12  # below this a value counts as negative (a warning), not as rounding

@@ -1,0 +1,45 @@
+"""Dask workers for the long runs (a Monte Carlo of 10^9 draws, a sweep of 10^9 sets):
+a local cluster of processes by default, with no set-up, or the cluster whose
+scheduler is at an address. The work is cut into tasks whose answers do not depend on
+where they run, so one worker, two or a cluster give the one-process answer.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from rigidimpact.errors import InputError
+
+__all__ = ["dask_client"]
+
+
+@contextmanager
+def dask_client(workers: int | None = None, scheduler: str | None = None,
+                processes: bool = True) -> Iterator[Any]:
+    """A ``dask.distributed.Client``: with no `scheduler` on a local cluster of
+    `workers` (default: one a core; processes, or threads with `processes` False),
+    started here and closed after; with one (``tcp://host:8786``) on its cluster."""
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError("--workers", "Dask is not installed: pip install "
+                         "'rigidimpact[dask]'") from None
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                               processes=processes, dashboard_address=None)
+        client = Client(cluster)
+    else:
+        try:
+            client = Client(scheduler, timeout=10)
+        except OSError as exc:
+            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
+                             f"{exc}") from None
+    try:
+        yield client
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
