@@ -698,9 +698,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         derivation = _derivation(args.target)
     else:
         scene = load_scene(args.target)
-        if len(scene.contacts) > 1:
-            raise InputError("sweep", "a scene with several contacts is solved with "
-                             "numbers; evaluate it point by point")
+        if len(scene.contacts) > 1:  # no closed form: each set solved with numbers
+            return _point_sweep(args, scene)
         derivation, defaults = scene.derivation(), scene.values
     values, sources = _settings(defaults, args.set)
     grid = parse_grid(args.grid, derivation.symbols)
@@ -752,6 +751,49 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     for key, stat in summary["results"].items():
         extra = f", {stat['not_finite']} not finite" if stat["not_finite"] else ""
         print(f"  {key}.npy: from {stat['min']!r} to {stat['max']!r}{extra}")
+    return 0
+
+
+def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
+    """A sweep of a scene with several contacts: each set solved with numbers by the
+    scene's rule (the compliant one too), in this process or on Dask workers."""
+    import time
+
+    from rigidimpact.outputs.sweep import parse_grid, run_point_sweep
+    from rigidimpact.symbolic.expr import parse_expression
+
+    if args.keys or args.backend != "numpy":
+        raise InputError("--keys" if args.keys else "--backend", "a scene with several "
+                         "contacts is solved set by set: every result is written")
+    if args.workers is not None and not 1 <= args.workers <= 1024:
+        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
+    grid = parse_grid(args.grid, scene.symbols)
+    fixed: dict[str, float] = {}
+    for setting in args.set:
+        name, eq, text = setting.partition("=")
+        name = name.strip()
+        if not eq or name not in scene.symbols:
+            raise InputError("--set", f"expected NAME=VALUE with a symbol of the scene, "
+                             f"got {setting!r}")
+        value = parse_expression(text, f"--set {name}", {})
+        if not value.is_number:
+            raise InputError(f"--set {name}", "must be a number")
+        fixed[name] = float(value)
+    started = time.perf_counter()
+
+    def progress(done: int, count: int) -> None:
+        if time.perf_counter() - started >= 2.0:
+            _progress_bar(done, count, "solves")
+
+    summary = run_point_sweep(args.target, grid, fixed, Path(args.out), progress,
+                              args.workers, args.scheduler)
+    for warning in summary["warnings"]:
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if args.json:
+        _print_json(summary)
+        return 0
+    print(f"{summary['sets']} parameter sets, each solved with numbers, in "
+          f"{summary['seconds']:.3g} s; written to {args.out}/")
     return 0
 
 

@@ -33,12 +33,16 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import replace_folder
 from rigidimpact.outputs.workers import dask_client
+from rigidimpact.scenes.scene import load_scene
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
 
-__all__ = ["parse_grid", "run_sweep", "sweep_block", "MAX_SETS", "BLOCK"]
+__all__ = ["parse_grid", "run_sweep", "sweep_block", "run_point_sweep", "point_block",
+           "MAX_SETS", "BLOCK", "MAX_POINTS", "POINTS"]
 
 BLOCK = 1 << 20  # sets a Dask task
+MAX_POINTS = 10**6  # scenes solved with numbers: each set is one solve (a compliant
+POINTS = 64  # run takes about 0.1 s); sets a task
 
 MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
 
@@ -201,6 +205,85 @@ def sweep_block(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
 
     kernel._chunks(stop - start, work, None)
     return out
+
+
+def point_block(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[str, float],
+                start: int, stop: int) -> dict[str, np.ndarray]:
+    """Sets `start` to `stop` of the grid, each solved with numbers by the scene at
+    `path` (its rule: the compliant one, or several contacts): one task of
+    :func:`run_point_sweep`, the scene read where it runs. Every result key a set
+    gives, as an array over the sets."""
+    scene = load_scene(path)
+    names = list(grid)
+    axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
+    shape = tuple(len(a) for a in axes)
+    coordinates = np.unravel_index(np.arange(start, stop), shape)
+    rows = []
+    for k in range(stop - start):
+        values: dict[str, Any] = {s.name: v for s, v in scene.values.items()}
+        values.update({n: sp.Float(v, 17) for n, v in fixed.items()})
+        values.update({n: sp.Float(float(a[c[k]]), 17)
+                       for n, a, c in zip(names, axes, coordinates, strict=True)})
+        sources = {n: f"--set {n}" for n in fixed} | {n: f"--grid {n}" for n in names}
+        rows.append(scene.evaluate(values, sources, None).numbers)
+    return {key: np.array([float(r[key]) for r in rows]) for key in rows[0]}
+
+
+def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[str, float],
+                    folder: Path, progress: Callable[[int, int], None] | None = None,
+                    workers: int | None = None, scheduler: str | None = None,
+                    processes: bool = True) -> dict[str, Any]:
+    """A sweep of a scene that has no closed form (the compliant rule, several
+    contacts): every set of `grid` solved with numbers, :data:`POINTS` sets a task, in
+    this process or on Dask workers (`workers`, `scheduler`), into ``folder/KEY.npy``
+    and ``summary.json`` as :func:`run_sweep` writes them. Each set is solved alone, so
+    the numbers do not depend on where."""
+    shape = tuple(len(a) for a in grid.values())
+    total = int(np.prod(shape)) if shape else 1
+    if total > MAX_POINTS:
+        raise InputError("--grid", f"{total} sets, each a solve of its own: past the "
+                         f"budget of {MAX_POINTS} for a scene without a closed form")
+    blocks = [(a, min(a + POINTS, total)) for a in range(0, total, POINTS)]
+    point_block(path, grid, fixed, 0, 1)  # a bad value is said here, before any worker
+    parts: dict[tuple[int, int], dict[str, np.ndarray]] = {}
+    start = time.perf_counter()
+    if workers is None and scheduler is None:
+        for a, b in blocks:
+            parts[a, b] = point_block(path, grid, fixed, a, b)
+            if progress:
+                progress(b, total)
+    else:
+        with dask_client(workers, scheduler, processes) as client:
+            from dask.distributed import as_completed
+
+            futures = {client.submit(point_block, path, dict(grid), dict(fixed), a, b,
+                                     pure=False): (a, b) for a, b in blocks}
+            done = 0
+            for future in as_completed(futures):
+                parts[futures[future]] = future.result()
+                done += futures[future][1] - futures[future][0]
+                if progress:
+                    progress(done, total)
+    seconds = time.perf_counter() - start
+    keys = list(parts[blocks[0]])
+    arrays = {k: np.concatenate([parts[block][k] for block in blocks]) for k in keys}
+    stats = {k: _stats(v) for k, v in arrays.items()}
+    summary = {"grid": {n: {"start": float(a[0]), "stop": float(a[-1]), "count": len(a)}
+                        for n, a in grid.items()},
+               "fixed": dict(fixed), "order": list(grid), "shape": list(shape),
+               "sets": total, "backend": "solve a set at a time", "seconds": seconds,
+               "sets_per_s": total / seconds if seconds > 0 else None,
+               "results": stats, "warnings": sweep_warnings(stats, total)}
+
+    def fill(staging: Path) -> list[str]:
+        for k, v in arrays.items():
+            np.save(staging / f"{k}.npy", v)
+        (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
+                                              encoding="utf-8")
+        return [f"{k}.npy" for k in keys] + ["summary.json"]
+
+    replace_folder(Path(folder), fill, (".npy", ".json"))
+    return summary
 
 
 NEGATIVE = 1e-12  # below this a value counts as negative (a warning), not as rounding
