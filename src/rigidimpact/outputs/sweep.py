@@ -24,6 +24,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Callable, Mapping, Sequence
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -207,13 +208,20 @@ def sweep_block(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
     return out
 
 
+@lru_cache(maxsize=8)
+def _scene(path: str, stamp: float) -> Any:
+    """The scene at `path` as last modified at `stamp`, read once a process (a worker
+    runs many blocks of one sweep)."""
+    return load_scene(path)
+
+
 def point_block(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[str, float],
                 start: int, stop: int) -> dict[str, np.ndarray]:
     """Sets `start` to `stop` of the grid, each solved with numbers by the scene at
     `path` (its rule: the compliant one, or several contacts): one task of
     :func:`run_point_sweep`, the scene read where it runs. Every result key a set
     gives, as an array over the sets."""
-    scene = load_scene(path)
+    scene = _scene(path, Path(path).stat().st_mtime)
     names = list(grid)
     axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
     shape = tuple(len(a) for a in axes)
