@@ -239,3 +239,19 @@ def test_derive_on_dask_workers_and_a_missing_scheduler(capsys):
     assert len(err) == 1 and "no Dask scheduler at tcp://127.0.0.1:1" in err[0]
     assert main(["derive", "barbell", "--workers", "2"]) != 0
     assert "only a scene with a [random] table" in capsys.readouterr().err
+
+
+def test_the_distribution_is_exported_as_latex(capsys):
+    from pathlib import Path
+
+    from rigidimpact.cli import main
+    from rigidimpact.outputs.latex import to_latex
+
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    assert main(["derive", str(scene), "--format", "latex"]) == 0
+    text = capsys.readouterr().out
+    e, y = sp.Symbol("e", nonnegative=True), sp.Symbol("y", real=True)
+    assert "% distribution of barbell.vy (y), random: theta" in text
+    density = (e + 1) / (sp.pi * sp.sqrt((e - y) * (-e + 2 * y + 1)) * (y + 1))
+    assert f"f(y) = {to_latex(density)}" in text  # the hand form, as derive finds it
+    assert "\\mathrm{E}[y] = " in text and "P(y < 0) = " in text

@@ -214,6 +214,18 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         for key, value in d.definitions.items():
             print(f"% named group\n\\begin{{equation}}\n  {key} = {to_latex(value)}\n"
                   "\\end{equation}")
+        for key, entry in found.items():
+            if "density" not in entry:
+                continue
+            low, high = entry["support"]
+            lines = [f"f(y) = {to_latex(entry['density'])}, \\quad "
+                     f"{to_latex(low)} < y < {to_latex(high)}",
+                     f"\\mathrm{{E}}[y] = {to_latex(entry['mean'])}"]
+            if "below_zero" in entry:
+                lines.append(f"P(y < 0) = {to_latex(entry['below_zero'])}")
+            for line in lines:
+                print(f"% distribution of {key} (y), random: {', '.join(entry['random'])}"
+                      f"\n\\begin{{equation}}\n  {line}\n\\end{{equation}}")
         return 0
     print(f"{d.title}  [{d.problem}]")
     for line in d.setup:
