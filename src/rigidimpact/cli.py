@@ -121,58 +121,21 @@ def _random_of(target: str) -> Any:
     return getattr(scene, "random", None), scene
 
 
-def _distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for key, entry in found.items():
-        row: dict[str, Any] = {"random": entry["random"]}
-        for name in ("variable", "density", "mean", "below_zero"):
-            if name in entry:
-                row[name] = str(entry[name])
-        if "support" in entry:
-            row["support"] = [str(x) for x in entry["support"]]
-        row["monte_carlo"] = entry["monte_carlo"]
-        row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
-        if "exact_seconds" in entry:
-            row["exact_seconds"] = round(entry["exact_seconds"], 4)
-        out[key] = row
-    return out
-
-
-def _print_distributions(table: Any, scene: Any, found: dict[str, dict[str, Any]]) -> None:
-    import sympy as sp
-
-    laws = "; ".join(f"{s} {law.kind} on {list(law.parameters)}" if law.kind == "uniform"
-                     else f"{s} {law.kind} {list(law.parameters)}"
-                     for s, law in table.inputs.items())
-    print(f"\nDistributions (random: {laws}; Monte Carlo at [values], {table.samples} "
-          f"samples, seed {table.seed}):")
-    for key, entry in found.items():
-        print(f"  {key}:")
-        mc = entry["monte_carlo"]
-        if "density" in entry:
-            y = entry["variable"]
-            low, high = entry["support"]
-            print(f"      density at {y}: {entry['density']}")
-            print(f"      for {low} < {y} < {high}")
-            at = float(sp.N(entry["mean"].subs(dict(scene.values))))
-            print(f"      mean: {entry['mean']}  (= {at:.10g} at [values]; "
-                  f"{entry['exact_seconds']:.2f} s)")
-            if "below_zero" in entry:
-                chance = float(sp.N(entry["below_zero"].subs(dict(scene.values))))
-                print(f"      P({key} < 0) = {entry['below_zero']}  (= {chance:.10g})")
-        elif "exact_seconds" in entry:
-            print("      no closed form found (not monotone in pieces in closed form)")
-        print(f"      Monte Carlo: mean {mc['mean']:.10g} +- {mc['standard_error']:.2g} "
-              f"(standard error), P(< 0) {mc['below_zero']:.6g}; "
-              f"{entry['monte_carlo_seconds']:.2f} s")
+def _check_workers(args: argparse.Namespace) -> None:
+    """`--workers N`: a count of Dask workers, from 1 to 1024."""
+    if args.workers is not None and not 1 <= args.workers <= 1024:
+        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from rigidimpact.analyses.distributions import scene_distributions
+    from rigidimpact.analyses.distributions import (
+        distributions_json,
+        distributions_text,
+        scene_distributions,
+    )
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
 
-    if args.workers is not None and not 1 <= args.workers <= 1024:
-        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
+    _check_workers(args)
     d = _derivation(args.target)
     table, scene = _random_of(args.target)
     if (args.workers is not None or args.scheduler) and not table:
@@ -195,7 +158,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             "seconds": round(d.seconds, 4),
             "warnings": list(d.warnings),
             **({"regimes": _regimes_json(d)} if _has_regimes(d) else {}),
-            **({"distributions": _distributions_json(found)} if found else {}),
+            **({"distributions": distributions_json(found)} if found else {}),
             **({"outcomes": [{"rule": o.rule, "order": list(o.order), "acted": list(o.acted),
                               "results": {k: _expr_json(v) for k, v in o.results().items()},
                               **({"checks": {k: str(v) for k, v in o.checks.items()},
@@ -272,7 +235,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         for name, named in d.named.items():
             print(f"  {name} = {named}")
     if found:
-        _print_distributions(table, scene, found)
+        print("\n" + "\n".join(distributions_text(table, scene.values, found)))
     print(f"\n({d.seconds:.2f} s)")
     return 0
 
@@ -748,8 +711,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             last[0] = percent
             _progress_bar(done, count, "parameter sets")
 
-    if args.workers is not None and not 1 <= args.workers <= 1024:
-        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
+    _check_workers(args)
     summary = run_sweep(results, grid, fixed, Path(args.out), args.backend, progress,
                         kept=chosen if args.keys else None, workers=args.workers,
                         scheduler=args.scheduler)
@@ -777,8 +739,7 @@ def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
     if args.keys or args.backend != "numpy":
         raise InputError("--keys" if args.keys else "--backend", "a scene with several "
                          "contacts is solved set by set: every result is written")
-    if args.workers is not None and not 1 <= args.workers <= 1024:
-        raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
+    _check_workers(args)
     grid = parse_grid(args.grid, scene.symbols)
     fixed: dict[str, float] = {}
     for setting in args.set:

@@ -24,7 +24,8 @@ from rigidimpact.symbolic.distributions import (
     pushforward,
 )
 
-__all__ = ["scene_distributions", "monte_carlo_on_dask"]
+__all__ = ["scene_distributions", "monte_carlo_on_dask", "distributions_json",
+           "distributions_text"]
 
 CHUNK = 1_000_000  # draws a task
 
@@ -108,3 +109,55 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
         found[key] = entry
     return found
+
+
+def distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """:func:`scene_distributions`' answer for JSON: expressions as SymPy strings, the
+    seconds rounded."""
+    out: dict[str, Any] = {}
+    for key, entry in found.items():
+        row: dict[str, Any] = {"random": entry["random"]}
+        for name in ("variable", "density", "mean", "below_zero"):
+            if name in entry:
+                row[name] = str(entry[name])
+        if "support" in entry:
+            row["support"] = [str(x) for x in entry["support"]]
+        row["monte_carlo"] = entry["monte_carlo"]
+        row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
+        if "exact_seconds" in entry:
+            row["exact_seconds"] = round(entry["exact_seconds"], 4)
+        out[key] = row
+    return out
+
+
+def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
+                       ) -> list[str]:
+    """:func:`scene_distributions`' answer as the lines ``derive`` prints, the closed
+    forms' numbers at the scene's `values`."""
+    laws = "; ".join(f"{s} {law.kind} on {list(law.parameters)}" if law.kind == "uniform"
+                     else f"{s} {law.kind} {list(law.parameters)}"
+                     for s, law in table.inputs.items())
+    lines = [f"Distributions (random: {laws}; Monte Carlo at [values], {table.samples} "
+             f"samples, seed {table.seed}):"]
+    for key, entry in found.items():
+        lines.append(f"  {key}:")
+        mc = entry["monte_carlo"]
+        if "density" in entry:
+            y = entry["variable"]
+            low, high = entry["support"]
+            at = float(sp.N(entry["mean"].subs(dict(values))))
+            lines += [f"      density at {y}: {entry['density']}",
+                      f"      for {low} < {y} < {high}",
+                      f"      mean: {entry['mean']}  (= {at:.10g} at [values]; "
+                      f"{entry['exact_seconds']:.2f} s)"]
+            if "below_zero" in entry:
+                chance = float(sp.N(entry["below_zero"].subs(dict(values))))
+                lines.append(f"      P({key} < 0) = {entry['below_zero']}  "
+                             f"(= {chance:.10g})")
+        elif "exact_seconds" in entry:
+            lines.append("      no closed form found (not monotone in pieces in closed "
+                         "form)")
+        lines.append(f"      Monte Carlo: mean {mc['mean']:.10g} +- "
+                     f"{mc['standard_error']:.2g} (standard error), P(< 0) "
+                     f"{mc['below_zero']:.6g}; {entry['monte_carlo_seconds']:.2f} s")
+    return lines
