@@ -59,30 +59,54 @@ def _figures():
         ("hard-case-v_fx.png", _hard_case),
         ("kharaz-comparison.png", kharaz_figure),
         ("random-barbell.png", _random_barbell),
+        ("random-bodies.png", _random_bodies),
     )
+
+
+def _dropped(name: str, key: str) -> tuple:
+    """A body of derivations/NAME.toml dropped at a uniform random angle: its rebound
+    g(theta), the angle and e, the angle's distribution and the exact distribution."""
+    from rigidimpact.scenes.scene import load_scene
+    from rigidimpact.symbolic.distributions import pushforward
+
+    scene = load_scene(HERE / f"{name}.toml")
+    theta, e = scene.symbols["theta"], scene.symbols["e"]
+    g = scene.derivation().results[key]
+    angle = scene.random.inputs[theta]
+    return g, theta, e, angle, pushforward(g, theta, angle, {e: sp.Rational(1, 2)})
+
+
+def _rebound_curve(label: str, dropped: tuple, value: float) -> tuple:
+    """10^7 seeded samples of a dropped body's rebound at e = value, binned over its
+    support, and its exact density there."""
+    from rigidimpact.symbolic.distributions import histogram
+
+    g, theta, e, angle, exact = dropped
+    low, high = (float(x.subs(e, value)) for x in exact.support)
+    edges = np.linspace(low, high, 61)
+    sampled = histogram(g, {theta: angle}, {e: value}, 10**7, 2011, edges)
+    points = np.linspace(low, high, 801)[1:-1]
+    density = sp.lambdify(exact.variable, exact.density.subs(e, value))(points)
+    return (label, edges, sampled, points, density)
 
 
 def _random_barbell():
     """The barbell dropped at a random angle: 10^7 seeded samples of the centre's
     rebound for three restitutions, over the exact density derive gives."""
-    from rigidimpact.scenes.scene import load_scene
-    from rigidimpact.symbolic.distributions import histogram, pushforward
-
-    scene = load_scene(HERE / "random-barbell.toml")
-    theta, e = scene.symbols["theta"], scene.symbols["e"]
-    g = scene.derivation().results["barbell.vy"]
-    angle = scene.random.inputs[theta]
-    exact = pushforward(g, theta, angle, {e: sp.Rational(1, 2)})
-    curves = []
-    for value in (0.2, 0.5, 0.9):
-        low, high = (value - 1) / 2, value
-        edges = np.linspace(low, high, 61)
-        sampled = histogram(g, {theta: angle}, {e: value}, 10**7, 2011, edges)
-        points = np.linspace(low, high, 801)[1:-1]
-        density = sp.lambdify(exact.variable, exact.density.subs(e, value))(points)
-        curves.append((f"e = {value}", edges, sampled, points, density))
+    barbell = _dropped("random-barbell", "barbell.vy")
+    curves = [_rebound_curve(f"e = {value}", barbell, value) for value in (0.2, 0.5, 0.9)]
     return plots.random_rebound(curves, "a barbell dropped flat at a uniform random angle "
                                 "(10^7 samples each)")
+
+
+def _random_bodies():
+    """The barbell, the uniform rod and the coin dropped at a random angle, e = 1/2:
+    the more a body turns about its struck point, the lower its centre rebounds."""
+    curves = [_rebound_curve(label, _dropped(name, key), 0.5) for label, name, key in (
+        ("barbell", "random-barbell", "barbell.vy"), ("uniform rod", "random-rod", "rod.vy"),
+        ("coin on its rim", "random-coin", "coin.vy"))]
+    return plots.random_rebound(curves, "three bodies dropped at a uniform random angle, "
+                                "e = 0.5 (10^7 samples each)")
 
 
 def kharaz_figure():

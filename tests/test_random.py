@@ -6,6 +6,8 @@ flat at unit speed onto a floor, its rod at a uniform random angle to the floor.
 from __future__ import annotations
 
 import math
+from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -16,6 +18,8 @@ from scipy.optimize import brentq
 from rigidimpact.errors import InputError
 from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.symbolic.distributions import distribution, monte_carlo, pushforward
+
+ROOT = Path(__file__).resolve().parents[1]
 
 BARBELL_DROP = '''
 [[bodies]]
@@ -165,45 +169,85 @@ def test_a_bad_random_table_in_a_scene_is_one_line(tmp_path, capsys, entry, mess
     assert len(err) == 1 and message in err[0], err
 
 
-ROD_DROP = '''
-[[bodies]]
-name = "rod"
-shape = "rod"
-mass = "m"
-length = "2*L"
-angle = "theta"
-struck_at = "L"
-velocity = ["0", "-1"]
-
-[[bodies]]
-name = "floor"
-shape = "fixed"
-
-[contact]
-bodies = ["rod", "floor"]
-normal = ["0", "-1"]
-restitution = "e"
-'''
+# the three bodies dropped flat at unit speed on a smooth floor, each at a uniform
+# random angle theta in [0, pi/2] (derivations/random-*.toml): k = m d^2 / I, with d
+# the struck point's distance from the centre and I the inertia about the axis the blow
+# turns it on. The barbell (two masses m at +-L, I = 2 m L^2 for the mass 2m) has
+# k = 1, the uniform rod (I = m L^2/3) k = 3, the coin (a thin disc landing on its rim,
+# I = m r^2/4 about a diameter) k = 4.
+DROPPED = [("random-barbell", "barbell.vy", 1), ("random-rod", "rod.vy", 3),
+           ("random-coin", "coin.vy", 4)]
 
 
-def test_a_uniform_rod_dropped_at_a_random_angle_by_hand():
-    # a uniform rod (I = m L^2/3) striking with one end: 1/m_eff = (1 + 3 cos^2)/m, so
-    # the centre leaves at (1 + e)/(1 + 3 cos^2) - 1, from (e - 3)/4 (flat) to e; the
-    # integral of 1/(1 + 3 cos^2) over a quarter turn is pi/4, so the mean is (e - 1)/2,
-    # and the centre keeps falling where cos^2 > e/3
-    scene = parse_scene(ROD_DROP)
+@pytest.fixture(scope="module", params=DROPPED, ids=[d[0] for d in DROPPED])
+def dropped(request):
+    from rigidimpact.scenes.scene import load_scene
+
+    name, key, k = request.param
+    scene = load_scene(ROOT / "derivations" / f"{name}.toml")
+    g = scene.derivation().results[key]
     theta, e = scene.symbols["theta"], scene.symbols["e"]
-    g = scene.derivation().results["rod.vy"]
-    assert sp.simplify(g - ((1 + e) / (1 + 3 * sp.cos(theta) ** 2) - 1)) == 0
-    angle = distribution({"uniform": ["0", "pi/2"]}, "theta")
+    angle = scene.random.inputs[theta]
     out = pushforward(g, theta, angle, {e: sp.Rational(1, 2)})
-    assert [sp.simplify(s - t) for s, t in zip(out.support, ((e - 3) / 4, e),
+    return SimpleNamespace(g=g, theta=theta, e=e, angle=angle, out=out, k=k, name=name,
+                           key=key)
+
+
+def test_each_dropped_body_by_hand(dropped):
+    # by hand: the blow J at the struck point, d cos(theta) across from the centre,
+    # obeys 1/m_eff = (1 + k cos^2)/m, so the centre leaves at (1 + e)/(1 + k cos^2) - 1:
+    # from (e - k)/(1 + k) (flat) to e (upright). Over a quarter turn the mean of
+    # 1/(1 + k cos^2) is 1/sqrt(1 + k), so the mean is (1 + e)/sqrt(1 + k) - 1; the
+    # centre keeps falling where cos^2 > e/k, a fraction 2 acos(sqrt(e/k))/pi; and the
+    # change of variables u = cos^2 gives the density
+    # (1 + e)/(pi (1 + y) sqrt((e - y)((k + 1) y + k - e))).
+    g, theta, e, angle, out, k = (dropped.g, dropped.theta, dropped.e, dropped.angle,
+                                  dropped.out, dropped.k)
+    assert sp.simplify(g - ((1 + e) / (1 + k * sp.cos(theta) ** 2) - 1)) == 0
+    assert [sp.simplify(s - t) for s, t in zip(out.support, ((e - k) / (1 + k), e),
                                                 strict=True)] == [0, 0]
-    assert sp.simplify(out.mean - (e - 1) / 2) == 0
+    assert sp.simplify(out.mean - ((1 + e) / sp.sqrt(1 + k) - 1)) == 0
     below = out.probability_below(0, angle.density(theta), theta)
-    assert sp.simplify(below - 2 * sp.acos(sp.sqrt(e / 3)) / sp.pi) == 0
-    density = sp.lambdify(out.variable, out.density.subs(e, 0.5))
-    assert quad(density, -0.625, 0.5, limit=200)[0] == pytest.approx(1, abs=1e-6)
+    assert sp.simplify(below - 2 * sp.acos(sp.sqrt(e / k)) / sp.pi) == 0
+    y = out.variable
+    hand = (1 + e) / (sp.pi * (1 + y) * sp.sqrt((e - y) * ((k + 1) * y + k - e)))
+    for e_value in (sp.Rational(1, 10), sp.Rational(1, 2), sp.Rational(9, 10)):
+        for share in (sp.Rational(1, 7), sp.Rational(1, 2), sp.Rational(6, 7)):
+            low, high = (e_value - k) / (1 + k), e_value
+            at = {e: e_value, y: low + share * (high - low)}
+            assert float(out.density.subs(at)) == pytest.approx(float(hand.subs(at)),
+                                                                 rel=1e-12)
+
+
+@pytest.mark.parametrize("e_value", [0.1, 0.5, 0.9])
+def test_each_density_against_the_angles_measure(dropped, e_value):
+    # the independent route of test_the_density_against_the_angles_measure, for the
+    # rod and the coin too
+    g, theta, e, out, k = dropped.g, dropped.theta, dropped.e, dropped.out, dropped.k
+    rebound = sp.lambdify(theta, g.subs(e, e_value))
+    density = sp.lambdify(out.variable, out.density.subs(e, e_value))
+    low, high = (e_value - k) / (1 + k), e_value
+    assert quad(density, low, high, limit=200)[0] == pytest.approx(1, abs=1e-6)
+    for y in np.linspace(low, high, 6)[1:-1]:
+        edge = brentq(lambda t, y=y: rebound(t) - y, 0, math.pi / 2, xtol=1e-14)
+        assert quad(density, low, y, limit=200)[0] == pytest.approx(edge / (math.pi / 2),
+                                                                     abs=1e-6)
+
+
+def test_each_shipped_drop_prints_its_distribution_beside_its_monte_carlo(dropped, capsys):
+    import json
+
+    from rigidimpact.cli import main
+
+    k = dropped.k
+    scene = ROOT / "derivations" / f"{dropped.name}.toml"
+    assert main(["derive", str(scene), "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)["distributions"][dropped.key]
+    mc = row["monte_carlo"]
+    exact = 1.5 / math.sqrt(1 + k) - 1  # e = 1/2 under [values]
+    assert abs(mc["mean"] - exact) < 4 * mc["standard_error"]
+    chance = 2 * math.acos(math.sqrt(0.5 / k)) / math.pi
+    assert abs(mc["below_zero"] - chance) < 4 * math.sqrt(chance * (1 - chance) / 1e6)
 
 
 @pytest.mark.parametrize("workers", [1, 2])
@@ -255,3 +299,100 @@ def test_the_distribution_is_exported_as_latex(capsys):
     density = (e + 1) / (sp.pi * sp.sqrt((e - y) * (-e + 2 * y + 1)) * (y + 1))
     assert f"f(y) = {to_latex(density)}" in text  # the hand form, as derive finds it
     assert "\\mathrm{E}[y] = " in text and "P(y < 0) = " in text
+
+
+# a rod (mass 1, inertia 1/3, ends at x = -1 and 1) lands flat at unit speed spinning at
+# 1/2, both ends at once, Newton's e at each under the simultaneous rule, e uniform on
+# [0, 1]: by hand the ends leave at 3e/2 and e/2 (both impulses push: 7(1 + e)/12 and
+# 5(1 + e)/12), so the centre leaves at e and the spin is -e/2, whose means are 1/2 and
+# -1/4, and neither is ever below zero / above it
+RANDOM_ROD_FLAT = '''
+[values]
+e = 0.5
+
+[random]
+e = { uniform = ["0", "1"] }
+outputs = ["rod.vy", "rod.omega"]
+samples = 192
+seed = 11
+
+[[bodies]]
+name = "rod"
+shape = "rigid"
+mass = "1"
+inertia = "1/3"
+position = ["0", "0"]
+velocity = ["0", "-1"]
+spin = "1/2"
+
+[[bodies]]
+name = "floor"
+shape = "fixed"
+
+[[contacts]]
+name = "left"
+bodies = ["rod", "floor"]
+point = ["-1", "0"]
+normal = ["0", "-1"]
+restitution = "e"
+
+[[contacts]]
+name = "right"
+bodies = ["rod", "floor"]
+point = ["1", "0"]
+normal = ["0", "-1"]
+restitution = "e"
+
+[impact]
+rule = "simultaneous"
+'''
+
+
+def test_several_contacts_a_solve_a_draw_by_hand(tmp_path, capsys):
+    import json
+
+    from rigidimpact.cli import main
+
+    path = tmp_path / "rod.toml"
+    path.write_text(RANDOM_ROD_FLAT)
+    assert main(["derive", str(path), "--json"]) == 0
+    found = json.loads(capsys.readouterr().out)["distributions"]
+    vy, spin = found["rod.vy"]["monte_carlo"], found["rod.omega"]["monte_carlo"]
+    assert vy["samples"] == 192 and vy["seed"] == 11 and vy["warned"] == 0
+    # the spin is -vy/2 draw by draw, so their means and errors are tied exactly
+    assert spin["mean"] == pytest.approx(-vy["mean"] / 2, rel=1e-12)
+    assert spin["standard_error"] == pytest.approx(vy["standard_error"] / 2, rel=1e-9)
+    assert abs(vy["mean"] - 0.5) < 4 * vy["standard_error"]
+    # a uniform on [0, 1] has standard deviation 1/sqrt(12)
+    assert vy["standard_error"] * math.sqrt(192) == pytest.approx(1 / math.sqrt(12), rel=0.2)
+    assert vy["below_zero"] == 0 and spin["below_zero"] == 1
+    assert "no closed form" in found["rod.vy"]["solved"]
+    assert main(["derive", str(path)]) == 0
+    text = capsys.readouterr().out
+    assert "Distributions (random: e uniform on [0, 1]; Monte Carlo at [values], 192 " \
+        "samples, seed 11):" in text and "no closed form: a solve a draw" in text
+
+
+def test_several_contacts_on_dask_equal_one_process(tmp_path):
+    pytest.importorskip("dask.distributed")
+    from rigidimpact.analyses.distributions import point_monte_carlo
+    from rigidimpact.scenes.scene import load_scene
+
+    path = tmp_path / "rod.toml"
+    path.write_text(RANDOM_ROD_FLAT)
+    scene = load_scene(path)
+    keys = ["rod.vy", "rod.omega"]
+    alone = point_monte_carlo(scene, keys, 96, seed=3, chunk=16)
+    spread = point_monte_carlo(scene, keys, 96, seed=3, chunk=16, workers=2,
+                               processes=False)
+    assert spread == alone
+
+
+def test_several_contacts_past_the_budget_is_one_line(tmp_path, capsys):
+    from rigidimpact.cli import main
+
+    path = tmp_path / "rod.toml"
+    path.write_text(RANDOM_ROD_FLAT.replace("samples = 192", "samples = 2000000"))
+    assert main(["derive", str(path)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "random.samples" in err[0] and "budget" in err[0], err

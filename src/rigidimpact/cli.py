@@ -218,6 +218,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
                 print("  " + _checks_line(outcome.checks))
             for warning in outcome.warnings:
                 print(f"  warning: {warning}")
+        if found:
+            print("\n" + "\n".join(distributions_text(table, scene.values, found)))
         print(f"\n({d.seconds:.2f} s)")
         return 0
     numbered = any(eq.paper for eq in d.equations)

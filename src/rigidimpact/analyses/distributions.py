@@ -9,8 +9,10 @@ costs in time). ``derive`` prints them and ``derive --json`` adds them under
 from __future__ import annotations
 
 import time
+from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
@@ -22,12 +24,16 @@ from rigidimpact.symbolic.distributions import (
     combine,
     monte_carlo,
     pushforward,
+    stream,
 )
 
-__all__ = ["scene_distributions", "monte_carlo_on_dask", "distributions_json",
-           "distributions_text"]
+__all__ = ["scene_distributions", "monte_carlo_on_dask", "point_monte_carlo",
+           "point_chunk", "distributions_json", "distributions_text"]
 
 CHUNK = 1_000_000  # draws a task
+# a scene with no closed form (several contacts, joints, the compliant rule) is solved
+# once a draw: 1000 draws by default, at most a million, 64 a task
+POINT_SAMPLES, MAX_POINT_SAMPLES, POINT_CHUNK = 1000, 10**6, 64
 
 
 def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
@@ -46,14 +52,100 @@ def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     with dask_client(workers, scheduler, processes) as client:
         futures = client.map(chunk_sums, [g] * len(sizes), [inputs] * len(sizes),
                              [values] * len(sizes), [seed] * len(sizes),
-                             range(len(sizes)), [len(sizes)] * len(sizes), sizes,
-                             pure=False)
+                             range(len(sizes)), sizes, pure=False)
         if progress:
             from dask.distributed import progress as bar
 
             bar(futures)
         sums = client.gather(futures)
     return combine(sums, samples)
+
+
+def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Distribution],
+                seed: int, index: int, size: int
+                ) -> tuple[dict[str, tuple[float, float, float]], int, str | None]:
+    """One chunk of a Monte Carlo of a scene solved with numbers: `size` draws of its
+    random `inputs` from chunk `index`'s own stream of the seed (as
+    :func:`rigidimpact.symbolic.distributions.chunk_sums` draws them), each set solved
+    by the scene's rule at its [values] otherwise. For each key the sum, the sum of
+    squares and the count below zero; with the number of draws whose answer came with a
+    warning (kinetic energy created, a contact that would pull) and the first such."""
+    rng = np.random.default_rng(stream(seed, index))
+    fixed = {s: v for s, v in scene.values.items() if s not in inputs}
+    order = sorted(inputs, key=str)
+    drawn = [inputs[s].sample(rng, size, fixed) for s in order]
+    base = {s.name: v for s, v in fixed.items()}
+    sources = {n: f"values.{n}" for n in base} | {s.name: f"random.{s.name}" for s in order}
+    sums = {k: [0.0, 0.0, 0.0] for k in keys}
+    warned, first = 0, None
+    for j in range(size):
+        values = base | {s.name: float(x[j]) for s, x in zip(order, drawn, strict=True)}
+        answer = scene.evaluate(values, sources, None)
+        if answer.warnings:
+            warned += 1
+            first = first or answer.warnings[0]
+        for key in keys:
+            value = float(answer.numbers[key])
+            part = sums[key]
+            part[0] += value
+            part[1] += value * value
+            part[2] += value < 0
+    return {k: (v[0], v[1], v[2]) for k, v in sums.items()}, warned, first
+
+
+def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
+                      workers: int | None = None, scheduler: str | None = None,
+                      processes: bool = True, progress: bool = False,
+                      chunk: int = POINT_CHUNK) -> dict[str, dict[str, Any]]:
+    """The Monte Carlo of `keys` for a scene with no closed form: `samples` draws of its
+    [random] inputs, each solved with numbers by its rule (:func:`point_chunk`, `chunk`
+    draws a task), in this process or on Dask workers; the same numbers either way for
+    the same seed. For each key its mean, standard error, fraction below zero and
+    samples, and ``warned``: the draws whose answer came with a warning, and the
+    first warning."""
+    table = scene.random
+    inputs = dict(table.inputs)
+    sizes = chunk_sizes(samples, chunk)
+    jobs = [(k, size) for k, size in enumerate(sizes)]
+    if workers is None and scheduler is None:
+        parts = [point_chunk(scene, keys, inputs, seed, k, size)
+                 for k, size in jobs]
+    else:
+        with dask_client(workers, scheduler, processes) as client:
+            futures = [client.submit(point_chunk, scene, list(keys), inputs, seed, k, size,
+                                     pure=False) for k, size in jobs]
+            if progress:
+                from dask.distributed import progress as bar
+
+                bar(futures)
+            parts = client.gather(futures)
+    warned = sum(p[1] for p in parts)
+    first = next((p[2] for p in parts if p[2]), None)
+    return {key: {**combine([p[0][key] for p in parts], samples), "seed": seed,
+                  "warned": warned, **({"warning": first} if first else {})}
+            for key in keys}
+
+
+def _point_distributions(scene: Any, results: Mapping[str, Any], workers: int | None,
+                         scheduler: str | None, progress: bool
+                         ) -> dict[str, dict[str, Any]]:
+    """:func:`scene_distributions` for a scene solved with numbers (several contacts,
+    joints): its outputs have no closed form, so each is a Monte Carlo of solves."""
+    table = scene.random
+    samples = table.samples if table.samples_given else POINT_SAMPLES
+    if samples > MAX_POINT_SAMPLES:
+        raise InputError("random.samples", f"{samples} draws, each a solve of its own: "
+                         f"past the budget of {MAX_POINT_SAMPLES} for a scene without a "
+                         "closed form")
+    keys = list(table.outputs or results)
+    begin = time.perf_counter()
+    found = point_monte_carlo(scene, keys, samples, table.seed, workers, scheduler,
+                              progress=progress)
+    seconds = time.perf_counter() - begin
+    drivers = [str(s) for s in sorted(table.inputs, key=str)]
+    return {key: {"random": drivers, "solved": "a solve a draw (no closed form)",
+                  "monte_carlo": found[key], "monte_carlo_seconds": seconds}
+            for key in keys}
 
 
 def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | None = None,
@@ -71,6 +163,8 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
     if unknown:
         raise InputError("random.outputs", f"no result {unknown[0]!r}; the results are "
                          f"{', '.join(results)}")
+    if len(scene.contacts) > 1 or scene.joints:
+        return _point_distributions(scene, results, workers, scheduler, progress)
     keys = table.outputs or tuple(k for k, v in results.items()
                                   if len(v.free_symbols & set(inputs)) == 1)
     values = {s: v for s, v in scene.values.items() if s not in inputs}
@@ -117,7 +211,7 @@ def distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, entry in found.items():
         row: dict[str, Any] = {"random": entry["random"]}
-        for name in ("variable", "density", "mean", "below_zero"):
+        for name in ("variable", "density", "mean", "below_zero", "solved"):
             if name in entry:
                 row[name] = str(entry[name])
         if "support" in entry:
@@ -137,7 +231,9 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
     laws = "; ".join(f"{s} {law.kind} on {list(law.parameters)}" if law.kind == "uniform"
                      else f"{s} {law.kind} {list(law.parameters)}"
                      for s, law in table.inputs.items())
-    lines = [f"Distributions (random: {laws}; Monte Carlo at [values], {table.samples} "
+    samples = next((int(e["monte_carlo"]["samples"]) for e in found.values()),
+                   table.samples)
+    lines = [f"Distributions (random: {laws}; Monte Carlo at [values], {samples} "
              f"samples, seed {table.seed}):"]
     for key, entry in found.items():
         lines.append(f"  {key}:")
@@ -157,7 +253,12 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
         elif "exact_seconds" in entry:
             lines.append("      no closed form found (not monotone in pieces in closed "
                          "form)")
+        elif "solved" in entry:
+            lines.append(f"      no closed form: {entry['solved']}")
         lines.append(f"      Monte Carlo: mean {mc['mean']:.10g} +- "
                      f"{mc['standard_error']:.2g} (standard error), P(< 0) "
                      f"{mc['below_zero']:.6g}; {entry['monte_carlo_seconds']:.2f} s")
+        if mc.get("warned"):
+            lines.append(f"      warning: at {mc['warned']} of {int(mc['samples'])} draws: "
+                         f"{mc['warning']}")
     return lines
