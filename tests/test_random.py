@@ -411,3 +411,24 @@ def test_local_workers_keep_the_adaptive_memory_threshold(monkeypatch):
     with dask_client(1) as client:
         found = client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_")
     assert list(found.values()) == [None]
+
+
+def test_a_closed_form_past_its_budget_is_said_and_the_monte_carlo_stands(monkeypatch,
+                                                                           capsys):
+    # SymPy's inverse and integrals cannot be interrupted in the process, and on some
+    # outputs (a rocking block's spin against a random half-width) they ran for more
+    # than ten minutes: the closed form runs in a child stopped at its budget
+    import json
+
+    from rigidimpact.analyses import distributions
+    from rigidimpact.cli import main
+
+    monkeypatch.setattr(distributions, "EXACT_SECONDS", 0.05)
+    scene = ROOT / "derivations" / "random-barbell.toml"
+    assert main(["derive", str(scene), "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert row["exact_late"] == 0.05 and "density" not in row and "mean" not in row
+    assert abs(row["monte_carlo"]["mean"] - (1.5 / math.sqrt(2) - 1)) < \
+        4 * row["monte_carlo"]["standard_error"]
+    assert main(["derive", str(scene)]) == 0
+    assert "no closed form found within 0.05 s" in capsys.readouterr().out

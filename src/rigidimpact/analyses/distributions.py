@@ -8,6 +8,8 @@ costs in time). ``derive`` prints them and ``derive --json`` adds them under
 
 from __future__ import annotations
 
+import multiprocessing
+import threading
 import time
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -34,6 +36,7 @@ CHUNK = 1_000_000  # draws a task
 # a scene with no closed form (several contacts, joints, the compliant rule) is solved
 # once a draw: 1000 draws by default, at most a million, 64 a task
 POINT_SAMPLES, MAX_POINT_SAMPLES, POINT_CHUNK = 1000, 10**6, 64
+EXACT_SECONDS = 30.0  # the closed form's budget for each output (SymPy may run for hours)
 
 
 def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
@@ -148,6 +151,38 @@ def _point_distributions(scene: Any, results: Mapping[str, Any], workers: int | 
             for key in keys}
 
 
+def _exact(g: sp.Expr, x: sp.Symbol, law: Distribution, values: Mapping[sp.Symbol, Any]
+           ) -> dict[str, Any] | None:
+    """The closed form of g's distribution (:func:`pushforward`): ``variable``,
+    ``density``, ``support``, ``mean``, and ``below_zero`` where 0 lies inside the
+    support at `values`; None where it is not found."""
+    exact = pushforward(g, x, law, values, sp.Symbol("y", real=True))
+    if exact is None:
+        return None
+    found: dict[str, Any] = {"variable": exact.variable, "density": exact.density,
+                             "support": exact.support, "mean": exact.mean}
+    low, high = (float(sp.N(e.subs(values))) for e in exact.support)
+    if low < 0 < high:
+        found["below_zero"] = exact.probability_below(0, law.density(x), x)
+    return found
+
+
+def _within(seconds: float, function: Any, *args: Any) -> tuple[Any, bool]:
+    """``function(*args)`` in a child process, and whether it ran past `seconds` (the
+    child is then stopped and the answer is None): SymPy's solving and integration
+    cannot be interrupted inside this process, and on some outputs they run for many
+    minutes. The child is forked where this process has one thread (it starts at once
+    with SymPy loaded), else spawned."""
+    method = "fork" if threading.active_count() == 1 and \
+        "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    with multiprocessing.get_context(method).Pool(1) as pool:
+        job = pool.apply_async(function, args)
+        try:
+            return job.get(seconds), False
+        except multiprocessing.TimeoutError:
+            return None, True
+
+
 def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | None = None,
                         scheduler: str | None = None,
                         progress: bool = False) -> dict[str, dict[str, Any]]:
@@ -182,16 +217,13 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
         entry: dict[str, Any] = {"random": [str(s) for s in drivers]}
         if len(drivers) == 1 and inputs[drivers[0]].kind != "discrete":
             begin = time.perf_counter()
-            exact = pushforward(g, drivers[0], inputs[drivers[0]], values,
-                                sp.Symbol("y", real=True))
+            exact, late = _within(EXACT_SECONDS, _exact, g, drivers[0], inputs[drivers[0]],
+                                  values)
             entry["exact_seconds"] = time.perf_counter() - begin
+            if late:
+                entry["exact_late"] = EXACT_SECONDS
             if exact is not None:
-                entry.update(variable=exact.variable, density=exact.density,
-                             support=exact.support, mean=exact.mean)
-                low, high = (float(sp.N(e.subs(values))) for e in exact.support)
-                if low < 0 < high:
-                    entry["below_zero"] = exact.probability_below(
-                        0, inputs[drivers[0]].density(drivers[0]), drivers[0])
+                entry.update(exact)
         begin = time.perf_counter()
         drawn = {s: inputs[s] for s in drivers}
         if workers is None and scheduler is None:
@@ -220,6 +252,8 @@ def distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
         row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
         if "exact_seconds" in entry:
             row["exact_seconds"] = round(entry["exact_seconds"], 4)
+        if "exact_late" in entry:
+            row["exact_late"] = entry["exact_late"]
         out[key] = row
     return out
 
@@ -250,6 +284,9 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
                 chance = float(sp.N(entry["below_zero"].subs(dict(values))))
                 lines.append(f"      P({key} < 0) = {entry['below_zero']}  "
                              f"(= {chance:.10g})")
+        elif "exact_late" in entry:
+            lines.append(f"      no closed form found within {entry['exact_late']:g} s "
+                         "(SymPy's inverse and integrals did not finish)")
         elif "exact_seconds" in entry:
             lines.append("      no closed form found (not monotone in pieces in closed "
                          "form)")

@@ -229,14 +229,23 @@ def pushforward(g: sp.Expr, x: sp.Symbol, input_distribution: Distribution,
                 variable: sp.Symbol | None = None) -> Pushforward | None:
     """The exact distribution of ``y = g(x)`` for the continuous random input x, or
     None where it is not found in closed form (g not piecewise monotone in closed form,
-    or an input that is not uniform on a finite interval).
+    or an input that is not uniform on a finite interval, or g a Piecewise).
 
     The pieces are cut where g' vanishes inside the support (its numerator's factors
     that hold x, solved by SymPy). On each piece the inverse is the root of g = y that
     lies in the piece and the signs are judged at `sample`, values of the other
     symbols (for the barbell, e = 1/2): the answer holds wherever those signs do."""
-    if input_distribution.kind != "uniform":
-        return None
+    if input_distribution.kind != "uniform" or g.has(sp.Piecewise):
+        return None  # a Piecewise (friction's courses, say): left to the Monte Carlo
+    try:
+        return _pushforward(g, x, input_distribution, sample, variable)
+    except (NotImplementedError, ValueError, TypeError):
+        return None  # what SymPy cannot solve or integrate: left to the Monte Carlo
+
+
+def _pushforward(g: sp.Expr, x: sp.Symbol, input_distribution: Distribution,
+                 sample: Mapping[sp.Symbol, Any] | None,
+                 variable: sp.Symbol | None) -> Pushforward | None:
     y = variable or sp.Symbol("y", real=True)
     at = dict(sample or {})
     low, high = input_distribution.support
