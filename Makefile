@@ -5,7 +5,11 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test lint notebooks bench lab clean peers pooltool
+.PHONY: run test test-slow test-all lint notebooks bench lab clean peers pooltool
+
+# pytest-xdist over every core; a file's tests stay on one worker (a notebook's cells
+# share one kernel, in order)
+PARALLEL := -n auto --dist loadfile
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -16,8 +20,13 @@ $(STAMP): pyproject.toml constraints.txt
 run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and figures to build/
 	$(PY) derivations/run_all.py --out $(BUILD)
 
-test: $(STAMP)  ## unit tests, doctests and notebooks (nbval)
-	$(PY) -m pytest
+test: $(STAMP)  ## unit tests, doctests and notebooks (nbval), over every core
+	$(PY) -m pytest $(PARALLEL)
+
+test-slow: $(STAMP)  ## the slow tier alone: wide grids, whole benches, 1,000-disc clusters
+	$(PY) -m pytest $(PARALLEL) -m slow
+
+test-all: test test-slow  ## both tiers, as CI runs them
 
 lint: $(STAMP)  ## ruff, the import layers (import-linter), and mypy over the package
 	$(PY) -m ruff check src tests derivations notebooks
@@ -46,7 +55,7 @@ peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool): make test then run
 
 bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench
-	$(PY) -m pytest -m slow
+	$(PY) -m pytest $(PARALLEL) -m slow
 
 $(VENV)/.lab-stamp: $(STAMP)
 	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,lab]'

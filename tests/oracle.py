@@ -139,7 +139,7 @@ def sequential(bar: Bar, touches: list[Touch], order: list[str]):
     u, total = list(bar.u), {t.name: [mp.mpf(0), mp.mpf(0)] for t in touches}
     by_name = {t.name: t for t in touches}
     scale = max(abs(dot(t.rows()[0], u)) for t in touches)
-    for _ in range(500):
+    for _ in range(1000):  # the rule's own budget of passes (MAX_PASSES)
         moved = False
         for name in order:
             touch = by_name[name]

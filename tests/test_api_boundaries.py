@@ -3,8 +3,6 @@ a raw error from SymPy, NumPy or Python, and no run without end."""
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 import sympy as sp
@@ -88,9 +86,7 @@ BALL = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
 
 def test_a_zeno_run_stops_at_its_accumulation_time():
     # e = 1/2, g = 1, dropped from 1: bounces at sqrt(2) (1 + 1 + 1/2 + ...) = 3 sqrt(2)
-    start = time.perf_counter()
     walk = BALL.simulate(np.array([1.0, 0.0]), impacts=10**6)
-    assert time.perf_counter() - start < 15
     assert walk.stopped == "zeno"
     assert walk.accumulation == pytest.approx(3 * np.sqrt(2), rel=1e-12)
 
@@ -98,8 +94,11 @@ def test_a_zeno_run_stops_at_its_accumulation_time():
 def test_an_elastic_run_is_stopped_by_its_budget():
     elastic = Hybrid(lambda t, x: np.array([x[1], -1.0]), lambda x: x[0],
                      lambda x: np.array([0.0, -x[1]]))
-    walk = elastic.simulate(np.array([1.0, 0.0]), impacts=10**5, seconds=1.0)
+    walk = elastic.simulate(np.array([1.0, 0.0]), impacts=10**5, steps=2000)
     assert walk.stopped == "budget" and len(walk.impact_times) < 10**5
+    # the budget counts work: the same run stops at the same impact every time
+    again = elastic.simulate(np.array([1.0, 0.0]), impacts=10**5, steps=2000)
+    assert again.impact_times == walk.impact_times
 
 
 def test_fixed_point_refuses_the_zeno_state():
@@ -121,7 +120,5 @@ def test_hybrid_simulate_checks_its_arguments(kwargs, needle):
 
 
 def test_a_sample_of_orders_past_its_cost_budget_is_refused_early():
-    start = time.perf_counter()
     with pytest.raises(InputError, match="past the budget"):
         ri.chain(40).sampled_orders(10_000, 0)
-    assert time.perf_counter() - start < 15

@@ -68,9 +68,25 @@ def test_unknown_family_is_refused():
 
 
 def test_bench_cli_writes_its_three_files(tmp_path, capsys):
+    # two families make every part of the report (the rows, the kernels' throughput,
+    # the automatic pick against the integrations); the whole quick bench is the slow
+    # tier's (below)
+    out = tmp_path / "bench"
+    assert main(["bench", "--quick", "--family", "float64", "--family", "integration",
+                 "--out", str(out), "--json"]) == 0
+    _three_files(out, json.loads(capsys.readouterr().out))
+
+
+@pytest.mark.slow
+def test_the_whole_quick_bench_writes_its_three_files(tmp_path, capsys):
     out = tmp_path / "bench"
     assert main(["bench", "--quick", "--out", str(out), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
+    _three_files(out, data)
+    assert {"ladder", "verify_vs_plain", "contacts"} <= set(data)
+
+
+def _three_files(out, data):
     assert {"rows", "throughput"} <= set(data)
     assert all({"method", "setting", "error", "seconds"} <= set(r) for r in data["rows"])
     assert {"kernel_per_s", "numpy_per_s"} <= set(data["throughput"])

@@ -253,7 +253,7 @@ def test_every_order_of_many_contacts_is_refused_before_any_is_made(tmp_path, ca
 
 
 def test_symbolic_simultaneous_rule_is_bounded(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("rigidimpact.solve.rules.simultaneous.MAX_SYMBOLIC_SECONDS", 2.0)
+    monkeypatch.setattr("rigidimpact.solve.rules.simultaneous.MAX_ENUMERATION_WORK", 200)
     # three contacts between four discs, every speed a symbol: 64 cases under Newton's law
     speeds = ["v", "u", "w", "d"]
     lines = []
@@ -642,17 +642,13 @@ def test_a_long_compliant_run_is_refused_before_it_starts(tmp_path, capsys):
     # refused at once by its estimate, in one line that says how large it is
     text = (ROOT / "derivations" / "compliant.toml").read_text().replace(
         'until = "separation"', "until = 10")
-    import time
 
-    start = time.perf_counter()
     refused(capsys, ["simulate", scene_file(tmp_path, text)], "integration steps")
-    assert time.perf_counter() - start < 5
 
 
-def test_a_compliant_run_past_its_time_budget_stops_in_one_line(tmp_path, capsys,
-                                                                 monkeypatch):
-    # a stiff run (an implicit method, so no step estimate refuses it) given no time
-    monkeypatch.setattr("rigidimpact.simulate.compliant.MAX_SECONDS", 0.0)
+def test_a_compliant_run_past_its_budget_stops_in_one_line(tmp_path, capsys, monkeypatch):
+    # a stiff run (an implicit method, so no step estimate refuses it) given little work
+    monkeypatch.setattr("rigidimpact.simulate.compliant.MAX_RHS_WORK", 1000)
     text = (ROOT / "derivations" / "compliant.toml").read_text().replace(
         "rod_stiffness = 1e8", "rod_stiffness = 1e11").replace(
         "contact_stiffness = 1e5", "contact_stiffness = 1e3")
@@ -701,7 +697,6 @@ def test_several_bodies_are_drawn_with_their_shapes_and_the_floor(tmp_path):
 def test_energetic_rough_floor_at_50_degrees_derives_in_bounded_time(tmp_path):
     # it ran past 20 minutes (a huge formula asked whether it is real); now about 45 s.
     # Each course's impulse must agree with the numbers-first solution at a point.
-    import time
 
     text = (ROOT / "derivations" / "rod-rough-floor.toml").read_text().replace(
         "45 deg", "50 deg").replace('law = "newton"', 'law = "energetic"').replace(
@@ -709,9 +704,7 @@ def test_energetic_rough_floor_at_50_degrees_derives_in_bounded_time(tmp_path):
     from rigidimpact.scenes.scene import load_scene
 
     path = scene_file(tmp_path, text)
-    start = time.perf_counter()
     derivation = load_scene(path).derivation()
-    assert time.perf_counter() - start < 120
     at = {"mu": "1/5", "e": "1/2"}
     numbers = derivation.evaluate(at).numbers
     formula = derivation.results["contact.normal_impulse"].subs(

@@ -95,8 +95,8 @@ def test_the_simultaneous_rule_gives_enumerations_answer(seed):
 
 
 def test_a_long_enumeration_stops_in_one_line(monkeypatch):
-    # irrational normals (no Lemke): the acting sets are tried within a time budget
-    monkeypatch.setattr(rule, "MAX_SYMBOLIC_SECONDS", 0.0)
+    # irrational normals (no Lemke): the acting sets are tried within a budget of work
+    monkeypatch.setattr(rule, "MAX_ENUMERATION_WORK", 0)
     r3 = sp.sqrt(3)
     bodies = (Body.rigid(1, 1, (0, 0), (1, 0), name="s"),
               Body.rigid(1, 1, (r3, 1), (0, 0), name="u"),

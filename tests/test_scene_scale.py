@@ -3,8 +3,6 @@ before any algebra, and a size budget said in one line before anything is built.
 
 from __future__ import annotations
 
-import time
-
 import pytest
 import sympy as sp
 
@@ -47,16 +45,12 @@ def test_a_cradle_scene_gives_what_the_chain_builder_gives():
 @pytest.mark.parametrize("n", [10_001, 100_001])
 def test_scenes_past_the_budget_are_refused_at_once(tmp_path, capsys, n):
     path = scene_file(tmp_path, cradle(n))
-    start = time.perf_counter()
     refused(capsys, ["evaluate", path], "past the budget")
-    assert time.perf_counter() - start < 15
 
 
 def test_a_misspelt_body_in_the_last_contact_is_named_before_any_algebra(tmp_path, capsys):
     path = scene_file(tmp_path, cradle(2500, misspelt=True))
-    start = time.perf_counter()
     refused(capsys, ["evaluate", path], "contacts[2498].bodies: no body named 'bX'")
-    assert time.perf_counter() - start < 15  # every body was built before: minutes
 
 
 def test_a_thousand_ball_cradle_scene_evaluates(tmp_path, capsys):

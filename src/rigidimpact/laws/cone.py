@@ -181,9 +181,12 @@ def walton_impact(W: sp.Matrix, v: Sequence[Any], e: Any, beta: Any,
                           "tangential restitution", exact=True)
     mu = sp.sympify(mu)
     within = sp.simplify(sp.Le(sp.sqrt(wanted[1] ** 2 + wanted[2] ** 2), mu * wanted[0]))
-    speed = sp.sqrt(v0[1] ** 2 + v0[2] ** 2)
-    slip = sp.Matrix([1, -mu * v0[1] / speed, -mu * v0[2] / speed]) if speed != 0 else \
-        sp.Matrix([1, 0, 0])
+    # the way the points slip: as before the impact, or with no slip before, the way the
+    # normal impulse drives them (W's coupling column), as in the plane
+    drive = sp.Matrix(v0[1:]) if sp.sqrt(v0[1] ** 2 + v0[2] ** 2) != 0 else W[1:, 0]
+    speed = sp.sqrt(drive[0] ** 2 + drive[1] ** 2)
+    slip = sp.Matrix([1, -mu * drive[0] / speed, -mu * drive[1] / speed]) if speed != 0 \
+        else sp.Matrix([1, 0, 0])
     rate = (W * slip)[0]
     sliding = (-(1 + e) * v0[0] / rate * slip).applyfunc(sp.radsimp)
     if within == sp.true:

@@ -370,11 +370,15 @@ def walton(W: sp.MatrixBase, v_before: sp.MatrixBase, beta: sp.Expr, mu: sp.Expr
     mu = sp.sympify(mu)
     within = _simplified(sp.Le(sp.Abs(wanted[1]), mu * wanted[0]))
     found = [Regime("tangential restitution", (within,), path[-1], path)]
-    signs = [1] if v_t.is_nonnegative else [-1] if v_t.is_negative else [1, -1]
+    # the way the points slip: as before the impact, or with no slip before, the way the
+    # impulse drives them (toward sign(W_tn), as in Routh's course from rest), so that a
+    # mirrored problem gets the mirrored answer
+    drive = v_t if not v_t.is_zero else sp.cancel(W[1, 0])
+    signs = [1] if drive.is_positive else [-1] if drive.is_negative else [1, -1]
     for s in signs:
         rate = _rates(W, -mu * s)
         p_n = tidy(-(1 + e) * v_n / rate[0])
-        side = () if len(signs) == 1 else (sp.Gt(s * v_t, 0),)
+        side = () if len(signs) == 1 else (sp.Gt(s * drive, 0),)
         conditions = tuple(c for c in map(_simplified, (*side, sp.Not(within),
                                                          sp.Gt(rate[0], 0)))
                            if c is not sp.true)

@@ -26,7 +26,6 @@ quarter of the one before, so the bounces come at t = sqrt(2) (1 + 1 + 1/2 + ...
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -175,10 +174,12 @@ class Hybrid:
             x = solve_ivp(self.rhs, (t, start), x, rtol=self.rtol, atol=self.atol).y[:, -1]
 
     def simulate(self, x0: State, impacts: int = 10, until: float = np.inf,
-                 seconds: float = 60.0) -> Walk:
+                 steps: int = 1_000_000) -> Walk:
         """Flow and jump until `impacts` impacts, the time `until`, a fall, impacts that
         pile up at one time (Zeno: the intervals between them shrinking geometrically;
-        `accumulation` is that time, by the geometric series), or `seconds` of work.
+        `accumulation` is that time, by the geometric series), or `steps` integration
+        steps of work (``stopped == "budget"``: counted, so a run stops at the same place
+        on every machine at any load).
 
         Examples
         --------
@@ -194,22 +195,21 @@ class Hybrid:
         whole_number("impacts", impacts, 1)
         if not (isinstance(until, (int, float)) and until > 0) or np.isnan(until):
             raise InputError("until", f"must be a positive time (or inf), not {until!r}")
-        if not (isinstance(seconds, (int, float)) and 0 < seconds < np.inf):
-            raise InputError("seconds", f"must be a positive number of seconds, not "
-                             f"{seconds!r}")
+        whole_number("steps", steps, 1)
         x = np.asarray(x0, float)
         if x.ndim != 1 or not np.all(np.isfinite(x)):
             raise InputError("x0", "must be a state of finite numbers")
         walk, t = Walk(), 0.0
-        deadline = time.perf_counter() + seconds
+        taken = 0
         for _ in range(impacts):
-            if time.perf_counter() > deadline:
+            if taken >= steps:
                 walk.stopped = "budget"
                 return walk
             t_hit, before, pieces = self.step(x, t)
             for run in pieces:
                 walk.times.append(run.t)
                 walk.states.append(run.y)
+                taken += max(len(run.t) - 1, 1)
             if t_hit > until:
                 walk.stopped = "time"
                 return walk

@@ -14,6 +14,11 @@ negative):
   the second touching point relative to the first);
 - ``CONTACT.cone``: Coulomb's cone, ``max(0, |P_t| - mu P_n)``; ``CONTACT.smooth``: a
   smooth contact's ``|P_t|``; ``CONTACT.sticks``: a sticking contact's slip after;
+- friction's direction and end (one contact's impact, or the simultaneous rule):
+  ``CONTACT.against_slip`` (on the cone's edge, friction never acts along the slip
+  after, or past Walton's target), ``CONTACT.slides`` (inside a Coulomb cone, the
+  contact sticks or its slip reversed) and ``CONTACT.tangential_restitution`` (inside
+  Walton's cone, the slip after is ``-beta`` times the slip before);
 - under the simultaneous rule with Newton's law at the velocity level:
   ``CONTACT.restitution`` (an acting contact leaves at ``-e`` times its closing speed),
   ``CONTACT.released`` (a released one at least that fast) and
@@ -49,7 +54,8 @@ import mpmath
 import sympy as sp
 from sympy.polys.domains import QQ
 
-__all__ = ["residuals", "assess", "as_sympy", "PHYSICAL_LIMITS", "FLOAT_TOLERANCE"]
+__all__ = ["residuals", "friction_residuals", "assess", "as_sympy", "PHYSICAL_LIMITS",
+           "FLOAT_TOLERANCE"]
 
 DIGITS = 50
 # a floating-point answer (a large problem's, or a compliant integration's) is trusted
@@ -152,6 +158,10 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     zero = num(0)
     received: dict[str, list[Any]] = {name: [zero, zero, zero] for name in bodies}
     out: dict[str, Any] = {}
+    # friction's direction is a law of each contact's whole impact: under the sequential
+    # rule with several contacts a contact's total is a sum of steps, and a compliant
+    # run's friction follows its own springs
+    whole_impact = rule != "compliant" and (rule != "sequential" or len(contacts) == 1)
 
     def velocity(body: Any, state: Any, point: Sequence[Any]) -> tuple[Any, Any]:
         if body.support == "fixed":
@@ -185,7 +195,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
         receive(first, second, c.point, push)
 
-        (v_before, _), (v_after, slip) = (
+        (v_before, slip_before), (v_after, slip) = (
             _relative(velocity, bodies, states, first, second, c.point, n, t)
             for states in (bodies, later))
         restitution, friction = c.laws
@@ -198,6 +208,9 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             out[f"{c.name}.cone"] = max(zero, abs(p_t) - num(mu) * p_n)
         if friction.unknown_tangential and c.name in acted:
             out[f"{c.name}.sticks"] = abs(slip)
+        if mu is not None and friction.grips and p_n > 0 and whole_impact:
+            out.update(friction_residuals(c.name, friction, num, p_n, [p_t], [slip_before],
+                                          [slip], how == "exact"))
         if c.name in locked:  # the course's own law: at rest along the normal after
             out[f"{c.name}.restitution"] = abs(v_after)
         elif rule == "simultaneous" and restitution.together == "velocity":
@@ -240,6 +253,50 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     out["_kinetic"] = kinetic[0]
     out["_exact"] = how == "exact"
     return out
+
+
+def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[Any],
+                       slip_before: Sequence[Any], slip_after: Sequence[Any],
+                       exact: bool) -> dict[str, Any]:
+    """Friction's own law at one pushing contact, from its impulses and slips alone
+    (one tangent in the plane, two in space).
+
+    On the cone's edge (``|P_t| = mu P_n``: exactly, or to 1e-9 of it in floating point)
+    the contact slid throughout in one direction, so friction must not act along what it
+    aimed at: Coulomb's friction aims at no slip after (``CONTACT.against_slip``: ``P_t``
+    has no part along the slip after); Walton's rough law at ``-beta`` times the slip
+    before (``P_t`` does not point past it). Inside the cone, Walton's contact leaves at
+    its target (``CONTACT.tangential_restitution``) and, in the plane, Coulomb's contact
+    ends sticking or with its slip reversed (``CONTACT.slides``: no slip after in the
+    direction of the slip before; in space the slip may turn)."""
+    zero = num(0)
+    size = abs(p_t[0]) if len(p_t) == 1 else _root(sum((x * x for x in p_t), zero), exact)
+    slack = num(law.cone()) * p_n - size
+    edge = slack <= 0 if exact else slack <= num(1e-9) * (abs(slack) + size)
+    beta = getattr(law, "beta", None)
+    aim = list(slip_after) if beta is None else [
+        a + num(beta) * b for a, b in zip(slip_after, slip_before, strict=True)]
+    if edge:
+        along = sum((x * a for x, a in zip(p_t, aim, strict=True)), zero)
+        reach = abs(aim[0]) if len(aim) == 1 else _root(sum((a * a for a in aim), zero),
+                                                         exact)
+        return {f"{name}.against_slip": max(zero, along / reach) if reach > 0 else zero}
+    if beta is not None:
+        return {f"{name}.tangential_restitution": max((abs(a) for a in aim), default=zero)}
+    if len(aim) == 1:
+        turned = slip_after[0] * slip_before[0] > 0
+        return {f"{name}.slides": abs(slip_after[0]) if turned else zero}
+    return {}
+
+
+def _root(x: Any, exact: bool) -> Any:
+    """A square root in the residual's own arithmetic."""
+    if isinstance(x, mpmath.mpf):
+        return mpmath.sqrt(x)
+    if not exact or isinstance(x, sp.Basic):
+        return sp.sqrt(x)
+    value = sp.sqrt(QQ.to_sympy(x))
+    return QQ(int(value.p), int(value.q)) if value.is_Rational else value
 
 
 def as_sympy(value: Any) -> sp.Expr:

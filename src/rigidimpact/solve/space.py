@@ -52,7 +52,7 @@ from rigidimpact.laws.cone import cone_impact, walton_impact
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.space import SPEEDS, Body3
-from rigidimpact.solve.certificate import FLOAT_TOLERANCE
+from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
 from rigidimpact.solve.solution import Solution, certified
@@ -243,7 +243,12 @@ class SpaceCollision:
         elif c.friction is not None:
             size = sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
             out[f"{c.name}.cone"] = max(0, size - num(c.friction) * num(P[0]))
-        if c.tangential == "rough" and course == "tangential restitution":
+            if num(P[0]) > 0:  # friction's direction and end, as in the plane
+                out.update(friction_residuals(
+                    c.name, c.laws[1], num, num(P[0]), [num(P[1]), num(P[2])],
+                    [num(v_before[1]), num(v_before[2])],
+                    [num(v_after[1]), num(v_after[2])], exact=False))
+        if c.tangential == "rough" and c.friction is None:
             beta = c.tangential_restitution
             out[f"{c.name}.rough"] = max(abs(num(v_after[i] + beta * v_before[i]))
                                          for i in (1, 2))

@@ -9,7 +9,6 @@ from __future__ import annotations
 import itertools
 import math
 import random
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
@@ -29,10 +28,11 @@ from rigidimpact.symbolic.rewrite import tidy
 FLOAT_DIGITS = 60  # where exact algebra would nest roots: floating point at this precision
 
 
-# a sequential run still going after this long (and as much again per 100 contacts) is
-# refused (a Routh step with numbers takes 5 to 60 ms here: two contacts ringing for
-# 1000 passes took 50 to 115 s; a 1009-contact cluster settles in about 8 s)
-MAX_SEQUENTIAL_SECONDS = 10.0
+# a sequential run still going after this many impacts (and as many again per 100
+# contacts) is refused: a budget of work, so the same scene is answered or refused alike
+# on every machine at any load (three rough contacts ringing under the energetic law
+# settle after 825 impacts; two contacts at e = 1 can ring for ever)
+MAX_SEQUENTIAL_IMPACTS = 2000
 
 
 MAX_PASSES = 1000  # sequential passes before the rule is declared endless
@@ -49,7 +49,9 @@ MAX_ORDERS = 720  # every order of up to six contacts
 MAX_SAMPLED_ORDERS = 10000
 
 
-MAX_SAMPLE_SECONDS = 60.0  # a sample of orders estimated to take longer is refused
+# a sample of orders estimated (from the first order's passes) to make more impacts
+# than this is refused before it runs
+MAX_SAMPLE_IMPACTS = 200_000
 
 
 @dataclass(frozen=True)
@@ -322,14 +324,14 @@ def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solut
         order = names[:]
         draw.shuffle(order)
         orders.append(tuple(order))
-    # a cost budget, not only a count: the first order's time says what all cost
-    start = time.perf_counter()
+    # a budget of work, not only a count: the first order's passes say what all cost
     found = [sequential(problem, orders[0])]
-    estimate = (time.perf_counter() - start) * count
-    if estimate > MAX_SAMPLE_SECONDS:
-        raise InputError("impact.orders", f"{count} orders would take about "
-                         f"{estimate:.0f} s (one took {estimate / count:.2g} s), past "
-                         f"the budget of {MAX_SAMPLE_SECONDS:g} s: ask for fewer")
+    estimate = max(found[0].passes, 1) * len(names) * count
+    if estimate > MAX_SAMPLE_IMPACTS:
+        raise InputError("impact.orders", f"{count} orders would make up to {estimate} "
+                         f"impacts (the first took {found[0].passes} passes over "
+                         f"{len(names)} contacts), past the budget of "
+                         f"{MAX_SAMPLE_IMPACTS}: ask for fewer")
     return tuple(found + [sequential(problem, order) for order in orders[1:]])
 
 
@@ -356,20 +358,25 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
     """
     steps: list[tuple[int, sp.Expr, sp.Expr, str | None]] = []
     count, acted = 0, True
-    deadline = time.perf_counter() + MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100)
+    most = MAX_SEQUENTIAL_IMPACTS * (1 + len(order) // 100)
+
+    def endless() -> InputError:
+        return InputError("impact.rule", f"the sequential rule did not settle in {count} "
+                          f"passes ({len(steps)} impacts; its budget is {MAX_PASSES} "
+                          f"passes and {most} impacts): the contacts keep closing again "
+                          "after each other's impacts (with e = 1 they can ring for "
+                          "ever); try the simultaneous rule")
+
     while acted:  # a pass in which no contact acted ends the rule
-        if count == MAX_PASSES or time.perf_counter() > deadline:
-            raise InputError("impact.rule", f"the sequential rule did not settle in "
-                             f"{count} passes ({len(steps)} impacts, "
-                             f"{MAX_SEQUENTIAL_SECONDS * (1 + len(order) / 100):g} s at "
-                             "most): the contacts keep "
-                             "closing again after each other's impacts (with e = 1 they "
-                             "can ring for ever); try the simultaneous rule")
+        if count == MAX_PASSES:
+            raise endless()
         count, acted = count + 1, False
         for k in order:
             now = closing(k)
             if now >= 0 or -now <= settled * scale:
                 continue
+            if len(steps) == most:
+                raise endless()
             steps.append((k, *step(k, now)))
             acted = True
     return count - 1, steps

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -51,11 +50,31 @@ from rigidimpact.symbolic.rewrite import tidy
 # the simultaneous rule with symbols: a case (signs before x acting contacts) that can
 # hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
 # past 5 minutes), one that cannot next to nothing (128 cases of a cradle in 1.6 s); so
-# the cases are counted first and the work is given a time
+# the cases are counted first, and the work done is counted as it goes
 MAX_SYMBOLIC_CASES = 4096
 
 
-MAX_SYMBOLIC_SECONDS = 20.0
+# the enumerations' budget of work, counted, never timed, so that the same problem is
+# answered or refused alike on every machine at any load: each linear system solved
+# costs its size cubed, ten times that and as much again for each symbol where symbols
+# are left (their expressions grow with them). Three contacts between four discs with
+# symbolic speeds, m and e need 26,460 units (56 s here) and are refused; seven
+# contacts at irrational numbers need at most 7,840, eight 22,528
+MAX_ENUMERATION_WORK = 20_000
+
+
+class _Work:
+    """Work counted against MAX_ENUMERATION_WORK; past it, one line (`refusal`)."""
+
+    def __init__(self, problem: ImpactProblem, refusal: str) -> None:
+        symbols = len(problem.symbols)
+        self.done, self.refusal = 0, refusal
+        self.weight = 10 * (1 + symbols) if symbols else 1
+
+    def spend(self, size: int) -> None:
+        self.done += self.weight * max(size, 1) ** 3
+        if self.done > MAX_ENUMERATION_WORK:
+            raise InputError("contacts", self.refusal)
 
 
 # the simultaneous rule: Lemke's exact dense tableau up to this many contacts; past it
@@ -161,21 +180,28 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     if len(problem.contacts) == 1:  # one contact: its own exact answer, under any law
         return _one_acting(problem, 0, [sp.Integer(0)])
     restitution, tangential = zip(*(t.laws for t in problem.contacts), strict=True)
+    n = len(problem.contacts)
+    v_n = problem._velocity_before
     late = [t.name for t, r in zip(problem.contacts, restitution, strict=True)
             if r.together != "velocity"]
+    formless = [(t.name, law.name) for t, law in zip(problem.contacts, tangential,
+                                                      strict=True)
+                if not law.velocity_states]
+    closing = [i for i in range(n) if v_n[i] < 0]
+    if (late or formless) and len(closing) == 1:
+        # one contact closes: its own exact impact, under its own laws, if that leaves
+        # every other contact opening (the answer every rule gives for one acting
+        # contact); otherwise one line saying so
+        return _one_acting(problem, closing[0], [sp.Integer(0)] * n)
     if late:
         raise InputError(f"{late[0]}.law", "with friction the simultaneous rule takes "
                          "Newton's law at every contact (the sequential rule takes "
                          "each law)")
-    formless = [(t.name, law.name) for t, law in zip(problem.contacts, tangential,
-                                                      strict=True)
-                if not law.velocity_states]
     if formless:
         raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
                          "has no form for contacts acting together: use the "
                          "sequential rule (each contact's own impact)")
-    n = len(problem.contacts)
-    v_n, v_t = problem._velocity_before, _sparse_times(problem._J_t, problem.u_before)
+    v_t = _sparse_times(problem._J_t, problem.u_before)
     mu = [law.cone() for law in tangential]
     target = [problem._leaving(i, min(v_n[i], 0)) for i in range(n)]
     states = [("off",) + law.velocity_states for law in tangential]
@@ -185,13 +211,10 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     rows = sp.Matrix.vstack(problem._J, problem._J_t)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
-    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
     not_unique = False
     for pattern in itertools.product(*states):
         if all(state == "off" for state in pattern):
             continue
-        if time.perf_counter() > deadline:
-            raise InputError("contacts", _too_many_states(n, count))
         fits = _friction_pattern(problem, pattern, W, v_n, v_t, target, mu)
         if fits is None:
             continue
@@ -551,14 +574,13 @@ def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
     ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
     and zero elsewhere (the conditions that pick a set are the caller's)."""
     n = len(v)
-    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    work = _Work(problem, f"{n} contacts: {2 ** n} sets of acting contacts, more than "
+                 f"the enumeration's budget of work ({MAX_ENUMERATION_WORK} units) lets "
+                 "it try (give numbers for the symbols, and rational normals: the rule "
+                 "then needs no such search)")
     for size in range(n, 0, -1):
         for active in itertools.combinations(range(n), size):
-            if time.perf_counter() > deadline:  # checked for singular blocks too
-                raise InputError("contacts", f"{n} contacts: {2 ** n} sets of acting "
-                                 "contacts, more than can be tried in "
-                                 f"{MAX_SYMBOLIC_SECONDS:.0f} s (give numbers for the "
-                                 "symbols: the rule then needs no such search)")
+            work.spend(size)  # counted for singular blocks too
             block = problem._W.extract(list(active), list(active))
             det = tidy(block.det())
             if det == 0 or (block.has(sp.Float) and det.is_number and abs(det) <= 1e-35
@@ -661,8 +683,8 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
 
 def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
     """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
-    acting sets (largest first) for at most MAX_SYMBOLIC_SECONDS: past that, one line
-    says how large the problem is instead of a run of minutes."""
+    acting sets (largest first) within MAX_ENUMERATION_WORK: past that, one line says
+    how large the problem is instead of a run of minutes."""
     for active, impulses, after in _active_sets(problem, v, target):
         if all(impulses[i] >= 0 for i in active) and all(
                 after[i] - target[i] >= 0 for i in range(len(v)) if i not in active):
@@ -715,7 +737,7 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
     count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
     if count > MAX_SYMBOLIC_CASES:
         raise InputError("contacts", _too_many_cases(n, count))
-    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    work = _Work(problem, _too_many_cases(n, count))
     cases = []
     for pattern in itertools.product(*options):
         if not poisson and not any(closing for _, _, closing in pattern):
@@ -727,8 +749,7 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
         found = (_active_sets(problem, v, target) if not stick
                  else _sticking_sets(problem, v, target, stick))
         for active, compression, after, *extra in found:
-            if time.perf_counter() > deadline:
-                raise InputError("contacts", _too_many_cases(n, count))
+            work.spend(len(active))
             held = case_conditions(list(signs) + [sp.Ge(compression[i], 0) for i in active]
                                + [sp.Ge(tidy(after[i] - target[i]), 0)
                                   for i in range(n) if i not in active])
@@ -767,11 +788,10 @@ def _sticking_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix, stic
     rows = sp.Matrix.vstack(problem._J, problem._J_t)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     slip = (problem._J_t * problem.u_before).applyfunc(tidy)
-    deadline = time.perf_counter() + MAX_SYMBOLIC_SECONDS
+    work = _Work(problem, _too_many_cases(n, 2**n))
     for size in range(n, 0, -1):
         for active in itertools.combinations(range(n), size):
-            if time.perf_counter() > deadline:
-                raise InputError("contacts", _too_many_cases(n, 2**n))
+            work.spend(size + len([i for i in active if i in stick]))
             unknowns = list(active) + [n + i for i in active if i in stick]
             block = W.extract(unknowns, unknowns)
             rhs = sp.Matrix([target[i] - v[i] for i in active]
@@ -796,11 +816,9 @@ def _sticking_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix, stic
 
 def _too_many_cases(n: int, count: int) -> str:
     return (f"{n} contacts with symbols make {count} cases (signs before x contacts "
-            f"acting), more than can be solved in {MAX_SYMBOLIC_SECONDS:.0f} s: give "
+            f"acting), more than the budget of work ({MAX_ENUMERATION_WORK} units) "
+            "lets the rule solve: give "
             "numbers for the symbols (--set or [values]) and it is solved exactly at them")
 
 
-def _too_many_states(n: int, count: int) -> str:
-    return (f"{n} frictional contacts have {count} combinations of states (released, "
-            f"sticking, sliding either way), more than can be solved exactly in "
-            f"{MAX_SYMBOLIC_SECONDS:.0f} s: try the sequential rule with an order")
+
