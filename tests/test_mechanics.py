@@ -197,6 +197,10 @@ def test_simplest_walker_gait_matches_garcias_equations(biped):
     assert found.state[0] == pytest.approx(theirs[0], abs=1e-6)
     assert found.state[2] == pytest.approx(theirs[1], abs=1e-6)
     assert found.stable
+    # Garcia, Chatterjee, Ruina and Coleman's long-period gait at gamma = 0.009, as
+    # published to 14 digits: [theta, thetadot] just after heel strike
+    assert abs(found.state[0] - 0.20031090049483) < 1e-9
+    assert abs(found.state[2] - -0.19983247291764) < 1e-9
 
 
 # ---- McGeer's rimless wheel ----------------------------------------------------------

@@ -9,6 +9,8 @@ import pytest
 import sympy as sp
 
 import rigidimpact as ri
+from helpers import evaluated, refused, scene_file
+from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.scenes.space import parse_space_scene
@@ -166,3 +168,54 @@ def test_one_acting_contact_gets_its_own_answer_under_every_rule(law):
             assert got[key] == want[key], (rule, key)
         assert got["left.normal_impulse"] == 0
         assert not solved.warnings
+
+
+# ---- found by a hostile run of the new surfaces: one line each, never a traceback ------
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
+
+
+def test_a_rough_sphere_in_space_names_its_missing_beta(tmp_path, capsys):
+    text = (ROOT / "derivations" / "spinning-ball-floor.toml").read_text().replace(
+        'tangential = "coulomb"', 'tangential = "rough"\ntangential_restitution = "beta"')
+    path = scene_file(tmp_path, text)
+    refused(capsys, ["evaluate", path], "beta")
+    got = evaluated(capsys, ["evaluate", path, "--set", "beta=0.5"])
+    # the sphere's normal is uncoupled: it leaves at e = 1/2 of its approach at 2
+    assert got["ball.vz"] == 1.0
+
+
+def test_a_scheduler_that_is_no_address_is_refused_in_one_line(capsys):
+    scene = str(ROOT / "derivations" / "random-barbell.toml")
+    refused(capsys, ["derive", scene, "--scheduler", "not an address"], "--scheduler")
+
+
+def test_a_nan_tolerance_in_space_is_refused():
+    from rigidimpact.model.space import Body3
+    from rigidimpact.solve.space import SpaceCollision
+
+    ball = Body3.sphere(1, 1, (0, 0, 1), (0, 0, -1), name="ball")
+    floor = Body3.fixed("floor")
+    contact = Contact((0, 0, 1), R(1, 2), "coulomb", friction=R(1, 5), name="c",
+                      bodies=("floor", "ball"), point=(0, 0, 0))
+    with pytest.raises(InputError, match="tolerance"):
+        SpaceCollision((ball, floor), (contact,), float("nan"))
+
+
+def test_a_mechanics_system_takes_python_numbers_in_at():
+    import sys
+
+    sys.path.insert(0, str(ROOT / "derivations"))
+    import double_pendulum_floor as pendulum
+
+    kane, N, tip = pendulum.pendulum()
+    q1, q2 = kane.q
+    u1, u2 = kane.u
+    named = {str(s): s for s in kane.mass_matrix.free_symbols}
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        tip, N.y, restitution=1, tangential="smooth", name="tip")], frame=N)
+    ints = {named["m_1"]: 1, named["m_2"]: 2, named["L_1"]: 1, named["L_2"]: 1}
+    exact = {k: sp.Integer(v) for k, v in ints.items()}
+    state = {q1: R(3, 5), q2: R(4, 5), u1: -1, u2: -2}
+    assert hit.at({**ints, **state}).solve().speeds_after == \
+        hit.at({**exact, **state}).solve().speeds_after

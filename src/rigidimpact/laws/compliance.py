@@ -18,7 +18,6 @@ import math
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 __all__ = ["tangential_bounce", "restitution_of", "damping_ratio_for", "MAX_DAMPING_RATIO"]
 
@@ -66,6 +65,8 @@ def restitution_of(z: float) -> float:
         hi = 1.0
         while force(hi) > 0:
             hi *= 2.0
+        from scipy.optimize import brentq  # scipy on first use: the command line starts fast
+
         end = brentq(force, 0.0 if force(0.0) <= 0 else 1e-300, hi, xtol=1e-15 * hi,
                      rtol=8.9e-16)
     return float(-_gap(z, end)[1])
@@ -87,6 +88,8 @@ def damping_ratio_for(e: float) -> float:
         return 0.0
     if e <= restitution_of(MAX_DAMPING_RATIO):
         return MAX_DAMPING_RATIO
+    from scipy.optimize import brentq
+
     return brentq(lambda z: restitution_of(z) - e, 0.0, MAX_DAMPING_RATIO, xtol=1e-15,
                   rtol=8.9e-16)
 

@@ -58,8 +58,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from rigidimpact.errors import InputError
 
@@ -225,6 +223,8 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
         best = max(angles, key=along)
         lo, hi = best - np.pi / 360, best + np.pi / 360
         if across(lo) * across(hi) < 0:
+            from scipy.optimize import brentq  # scipy on first use
+
             best = brentq(across, lo, hi, xtol=1e-15)
         return np.array([math.cos(best), math.sin(best)])
 
@@ -316,6 +316,8 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
         for ev, (kind, _) in zip(events, kinds, strict=True):
             ev.terminal = True  # type: ignore[attr-defined]
             ev.direction = 1.0 if kind in ("finish", "compression") else -1.0  # type: ignore[attr-defined]
+        from scipy.integrate import solve_ivp  # scipy on first use
+
         run = solve_ivp(rhs, (p, p + horizon), y, method="DOP853", rtol=tolerance,
                         atol=tolerance * scale * 1e-3, events=events)
         steps += len(run.t)

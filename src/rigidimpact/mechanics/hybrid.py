@@ -32,7 +32,6 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
-from scipy.integrate import solve_ivp
 
 from rigidimpact.errors import InputError
 from rigidimpact.solve.collision import whole_number
@@ -155,6 +154,8 @@ class Hybrid:
 
         event.terminal = True  # type: ignore[attr-defined]
         event.direction = -1.0  # type: ignore[attr-defined]
+        from scipy.integrate import solve_ivp  # scipy on first use
+
         start, x, pieces = t0, np.asarray(x0, float), []
         while True:
             run = solve_ivp(self.rhs, (start, t0 + self.max_step_time), x, method="DOP853",

@@ -646,7 +646,8 @@ class SystemImpact:
               for c in self.contacts))
         for key, value in values.items():
             _check_value(key, value, key in used)
-        put = {k: v for k, v in values.items() if k not in self.u}
+        # SymPy numbers (a Python int or float put in by xreplace stays one)
+        put = {k: sp.sympify(v) for k, v in values.items() if k not in self.u}
         speeds = tuple(sp.sympify(values.get(s, b)) for s, b in
                        zip(self.u, self.u_before, strict=True))
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)

@@ -42,9 +42,10 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
     else:
         try:
             client = Client(scheduler, timeout=10)
-        except OSError as exc:
-            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
-                             f"{exc}") from None
+        except (OSError, ValueError, TypeError) as exc:  # ValueError: not an address
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise InputError("--scheduler", f"no Dask scheduler at {scheduler!r}: "
+                             f"{reason}") from None
     try:
         yield client
     finally:

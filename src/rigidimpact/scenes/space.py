@@ -375,6 +375,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         b.mass, *b.inertia, *b.position, *b.velocity, *b.spin)
         if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts
                                        for x in (c.restitution, c.friction or 0,
+                                                 c.tangential_restitution or 0,
                                                  *c.point, *c.normal)))
     simulate = _table(data, "simulate", "settings")
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,

@@ -37,7 +37,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitution_of
@@ -600,6 +599,8 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
                    f"separated, and no new contact within {SETTLE_PERIODS} of the slowest "
                    f"periods ({slow:.3g} s) after the last one")
             break
+        from scipy.integrate import solve_ivp  # scipy on first use
+
         try:
             sol = solve_ivp(timed, (t, stop), y, method=integrator["method"],
                             rtol=integrator["rtol"], atol=atol,

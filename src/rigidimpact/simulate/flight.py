@@ -32,7 +32,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from rigidimpact.model.shapes import is_round, is_segment
 
@@ -172,6 +171,8 @@ def _certified_first_root(g, dg, a: float, b: float, rate: float, curvature: flo
         width = hi - lo
         if abs(dg(lo)) > curvature * width:  # g monotone here: a root iff a sign change
             if g_lo * g_hi <= 0.0:
+                from scipy.optimize import brentq  # scipy on first use
+
                 return brentq(g, lo, hi, xtol=tol, rtol=4 * np.finfo(float).eps)
             continue
         if abs(g_lo) + abs(g_hi) > rate * width:  # g cannot reach zero in between

@@ -85,6 +85,12 @@ class SpaceCollision:
         names = [b.name for b in self.bodies]
         if len(set(names)) != len(names):
             raise InputError("bodies", "two bodies share a name")
+        tolerance = self.tolerance
+        if tolerance is not None and (isinstance(tolerance, bool) or not isinstance(
+                tolerance, (int, float)) or not 1e-14 <= tolerance <= 1e-2):
+            # NaN fails the comparison too: a NaN tolerance never ends an integration
+            raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not "
+                             f"{tolerance!r}")
         if not self.contacts:
             raise InputError("contacts", "at least one contact is needed")
         if len({c.name for c in self.contacts}) != len(self.contacts):
