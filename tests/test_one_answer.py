@@ -219,3 +219,85 @@ def test_a_mechanics_system_takes_python_numbers_in_at():
     state = {q1: R(3, 5), q2: R(4, 5), u1: -1, u2: -2}
     assert hit.at({**ints, **state}).solve().speeds_after == \
         hit.at({**exact, **state}).solve().speeds_after
+
+
+# ---- every rule in the plane and in space ----------------------------------------------
+
+def ball_into_wall(rule: str, space: bool) -> str:
+    """A solid ball (m = 1, r = 1, I = 2/5) resting on a floor (mu = 1/2, e = 0) moves at
+    1 and spins at 1/2 counter-clockwise into a wall (mu = 1/5, e = 1/2)."""
+    z = ', "0"' if space else ""
+    spin = 'spin = ["0", "0", "1/2"]' if space else 'spin = "1/2"'
+    order = 'order = ["wall", "floor"]' if rule == "sequential" else ""
+    return f"""
+[[bodies]]
+name = "ball"
+shape = "sphere"
+mass = "1"
+radius = "1"
+position = ["0", "0"{z}]
+velocity = ["1", "0"{z}]
+{spin}
+[[bodies]]
+name = "ground"
+shape = "fixed"
+[[contacts]]
+name = "wall"
+bodies = ["ball", "ground"]
+point = ["1", "0"{z}]
+normal = ["1", "0"{z}]
+restitution = "1/2"
+tangential = "coulomb"
+friction = "1/5"
+[[contacts]]
+name = "floor"
+bodies = ["ground", "ball"]
+point = ["0", "-1"{z}]
+normal = ["0", "1"{z}]
+restitution = "0"
+tangential = "coulomb"
+friction = "1/2"
+[impact]
+rule = "{rule}"
+{order}
+"""
+
+
+def test_the_ball_into_a_wall_by_hand_under_the_simultaneous_rule():
+    # on the ball: the wall gives (-N1, F1) at (1, 0), the floor (F2, N2) at (0, -1);
+    # omega' = 1/2 + (5/2)(F1 + F2). Both slide, the wall's point upward and the floor's
+    # backward after: F1 = -N1/5, F2 = N2/2; Newton at the wall, vx' = 1 - N1 + F2 = -1/2;
+    # the floor stays, vy' = N2 + F1 = 0: N1 = 5/3, N2 = 1/3, omega' = 1/12, and the slips
+    # after, vy' + omega' = 1/12 > 0 and vx' + omega' = -5/12 < 0, agree with the signs
+    got = ri.parse_scene(ball_into_wall("simultaneous", False)).outcomes()[0].results()
+    assert (got["ball.vx"], got["ball.vy"], got["ball.omega"]) == (R(-1, 2), 0, R(1, 12))
+    assert (got["wall.normal_impulse"], got["floor.normal_impulse"]) == (R(5, 3), R(1, 3))
+
+
+@pytest.mark.parametrize("rule", ["simultaneous", "sequential", "driven"])
+def test_every_rule_gives_the_same_answer_in_the_plane_and_in_space(rule):
+    plane = ri.parse_scene(ball_into_wall(rule, False)).outcomes()[0]
+    space = parse_space_scene(ball_into_wall(rule, True)).collision().solve()
+    flat, deep = plane.results(), space.results()
+    assert plane.rule == space.rule == rule
+    for key, other in (("ball.vx", "ball.vx"), ("ball.vy", "ball.vy"),
+                       ("ball.omega", "ball.omega_z"),
+                       ("wall.normal_impulse", "wall.normal_impulse"),
+                       ("floor.normal_impulse", "floor.normal_impulse")):
+        assert abs(float(flat[key] - deep[other])) < 1e-9, (rule, key)
+    for key in ("ball.vz", "ball.omega_x", "ball.omega_y"):
+        assert abs(float(deep[key])) < 1e-12
+    assert not plane.warnings and not space.warnings
+
+
+def test_the_rules_differ_and_each_is_asked_for_by_name():
+    spins = {rule: ri.parse_scene(ball_into_wall(rule, False)).outcomes()[0].results()[
+        "ball.omega"] for rule in ("simultaneous", "sequential", "driven")}
+    # three models of one physical event: each is named in the scene, none is silent
+    assert spins["simultaneous"] == R(1, 12)
+    assert len({float(s) for s in spins.values()}) == 3
+
+
+def test_a_3d_scene_refuses_a_rule_it_does_not_have(tmp_path, capsys):
+    text = ball_into_wall("compliant", True)
+    refused(capsys, ["evaluate", scene_file(tmp_path, text)], "impact.rule")

@@ -54,6 +54,7 @@ from rigidimpact.solve.derivation import (
     read_values,
 )
 from rigidimpact.solve.impact import Impact
+from rigidimpact.solve.rules import RULE_TYPES, Driven
 from rigidimpact.solve.rules.sequential import MAX_SAMPLED_ORDERS
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
@@ -263,6 +264,8 @@ class Scene:
             if self.sample is not None:
                 return Sequential(None, *self.sample)
             return Sequential(self.order)
+        if self.rule == "driven":
+            return Driven()
         return Simultaneous()
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -519,7 +522,7 @@ def _from_contact(table: Mapping[str, Any], key: str, where: str,
 
 CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
                   "friction", "tangential_restitution")
-IMPACT_RULES = ("simultaneous", "sequential", "compliant")
+IMPACT_RULES = tuple(rule.name for rule in RULE_TYPES)  # the one registry's names
 
 
 def _body_tables(data: Mapping[str, Any]) -> dict[str, tuple[int, dict]]:

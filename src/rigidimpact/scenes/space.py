@@ -69,6 +69,8 @@ class SpaceScene:
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
     simulate: Mapping[str, Any] = field(default_factory=dict, repr=False)
     facets: int | None = None
+    rule: str | None = None  # [impact] rule: simultaneous | sequential | driven
+    order: tuple[str, ...] | None = None
 
     @property
     def contact(self) -> Contact:
@@ -80,7 +82,8 @@ class SpaceScene:
         return {str(s): s for s in sorted(self.used, key=str)}
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
-        problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets)
+        problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets,
+                                 self.rule, self.order)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -126,7 +129,7 @@ class SpaceScene:
         digits = dps or 17
         numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
         extra: dict[str, Any] = {"rule": "one contact" if len(self.contacts) == 1 else
-                                 "one strikes, the others rest",
+                                 RULE_WORDS.get(solution.rule, solution.label),
                                  "acted": list(solution.acted)}
         if solution.checks:
             extra["checks"] = {k: float(v) for k, v in solution.checks.items()}
@@ -135,6 +138,10 @@ class SpaceScene:
         if solution.notes:
             extra["notes"] = list(solution.notes)
         return Evaluation(numbers, tuple(solution.warnings), solution.regime, extra)
+
+
+# the rule as evaluate --json has long named it in 3-D
+RULE_WORDS = {"driven": "one strikes, the others rest"}
 
 
 def _described(b: Body3) -> str:
@@ -356,17 +363,27 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
-    tolerance, facets = None, None
+    tolerance, facets, rule, order = None, None, None, None
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
+        if key == "rule":
+            if not isinstance(value, str):
+                raise InputError("impact.rule", f"a rule's name, not {value!r}")
+            rule = value
+            continue
+        if key == "order":
+            if not isinstance(value, list) or not all(isinstance(x, str) for x in value):
+                raise InputError("impact.order", "a list of the contacts' names")
+            order = tuple(value)
+            continue
         if key == "facets":
             if isinstance(value, bool) or not isinstance(value, int):
                 raise InputError("impact.facets", f"a whole number, not {value!r}")
             facets = value
             continue
         if key != "tolerance":
-            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes tolerance and "
-                             "facets")
+            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes rule, order, "
+                             "tolerance and facets")
         if isinstance(value, bool) or not isinstance(value, (int, float)) or \
                 not 1e-14 <= value <= 1e-2:
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
@@ -379,8 +396,9 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                                                  *c.point, *c.normal)))
     simulate = _table(data, "simulate", "settings")
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets)
-    SpaceCollision(bodies, contacts, tolerance, facets)  # its bodies and contacts agree
+                       simulate, facets, rule, order)
+    # its bodies, contacts and rule agree
+    SpaceCollision(bodies, contacts, tolerance, facets, rule, order)
     return scene
 
 

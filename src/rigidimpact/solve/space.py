@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -55,6 +55,7 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
+from rigidimpact.solve.rules.sequential import sequential_passes
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
@@ -62,6 +63,8 @@ __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
 MAX_FACETS = 256  # the most edges of a pyramid standing for the cone at several strikes
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
+# the rules several 3-D contacts take (the compliant rule is not built in 3-D)
+RULES_3D = ("simultaneous", "sequential", "driven")
 TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
 
@@ -80,6 +83,10 @@ class SpaceCollision:
     tolerance: float | None = None
     facets: int | None = None  # several contacts striking at once: the cone itself
     # (None) or a pyramid of this many edges
+    # how several contacts act (a rule of :data:`RULES_3D`): None, the driven rule where
+    # one approaches and the simultaneous rule where several do; `order` for sequential
+    rule: str | None = None
+    order: tuple[str, ...] | None = None
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -93,6 +100,14 @@ class SpaceCollision:
                              f"{tolerance!r}")
         if not self.contacts:
             raise InputError("contacts", "at least one contact is needed")
+        if self.rule is not None and self.rule not in RULES_3D:
+            raise InputError("impact.rule", f"in 3-D: one of {', '.join(RULES_3D)}, not "
+                             f"{self.rule!r}" + ("; the compliant rule is not built in 3-D "
+                                                 "yet" if self.rule == "compliant" else ""))
+        if self.order is not None and (self.rule != "sequential" or sorted(
+                self.order) != sorted(c.name for c in self.contacts)):
+            raise InputError("impact.order", "with rule = \"sequential\": every contact's "
+                             "name, each once")
         if len({c.name for c in self.contacts}) != len(self.contacts):
             raise InputError("contacts", "two contacts share a name")
         for c in self.contacts:
@@ -156,9 +171,16 @@ class SpaceCollision:
 
     def solve(self) -> Solution:
         """The impact under the contact's laws (see the module's text); several contacts:
-        :meth:`driven`."""
+        by the rule asked for (:meth:`driven`, :meth:`simultaneous`,
+        :meth:`sequential`), or by default the driven rule where one contact approaches
+        and the simultaneous rule where several do. One contact: its own answer under
+        every rule."""
         if len(self.contacts) > 1:
-            return self.driven()
+            if self.rule == "sequential":
+                return self.sequential(self.order or tuple(c.name for c in self.contacts))
+            if self.rule == "simultaneous":
+                return self.simultaneous()
+            return self.driven(strict=self.rule == "driven")
         (c,) = self.contacts
         J = self.rows(c)
         W = (J * self.M_inverse * J.T).applyfunc(_tidy)
@@ -269,12 +291,11 @@ class SpaceCollision:
             FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
 
-    def driven(self) -> Solution:
-        """Several contacts: the one that approaches strikes, under its restitution law,
-        and every contact touching with zero normal velocity rests, staying closed while
-        it pushes (a ball on the table striking a cushion); contacts moving apart take no
-        part. Followed in the striking contact's normal impulse by
-        :func:`rigidimpact.laws.together.driven_impact`, in floating point."""
+    def _numbers(self) -> tuple[dict[str, np.ndarray], np.ndarray, list[Contact],
+                                list[Contact]]:
+        """Each contact's rows and the speeds before in floating point, and the contacts
+        approaching and those touching at rest (several 3-D contacts are solved at
+        numbers)."""
         numbers = [*self.u_before, *self.M_inverse, *(x for c in self.contacts
                                                        for x in self.rows(c))]
         if not all(sp.sympify(x).is_number for x in numbers) or not all(
@@ -287,6 +308,97 @@ class SpaceCollision:
         size = max(float(np.abs(u).max()), 1e-300)
         approaching = [c for c in self.contacts if speeds[c.name][0] < -1e-12 * size]
         resting = [c for c in self.contacts if abs(speeds[c.name][0]) <= 1e-12 * size]
+        return rows, u, approaching, resting
+
+    def _alone(self, contact: Contact) -> SpaceCollision:
+        """The same bodies with only `contact`."""
+        return SpaceCollision(self.bodies, (contact,), self.tolerance)
+
+    def simultaneous(self) -> Solution:
+        """Several contacts acting together at the velocity level (Newton's law, Coulomb's
+        circular cone: :meth:`_circular`, or the pyramid of ``facets`` edges). Where one
+        contact closes and its own impact (under its own laws) leaves every other
+        contact opening, that is the answer, as for one contact under every rule."""
+        rows, u, approaching, resting = self._numbers()
+        if not approaching:
+            raise InputError("contacts", "several 3-D contacts are solved where one or more "
+                             "of them approach; here none approaches")
+        if len(approaching) == 1:
+            own = self._alone(approaching[0]).solve()
+            after = np.array(sp.Matrix(own.speeds_after).evalf(30), dtype=float).ravel()
+            size = max(float(np.abs(u).max()), 1e-300)
+            if all((rows[c.name] @ after)[0] >= -1e-12 * size for c in self.contacts):
+                return replace(own, rule="simultaneous", notes=own.notes + (
+                    f"only {approaching[0].name} acts: its own impact leaves every other "
+                    "contact opening",))
+        if self.facets is None:
+            return self._circular(approaching + resting, rows, u)
+        return self._faceted(approaching + resting, rows, u, self.facets)
+
+    def sequential(self, order: Sequence[str]) -> Solution:
+        """One contact at a time in `order`, each its own impact under its own laws (the
+        one-contact answer, exact where it has a closed form), passes repeated until none
+        approaches; at numbers."""
+        rows, u0, _, _ = self._numbers()
+        by_name = {c.name: c for c in self.contacts}
+        index = {c.name: k for k, c in enumerate(self.contacts)}
+        state = {"bodies": self.bodies}
+        totals = {c.name: [sp.Integer(0)] * 3 for c in self.contacts}
+        courses: list[str] = []
+
+        def speeds() -> sp.Matrix:
+            return sp.Matrix([x for b in state["bodies"] if b.support != "fixed"
+                              for x in b.speeds])
+
+        def closing(k: int) -> sp.Expr:
+            return sp.N((self.rows(self.contacts[k]) * speeds())[0], 30)
+
+        def step(k: int, _now: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
+            c = self.contacts[k]
+            hit = SpaceCollision(state["bodies"], (c,), self.tolerance).solve()
+            assert hit.speeds_after is not None  # a 3-D answer: its generalized speeds
+            after = iter(list(hit.speeds_after))
+            state["bodies"] = tuple(b if b.support == "fixed" else b.moved(
+                [next(after) for _ in range(6)]) for b in state["bodies"])
+            P = (hit.impulses[c.name], *hit.tangent_impulses[c.name])
+            totals[c.name] = [a + b for a, b in zip(totals[c.name], P, strict=True)]
+            courses.append(f"{c.name}: {hit.regime}")
+            return P[0], hit.tangential[c.name], hit.regime
+
+        scale = max(abs(float((rows[c.name] @ u0)[0])) for c in self.contacts) or 1.0
+        # a contact's answer may be integrated (to 1e-10): a closing speed below 1e-9 of
+        # the largest before is rounding, not an approach
+        passes, steps = sequential_passes([index[name] for name in order], closing, step,
+                                          sp.Float(scale), settled=sp.Float(1e-9))
+        u_after = np.array(speeds().evalf(30), dtype=float).ravel()
+        P = {name: [sp.Float(x, 17) for x in totals[name]] for name in totals}
+        acted = tuple(name for name in totals if totals[name][0] > 0)
+        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
+        moved = [b for b in state["bodies"] if b.support != "fixed"]
+        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+        acting = [by_name[name] for name in totals]
+        checks = self._driven_checks(acting, rows, P, u0, u_after, before, lost,
+                                     self.tolerance or 1e-10)
+        solution = self._numeric(acting, acted, P, u_after, tuple(courses),
+                                 [f"one contact at a time in the order {', '.join(order)}: "
+                                  f"{len(steps)} impacts in {passes} pass"
+                                  f"{'' if passes == 1 else 'es'}"],
+                                 (before, lost), checks)
+        return replace(solution, rule="sequential", order=tuple(order), passes=passes)
+
+    def driven(self, strict: bool = False) -> Solution:
+        """Several contacts: the one that approaches strikes, under its restitution law,
+        and every contact touching with zero normal velocity rests, staying closed while
+        it pushes (a ball on the table striking a cushion); contacts moving apart take no
+        part. Followed in the striking contact's normal impulse by
+        :func:`rigidimpact.laws.together.driven_impact`, in floating point. Where several
+        approach: refused when the rule was asked for (`strict`), else the simultaneous
+        rule."""
+        rows, u, approaching, resting = self._numbers()
+        if len(approaching) > 1 and strict:
+            raise InputError("impact.rule", "the driven rule takes one striking contact and "
+                             f"others resting; here {len(approaching)} approach: use the "
+                             "simultaneous or sequential rule")
         if len(approaching) > 1:  # the circular cone, or a pyramid of stated edges
             if self.facets is None:
                 return self._circular(approaching + resting, rows, u)
@@ -317,8 +429,8 @@ class SpaceCollision:
             notes.append(f"moving apart, not acting: {', '.join(left)}")
         checks = self._driven_checks(acting, rows, P, u, out.u_after, before, lost,
                                      out.tolerance)
-        return self._numeric(acting, tuple(c.name for c in acting), P, u_after, courses,
-                             notes, (before, lost), checks)
+        return replace(self._numeric(acting, tuple(c.name for c in acting), P, u_after,
+                                     courses, notes, (before, lost), checks), rule="driven")
 
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
@@ -481,6 +593,12 @@ class SpaceCollision:
                                                        max(0.0, -leave), 17)
             checks[f"{c.name}.complementarity"] = sp.Float(
                 abs(impulse[3 * i] * leave) / scale, 17)
+            if c.friction is not None and pushing[i]:  # a law of the velocities after
+                checks.update(friction_residuals(
+                    c.name, c.laws[1], sp.Float, sp.Float(impulse[3 * i], 17),
+                    [sp.Float(x, 17) for x in impulse[3 * i + 1:3 * i + 3]],
+                    [sp.Float(x, 17) for x in v[3 * i + 1:3 * i + 3]],
+                    [sp.Float(x, 17) for x in after[3 * i + 1:3 * i + 3]], exact=False))
         return self._numeric(acting, tuple(c.name for i, c in enumerate(acting)
                                            if pushing[i]),
                              P, u_after, courses, notes, (before, lost), checks)
@@ -528,7 +646,7 @@ class SpaceCollision:
         """The collision with numbers put in for its symbols."""
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
-                              self.facets)
+                              self.facets, self.rule, self.order)
 
 
 def _tidy(x: sp.Expr) -> sp.Expr:

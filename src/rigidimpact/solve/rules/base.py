@@ -10,7 +10,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.solution import Solution
 
-RULES = ("simultaneous", "sequential", "compliant")
+RULES = ("simultaneous", "sequential", "compliant", "driven")
 
 
 RULE_LAWS = {
@@ -21,6 +21,9 @@ RULE_LAWS = {
                   "two-body impact with Newton's e, repeated until no contact approaches",
     "compliant": "every contact a push-only spring-dashpot (linear, damping from e) or an "
                  "elastic Hertz spring, integrated until all let go (floating point)",
+    "driven": "one contact strikes under its restitution law and every contact touching "
+              "at rest stays closed while it pushes, followed in the striking contact's "
+              "normal impulse (floating point)",
 }
 
 
@@ -32,6 +35,9 @@ FRICTION_LAWS = {
     "sequential": "one contact at a time in the order given, each that contact's own "
                   "impact under its own laws (Routh's method for Coulomb friction, "
                   "Walton's for a rough contact); repeated until no contact approaches",
+    "driven": "one contact strikes under its restitution law; each resting contact sticks "
+              "while its cone holds it and otherwise slips with |P_t| = mu P_n against "
+              "its slip, as the striking contact's normal impulse grows",
 }
 
 

@@ -1,0 +1,102 @@
+"""The driven rule: one contact strikes and every other contact touching with zero normal
+velocity rests, staying closed while it pushes (a ball on the table striking a cushion,
+a block on a floor struck from the side). The impact is followed in the striking
+contact's normal impulse, each resting contact sticking or slipping under Coulomb's law
+as the impulse grows, by :func:`rigidimpact.laws.together.driven_impact`, in floating
+point; contacts moving apart take no part.
+
+It is the same model in the plane and in space: a planar problem is given to the
+integrator with each contact's second tangent row zero (the bodies cannot move across
+the plane, so nothing slips there and no friction acts there).
+
+Examples
+--------
+A disc (m = 1, r = 1, I = 1/2) rests on a smooth floor and strikes a smooth wall at 2,
+e = 1/2: the floor takes nothing, the disc leaves the wall at 1.
+
+>>> import sympy as sp
+>>> from rigidimpact.laws.contact import Contact
+>>> from rigidimpact.model.bodies import Body
+>>> from rigidimpact.solve.collision import Collision
+>>> disc = Body.rigid(1, sp.Rational(1, 2), (0, 0), (2, 0), name="disc")
+>>> wall = Contact((1, 0), sp.Rational(1, 2), name="wall", bodies=("disc", "ground"),
+...                point=(1, 0))
+>>> floor = Contact((0, 1), 0, name="floor", bodies=("ground", "disc"), point=(0, -1))
+>>> (out,) = Collision((disc, Body.fixed("ground")), (wall, floor)).solve(Driven())
+>>> round(float(out.results()["disc.vx"]), 12), out.rule
+(-1.0, 'driven')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.together import driven_impact
+from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.rules.base import Rule
+from rigidimpact.solve.solution import Solution
+
+__all__ = ["Driven", "driven"]
+
+
+@dataclass(frozen=True)
+class Driven(Rule):
+    """One contact strikes, the others rest (see the module's text); `tolerance` is the
+    integration's relative tolerance (default 1e-10)."""
+
+    tolerance: float | None = None
+    name: ClassVar[str] = "driven"
+
+    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+        return (driven(problem, self.tolerance),)
+
+
+def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
+    """The driven rule on a planar impulse problem (see the module's text)."""
+    problem._numbers_only("driven")
+    for c in problem.contacts:
+        if c.tangential not in ("smooth", "coulomb"):
+            raise InputError(f"{c.name}.tangential", "the driven rule follows Coulomb's "
+                             f"friction (or none), not {c.tangential!r}")
+    if problem.joints:
+        raise InputError("joints", "the driven rule does not take joints yet: use the "
+                         "simultaneous or sequential rule")
+    J = np.array(problem.J.evalf(30), dtype=float)
+    J_t = np.array(problem.J_t.evalf(30), dtype=float)
+    u = np.array(problem.u_before.evalf(30), dtype=float).ravel()
+    size = max(float(np.abs(u).max()), 1e-300)
+    speeds = J @ u
+    approaching = [i for i, v in enumerate(speeds) if v < -1e-12 * size]
+    resting = [i for i, v in enumerate(speeds) if abs(v) <= 1e-12 * size]
+    if len(approaching) != 1:
+        raise InputError("impact.rule", "the driven rule takes one striking contact and "
+                         f"others resting; here {len(approaching)} approach: use the "
+                         "simultaneous or sequential rule")
+    acting = approaching + resting
+    striking = problem.contacts[approaching[0]]
+    rows = [np.vstack([J[i], J_t[i], np.zeros_like(J[i])]) for i in acting]
+    friction = [float(problem.contacts[i].friction or 0) for i in acting]
+    Minv = np.array(problem.M_inverse.evalf(30), dtype=float)
+    out = driven_impact(Minv, rows, u, float(striking.restitution), striking.law, friction,
+                        tolerance)
+    normal, along = sp.zeros(len(problem.contacts), 1), sp.zeros(len(problem.contacts), 1)
+    for k, i in enumerate(acting):
+        normal[i], along[i] = sp.Float(out.impulses[k][0], 17), sp.Float(out.impulses[k][1],
+                                                                           17)
+    courses = tuple(f"{problem.contacts[i].name}: {course}"
+                    for i, course in zip(acting, out.courses, strict=True))
+    notes = (f"{striking.name} strikes and the contacts touching at rest stay closed while "
+             f"they push: the impulses are integrated in {striking.name}'s normal impulse "
+             f"to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",)
+    return problem._outcome(
+        "driven", (), sp.Matrix([sp.Float(x, 17) for x in out.u_after]),
+        problem._named(normal), tuple(problem.contacts[i].name for i in acting
+                                      if normal[i] > 0),
+        tangential=problem._named(along), courses=courses, notes=notes,
+        method=f"integrated to {out.tolerance:g}")
+
