@@ -84,8 +84,10 @@ def test_evaluate_gives_the_pinned_numbers(name, capsys):
             rel, near = (INTEGRATED, INTEGRATED) if integrated else (1e-13, 1e-15)
             assert new[key] == pytest.approx(value, rel=rel, abs=near), key
         elif isinstance(value, dict):  # the certificate: new checks may be added
+            # a residual is zero, or rounding of the arithmetic that computed it (50
+            # digits, more where the data span orders of magnitude): pinned to its size
             got = {k: new[key].get(k) for k in value}
-            assert got == (pytest.approx(value, abs=INTEGRATED) if integrated else value), key
+            assert got == pytest.approx(value, abs=INTEGRATED if integrated else 1e-40), key
         elif integrated and key == "notes":  # the adaptive integrator's step count
             assert [_steps(n) for n in new[key]] == [_steps(n) for n in value], key
         else:

@@ -217,7 +217,8 @@ def rough_cluster(rows: int, columns: int, friction: Any = ROUGH_CLUSTER_FRICTIO
 
 def _states_seconds(make: Callable[[], Collision]) -> float:
     """The rough simultaneous rule by trying every combination of contact states (its
-    method for a few contacts), timed; InputError past its own 20 s budget."""
+    method for a few contacts), timed; InputError past its budget of tried
+    combinations (MAX_STATES_TRIED)."""
     saved = simultaneous_rule.MAX_FRICTION_STATES
     simultaneous_rule.MAX_FRICTION_STATES = 10**300
     try:

@@ -135,6 +135,12 @@ class Contact:
             raise InputError("contact.law", f"a sticking contact is an algebraic law with "
                              f"Newton's e; for the {self.law} law use tangential = "
                              f"\"coulomb\" with a friction coefficient")
+        if self.law != "newton" and self.tangential == "rough":
+            # Walton's law sets the velocities after with Newton's e; under another law
+            # its e would be read as Newton's without a word (the plane did so once)
+            raise InputError("contact.law", f"Walton's rough law takes Newton's "
+                             f"restitution; for the {self.law} law use tangential = "
+                             "\"coulomb\" with a friction coefficient")
         self._coefficient("friction", "Coulomb's friction coefficient", 0, None,
                           needed=self.tangential == "coulomb",
                           allowed=self.tangential in ("coulomb", "rough"))

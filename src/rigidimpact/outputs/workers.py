@@ -44,7 +44,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
             client = Client(scheduler, timeout=10)
         except (OSError, ValueError, TypeError) as exc:  # ValueError: not an address
             reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            raise InputError("--scheduler", f"no Dask scheduler at {scheduler!r}: "
+            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
                              f"{reason}") from None
     try:
         yield client

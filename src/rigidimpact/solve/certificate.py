@@ -54,6 +54,8 @@ import mpmath
 import sympy as sp
 from sympy.polys.domains import QQ
 
+from rigidimpact.errors import InputError
+
 __all__ = ["residuals", "friction_residuals", "assess", "as_sympy", "PHYSICAL_LIMITS",
            "FLOAT_TOLERANCE"]
 
@@ -89,7 +91,8 @@ def _arithmetic(numbers: Sequence[Any]) -> str:
 def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[Any],
               impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
               acted: Sequence[str], locked: Sequence[str] = (), joints: Sequence[Any] = (),
-              joint_impulses: Mapping[str, Any] | None = None) -> dict[str, Any]:
+              joint_impulses: Mapping[str, Any] | None = None,
+              conditions: Sequence[Any] = ()) -> dict[str, Any]:
     """Each condition's residual (see the module's notes) as a number (exact, or an
     mpmath number) or, with symbols left, a SymPy expression. `locked` names the
     contacts whose impact ended locked at rest (Routh's method where the touching points
@@ -117,7 +120,8 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
             data.append(c.laws[1].cone())
     how = _arithmetic(data)
     if how == "symbolic":
-        return {}
+        return _at_points(before, after, contacts, impulses, tangential, rule, locked,
+                          joints, joint_impulses, conditions)
     floats = any(sp.sympify(x).has(sp.Float) for x in data)
     if how == "exact" and all(sp.sqrt(c.normal[0] ** 2 + c.normal[1] ** 2).is_Rational
                               for c in contacts):
@@ -140,13 +144,16 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
 
         def num(x: Any) -> Any:
             if x not in known:
-                known[x] = mpmath.mpf(sp.N(x, DIGITS + 10)._to_mpmath(mpmath.mp.prec))
+                known[x] = mpmath.mpf(sp.N(x, digits + 10)._to_mpmath(mpmath.mp.prec))
             return known[x]
 
         def root(x: Any) -> Any:
             return mpmath.sqrt(x)
 
-    with mpmath.workdps(DIGITS):
+    # 50 digits, and as many more as the data span orders of magnitude (a length of 1e100
+    # puts 1e200 beside 1 in an angular momentum): rounding never passes for a broken law
+    digits = DIGITS + _span(data) if how == "mp" else DIGITS
+    with mpmath.workdps(digits):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
                            root, how, locked, joints, joint_impulses)
     found["_floats"] = floats
@@ -258,6 +265,129 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     return out
 
 
+SYMBOLIC_POINTS = 3  # seeded random rational points a closed form is checked at
+SYMBOLIC_TRIES = 12  # points drawn to find them (a point where nothing approaches is no
+# impact, and one outside a coefficient's range is no law: neither is a check)
+
+
+def _span(data: Sequence[Any]) -> int:
+    """Twice the orders of magnitude the nonzero numbers of `data` span (at most 1000)."""
+    exponents = []
+    for x in data:
+        value = abs(sp.N(x, 15))
+        if value.is_number and value != 0 and value.is_finite:
+            exponents.append(int(mpmath.floor(mpmath.log10(mpmath.mpf(value)))))
+    return min(2 * (max(exponents) - min(exponents)), 1000) if exponents else 0
+
+
+def _at_points(before, after, contacts, impulses, tangential, rule, locked, joints,
+               joint_impulses, conditions=()) -> dict[str, Any]:
+    """The residuals of a symbolic answer, exact, at seeded random rational points of its
+    symbols where the impact happens: each symbol drawn within its assumptions (a
+    restitution coefficient in [0, 1], a friction coefficient at least 0, Walton's beta in
+    [-1, 1]), kept where some contact approaches and the answer's own `conditions` (a
+    case's) hold. Each key holds the worst over the
+    points, relative to that point's scale (energy: to its kinetic energy); ``_points``
+    says how many points were checked."""
+    import random
+
+    symbols: set[sp.Symbol] = set()
+    for b in before:
+        symbols |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
+                            *(b.pivot if b.support == "pivot" else ())).free_symbols
+    for b in after:
+        symbols |= sp.Tuple(*b.velocity, b.spin).free_symbols
+    ranges: dict[sp.Symbol, tuple[int, int]] = {}
+    for c in contacts:
+        symbols |= sp.Tuple(*c.point, *c.normal, impulses[c.name],
+                            tangential.get(c.name, 0), c.restitution).free_symbols
+        for x, span in ((c.restitution, (0, 1)), (c.friction, (0, 2)),
+                        (c.tangential_restitution, (-1, 1))):
+            if isinstance(x, sp.Symbol):
+                ranges[x] = span
+            elif x is not None:
+                symbols |= sp.sympify(x).free_symbols
+    for j in joints:
+        symbols |= sp.Tuple(*j.point, *joint_impulses[j.name]).free_symbols
+    for c in conditions:
+        symbols |= sp.sympify(c).free_symbols
+    rng = random.Random(44)
+    worst: dict[str, Any] = {}
+    checked, exact, floats = 0, True, False
+    for _ in range(SYMBOLIC_TRIES):
+        if checked == SYMBOLIC_POINTS:
+            break
+        point = {}
+        for s in sorted(symbols, key=str):
+            low, high = ranges.get(s, (-3, 3) if not (s.is_positive or s.is_nonnegative)
+                                   else (0, 3))
+            x = sp.Rational(rng.randint(low * 311, high * 311), 311)
+            if s.is_positive and x <= 0 or s.is_negative and x >= 0:
+                x = sp.Rational(rng.randint(1, 3 * 311), 311) * (-1 if s.is_negative else 1)
+            point[s] = x
+        if not all(sp.sympify(c).xreplace(point) is sp.true for c in conditions):
+            continue  # another case's ground
+        try:
+            found = _at_point(point, before, after, contacts, impulses, tangential, rule,
+                              locked, joints, joint_impulses)
+        except (InputError, ZeroDivisionError, TypeError, ValueError):
+            continue  # no impact there (a body of no mass, a contact apart, ...)
+        if found is None:
+            continue
+        checked += 1
+        exact, floats = exact and found["_exact"], floats or found["_floats"]
+        scale = found["_scale"] or 1
+        kinetic = found["_kinetic"] or 1
+        for key, value in found.items():
+            if key.startswith("_"):
+                continue
+            size = as_sympy(value) / as_sympy(kinetic if key == "energy" else scale)
+            worst[key] = max(worst.get(key, 0), size)
+    if not checked:
+        return {}
+    return {**worst, "_scale": 1, "_kinetic": 1, "_exact": exact, "_floats": floats,
+            "_points": checked, "_symbolic": True}
+
+
+def _at_point(point, before, after, contacts, impulses, tangential, rule, locked, joints,
+              joint_impulses) -> dict[str, Any] | None:
+    """The residuals at one point of the symbols, or None where no contact approaches
+    there (no impact to check)."""
+    before = tuple(b.at(point) for b in before)
+    after = tuple(b.at(point) for b in after)
+    contacts = tuple(c.at(point) for c in contacts)
+    pushes = {c.name: sp.sympify(impulses[c.name]).xreplace(point) for c in contacts}
+    along = {c.name: sp.sympify(tangential.get(c.name, 0)).xreplace(point)
+             for c in contacts}
+    if not all(x.is_number for x in (*pushes.values(), *along.values())):
+        return None
+    found = residuals(before, after, contacts, pushes, along, rule,
+                      tuple(c.name for c in contacts if pushes[c.name] > 0), locked,
+                      tuple(j.at(point) for j in joints),
+                      {j.name: tuple(sp.sympify(x).xreplace(point)
+                                     for x in joint_impulses[j.name]) for j in joints})
+    if not found or not any(_closing(before, c) for c in contacts):
+        return None
+    return found
+
+
+def _closing(before, contact) -> bool:
+    """Whether `contact` approaches before the impact (its touching points' normal
+    velocity, second less first, below zero)."""
+    bodies = {b.name: b for b in before}
+    first, second = contact.bodies if contact.bodies else tuple(bodies)[:2]
+
+    def velocity(body):
+        if body.support == "fixed":
+            return (0, 0)
+        r = [contact.point[k] - body.position[k] for k in range(2)]
+        return (body.velocity[0] - body.spin * r[1], body.velocity[1] + body.spin * r[0])
+
+    a, b = velocity(bodies[first]), velocity(bodies[second])
+    closing = sp.N((b[0] - a[0]) * contact.normal[0] + (b[1] - a[1]) * contact.normal[1], 30)
+    return bool(closing < 0)
+
+
 def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[Any],
                        slip_before: Sequence[Any], slip_after: Sequence[Any],
                        exact: bool) -> dict[str, Any]:
@@ -338,6 +468,7 @@ def assess(checks: Mapping[str, Any], rule: str,
     computed its residuals itself)."""
     if not checks:
         return [], []
+    symbolic = checks.get("_symbolic", False)
     scale = checks["_scale"] or 1
     kinetic = checks["_kinetic"] or 1
     if "_tolerance" in checks:
@@ -368,6 +499,8 @@ def assess(checks: Mapping[str, Any], rule: str,
             allowed = max(tolerance, SETTLED)  # closing speed left is below this
         if not (size > 0 and (allowed == 0 or float(size) > allowed)):
             continue
+        if symbolic and (key == "energy" or key.endswith((".opens", ".pushes"))):
+            continue  # a limit at some values of the symbols: evaluate says where
         if key == "energy":
             warnings.append(f"kinetic energy is created: {float(value):.6g} more after "
                             f"than before ({float(size):.3g} of it)")

@@ -55,7 +55,7 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
-from rigidimpact.solve.rules.sequential import sequential_passes
+from rigidimpact.solve.rules.sequential import SETTLED, carried, sequential_passes
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
@@ -121,9 +121,13 @@ class SpaceCollision:
                                  f"{', '.join(TANGENTIAL_3D)} so far, not {c.tangential!r}")
             if c.tangential == "stick" and c.law != "newton":
                 raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
-            if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb"):
+            # several contacts acting together (or one driving the rest) take the laws
+            # that have a form for it; the sequential rule takes each contact alone
+            if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb") and \
+                    self.rule not in ("sequential", "simultaneous"):
                 raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
-                                 f"or coulomb so far, not {c.tangential!r}")
+                                 f"or coulomb so far, not {c.tangential!r} (the sequential "
+                                 "rule takes every law)")
         if self.facets is not None and (
                 isinstance(self.facets, bool) or not isinstance(self.facets, int)
                 or not 4 <= self.facets <= MAX_FACETS or self.facets % 2):
@@ -177,10 +181,12 @@ class SpaceCollision:
         every rule."""
         if len(self.contacts) > 1:
             if self.rule == "sequential":
-                return self.sequential(self.order or tuple(c.name for c in self.contacts))
-            if self.rule == "simultaneous":
-                return self.simultaneous()
-            return self.driven(strict=self.rule == "driven")
+                solved = self.sequential(self.order or tuple(c.name for c in self.contacts))
+            elif self.rule == "simultaneous":
+                solved = self.simultaneous()
+            else:
+                solved = self.driven(strict=self.rule == "driven")
+            return self._every_contact(solved)
         (c,) = self.contacts
         J = self.rows(c)
         W = (J * self.M_inverse * J.T).applyfunc(_tidy)
@@ -291,6 +297,16 @@ class SpaceCollision:
             FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
 
+    def _every_contact(self, solved: Solution) -> Solution:
+        """The answer with every contact in the scene's order, a contact that took no part
+        with zero impulses (``impulse`` is the first contact's, as in the plane)."""
+        zero = sp.Integer(0)
+        return replace(solved, contacts=self.contacts, impulses={
+            c.name: solved.impulses.get(c.name, zero) for c in self.contacts},
+            tangential={c.name: solved.tangential.get(c.name, zero) for c in self.contacts},
+            tangent_impulses={c.name: solved.tangent_impulses.get(c.name, (zero, zero))
+                              for c in self.contacts})
+
     def _numbers(self) -> tuple[dict[str, np.ndarray], np.ndarray, list[Contact],
                                 list[Contact]]:
         """Each contact's rows and the speeds before in floating point, and the contacts
@@ -331,6 +347,12 @@ class SpaceCollision:
                 return replace(own, rule="simultaneous", notes=own.notes + (
                     f"only {approaching[0].name} acts: its own impact leaves every other "
                     "contact opening",))
+        formless = [c for c in approaching + resting if c.tangential not in ("smooth",
+                                                                             "coulomb")]
+        if formless:
+            raise InputError(f"{formless[0].name}.tangential", f"the {formless[0].tangential} "
+                             "law has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
         if self.facets is None:
             return self._circular(approaching + resting, rows, u)
         return self._faceted(approaching + resting, rows, u, self.facets)
@@ -359,19 +381,22 @@ class SpaceCollision:
             assert hit.speeds_after is not None  # a 3-D answer: its generalized speeds
             after = iter(list(hit.speeds_after))
             state["bodies"] = tuple(b if b.support == "fixed" else b.moved(
-                [next(after) for _ in range(6)]) for b in state["bodies"])
+                [carried(next(after)) for _ in range(6)]) for b in state["bodies"])
             P = (hit.impulses[c.name], *hit.tangent_impulses[c.name])
             totals[c.name] = [a + b for a, b in zip(totals[c.name], P, strict=True)]
             courses.append(f"{c.name}: {hit.regime}")
             return P[0], hit.tangential[c.name], hit.regime
 
         scale = max(abs(float((rows[c.name] @ u0)[0])) for c in self.contacts) or 1.0
-        # a contact's answer may be integrated (to 1e-10): a closing speed below 1e-9 of
-        # the largest before is rounding, not an approach
+        # the rule ends, as in the plane, once every closing speed left is below 1e-40 of
+        # the largest before; a Coulomb contact's answer may be integrated (to 1e-10),
+        # and then below 1e-12 is taken for its rounding, not an approach
+        settled = sp.Float(1e-12) if any(c.tangential == "coulomb" for c in self.contacts) \
+            else SETTLED
         passes, steps = sequential_passes([index[name] for name in order], closing, step,
-                                          sp.Float(scale), settled=sp.Float(1e-9))
+                                          sp.Float(scale), settled=settled)
         u_after = np.array(speeds().evalf(30), dtype=float).ravel()
-        P = {name: [sp.Float(x, 17) for x in totals[name]] for name in totals}
+        P = {name: [sp.Float(sp.N(x, 30), 17) for x in totals[name]] for name in totals}
         acted = tuple(name for name in totals if totals[name][0] > 0)
         before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
         moved = [b for b in state["bodies"] if b.support != "fixed"]

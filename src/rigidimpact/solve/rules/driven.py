@@ -66,8 +66,10 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     if problem.joints:
         raise InputError("joints", "the driven rule does not take joints yet: use the "
                          "simultaneous or sequential rule")
-    J = np.array(problem.J.evalf(30), dtype=float)
-    J_t = np.array(problem.J_t.evalf(30), dtype=float)
+    # the solvers' rows (each contact's scaled alike, which no law minds); the impulses
+    # are put back on the unit normal by _named
+    J = np.array(problem._J.evalf(30), dtype=float)
+    J_t = np.array(problem._J_t.evalf(30), dtype=float)
     u = np.array(problem.u_before.evalf(30), dtype=float).ravel()
     size = max(float(np.abs(u).max()), 1e-300)
     speeds = J @ u

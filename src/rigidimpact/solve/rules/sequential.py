@@ -26,6 +26,7 @@ from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
 FLOAT_DIGITS = 60  # where exact algebra would nest roots: floating point at this precision
+LONG_DIGITS = 200  # a rational this long is carried as a FLOAT_DIGITS Float from there
 
 
 # a sequential run still going after this many impacts (and as many again per 100
@@ -121,15 +122,19 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
     floating: list[str] = []
 
     def step(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
-        if problem.contacts[k].laws[1].grips:  # its own impact (Routh's for Coulomb)
-            if not floating and not all(x.is_Rational for x in u):
-                # the arithmetic is chosen before the next case analysis: a state
-                # out of the rationals (an energetic step's square root) would
-                # nest a root in every later step, so from here on every step
-                # starts from the state as FLOAT_DIGITS-digit Floats
-                floating.append(problem.contacts[k].name)
-            if floating:
-                u[:] = [_rounded(x) for x in u]
+        grips = problem.contacts[k].laws[1].grips
+        if not floating and ((grips and not all(x.is_Rational for x in u))
+                             or any(_long(x) for x in u)):
+            # the arithmetic is chosen before the next case analysis: a state out of
+            # the rationals (an energetic step's square root) would nest a root in
+            # every later step, and contacts passing an impulse back and forth for
+            # hundreds of passes (e = 0: inelastic collapse) grow rationals of
+            # thousands of digits, so from here on every step starts from the state
+            # as FLOAT_DIGITS-digit Floats
+            floating.append(problem.contacts[k].name)
+        if floating:
+            u[:] = [_rounded(x) for x in u]
+        if grips:  # its own impact (Routh's for Coulomb)
             impulse, along, course, after = _routh_step(problem, k, sp.Matrix(u))
             if floating:
                 impulse, along = _rounded(impulse), _rounded(along)
@@ -148,7 +153,8 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
     courses = tuple(f"{problem.contacts[k].name}: {course}" for k, _, _, course in steps
                     if course is not None)
     notes = (f"from {floating[0]}'s step on, the velocities held square roots that "
-             "would nest at every further step: each step from there started from "
+             "would nest, or rationals too long to carry, at every further step: each "
+             "step from there started from "
              f"them rounded to {FLOAT_DIGITS} digits (the results are good to about "
              "that many digits, not exact)",) if floating else ()
     return problem._outcome("sequential", tuple(order), sp.Matrix(u),
@@ -380,6 +386,26 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
             steps.append((k, *step(k, now)))
             acted = True
     return count - 1, steps
+
+
+def _long(x: sp.Expr) -> bool:
+    """A rational of more than LONG_DIGITS digits above or below its line."""
+    return bool(x.is_Rational and max(abs(x.p), x.q) > LONG)
+
+
+LONG = 10**LONG_DIGITS
+
+
+def carried(x: sp.Expr) -> sp.Expr:
+    """A number as the sequential rule carries it to the next step: as it is, or a
+    rational longer than LONG_DIGITS digits as a FLOAT_DIGITS-digit Float.
+
+    Examples
+    --------
+    >>> carried(sp.Rational(1, 3)), carried(sp.Rational(1, 3**500)).is_Float
+    (1/3, True)
+    """
+    return _rounded(x) if _long(x) else x
 
 
 def _rounded(x: sp.Expr) -> sp.Expr:

@@ -87,6 +87,9 @@ MAX_LEMKE = 64
 # one linear complementarity problem (Stewart and Trinkle; Anitescu and Potra) by
 # Lemke's method, exact, which finds one answer
 MAX_FRICTION_STATES = 729
+# combinations of states tried at most, whatever MAX_FRICTION_STATES says (a budget of
+# work, so that a lifted count still ends alike on every machine)
+MAX_STATES_TRIED = 4096
 # the frictional problem (four unknowns a contact): Lemke's method in floating point with
 # an exact confirmation up to MAX_FRICTION_LEMKE contacts (a dense tableau), and where
 # the confirmation fails, Lemke's exact tableau up to MAX_FRICTION_EXACT_LEMKE
@@ -212,9 +215,14 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
     not_unique = False
-    for pattern in itertools.product(*states):
+    for tried, pattern in enumerate(itertools.product(*states)):
         if all(state == "off" for state in pattern):
             continue
+        if tried > MAX_STATES_TRIED:  # counted, never timed (the bench lifts the count)
+            raise InputError("contacts", f"{n} frictional contacts have {count} "
+                             "combinations of states (released, sticking, sliding either "
+                             f"way), more than the {MAX_STATES_TRIED} the rule may try: "
+                             "try the sequential rule with an order")
         fits = _friction_pattern(problem, pattern, W, v_n, v_t, target, mu)
         if fits is None:
             continue
