@@ -10,6 +10,7 @@ import sympy as sp
 
 import rigidimpact as ri
 from helpers import evaluated, refused, scene_file
+from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
@@ -301,3 +302,30 @@ def test_the_rules_differ_and_each_is_asked_for_by_name():
 def test_a_3d_scene_refuses_a_rule_it_does_not_have(tmp_path, capsys):
     text = ball_into_wall("compliant", True)
     refused(capsys, ["evaluate", scene_file(tmp_path, text)], "impact.rule")
+
+
+# ---- random inputs: every draw an impact, and an open end is no value ------------------
+
+def _random_barbell(table: str, velocity: str = '["0", "-1"]') -> str:
+    text = (ROOT / "derivations" / "random-barbell.toml").read_text()
+    text = text.replace('theta = { uniform = ["0", "pi/2"] }', table)
+    return text.replace('velocity = ["0", "-1"]', f"velocity = {velocity}")
+
+
+def test_a_random_input_whose_draws_do_not_approach_is_refused(tmp_path, capsys):
+    # a falling speed V uniform on [-1, 1]: for V < 0 the barbell rises off the floor,
+    # so half the draws would be a pulling impulse, not an impact
+    text = _random_barbell('V = { uniform = ["-1", "1"] }', '["0", "-V"]').replace(
+        'theta = "30 deg"', 'theta = "30 deg"\nV = 1').replace(
+        "\n[values]", "\n[symbols]\nV = { real = true }\n\n[values]", 1).replace(
+        "samples = 1000000", "samples = 1000")
+    refused(capsys, ["derive", scene_file(tmp_path, text)], "random.V")
+    # on [1/2, 1] every draw approaches: answered
+    fine = text.replace('V = { uniform = ["-1", "1"] }', 'V = { uniform = ["1/2", "1"] }')
+    assert main(["derive", scene_file(tmp_path, fine, "fine.toml")]) == 0
+
+
+def test_a_log_normal_length_is_not_refused_for_its_open_end(tmp_path, capsys):
+    text = _random_barbell('L = { lognormal = ["0", "1/10"] }').replace(
+        "samples = 1000000", "samples = 1000")
+    assert main(["derive", scene_file(tmp_path, text)]) == 0, capsys.readouterr().err

@@ -816,6 +816,8 @@ def _check_scene(scene: Scene) -> None:
     for symbol, law in (scene.random.inputs.items() if scene.random else ()):
         for end in law.support:  # an unbounded end: a value far out
             value = end if end.is_finite else sp.sign(end) * sp.Integer(10) ** 9
+            if law.kind == "lognormal" and end == 0:  # an open end, never drawn
+                value = sp.Rational(1, 10**9)
             check_roles(scene.roles, {symbol: value}, {symbol: f"random.{symbol.name}"})
     if scene.joints:  # each joint on its bodies, holding them together before
         scene.collision()
@@ -830,6 +832,33 @@ def _check_scene(scene: Scene) -> None:
         if approach.is_number and approach <= 0:
             raise InputError("bodies", f"the bodies are not approaching at O with [values] "
                              f"(normal approach speed {sp.N(approach, 6)})")
+        for symbol, law in (scene.random.inputs.items() if scene.random else ()):
+            _approaches_throughout(impact.approach_speed, dict(scene.values), symbol, law)
+
+
+def _approaches_throughout(approach: sp.Expr, values: dict, symbol: sp.Symbol,
+                           law: Any) -> None:
+    """Refuse a random input whose draws include impacts that do not happen (the bodies
+    not approaching: a pulling impulse), judged at its support's ends and at points
+    between (a normal or log-normal input: within six spreads of its centre)."""
+    if law.kind == "discrete":
+        points = list(law.parameters)
+    else:
+        low, high = law.support
+        if law.kind == "normal":
+            mean, spread = law.parameters
+            low, high = mean - 6 * spread, mean + 6 * spread
+        elif law.kind == "lognormal":
+            mean, spread = law.parameters
+            low, high = sp.exp(mean - 6 * spread), sp.exp(mean + 6 * spread)
+        points = [low + (high - low) * sp.Rational(k, 8) for k in range(9)]
+    for x in points:
+        speed = approach.xreplace({**values, symbol: x})
+        if speed.is_number and sp.N(speed, 30) <= 0:
+            raise InputError(f"random.{symbol.name}", f"at {symbol.name} = {sp.N(x, 6)} "
+                             f"the bodies are not approaching (normal approach speed "
+                             f"{sp.N(speed, 6)}): such draws are no impact; give a "
+                             "distribution on which they approach")
 
 
 def load_scene(path: str | Path) -> Scene:

@@ -172,6 +172,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     # unloaded (and its slip turn freely) for part of the impact, and a compliant run's
     # friction follows its own springs: their laws hold step by step, not in the totals
     whole_impact = len(contacts) == 1 or rule == "simultaneous"
+    speed = None if how == "exact" else _scale(bodies, later, impulses, num, zero)
 
     def velocity(body: Any, state: Any, point: Sequence[Any]) -> tuple[Any, Any]:
         if body.support == "fixed":
@@ -220,7 +221,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             out[f"{c.name}.sticks"] = abs(slip)
         if mu is not None and friction.grips and p_n > 0 and whole_impact:
             out.update(friction_residuals(c.name, friction, num, p_n, [p_t], [slip_before],
-                                          [slip], how == "exact"))
+                                          [slip], how == "exact", speed))
         if c.name in locked:  # the course's own law: at rest along the normal after
             out[f"{c.name}.restitution"] = abs(v_after)
         elif rule == "simultaneous" and restitution.together == "velocity":
@@ -390,7 +391,7 @@ def _closing(before, contact) -> bool:
 
 def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[Any],
                        slip_before: Sequence[Any], slip_after: Sequence[Any],
-                       exact: bool) -> dict[str, Any]:
+                       exact: bool, speed: Any = None) -> dict[str, Any]:
     """Friction's own law at one pushing contact, from its impulses and slips alone
     (one tangent in the plane, two in space).
 
@@ -401,7 +402,9 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
     before (``P_t`` does not point past it). Inside the cone, Walton's contact leaves at
     its target (``CONTACT.tangential_restitution``) and, in the plane, Coulomb's contact
     ends sticking or with its slip reversed (``CONTACT.slides``: no slip after in the
-    direction of the slip before; in space the slip may turn)."""
+    direction of the slip before; in space the slip may turn). In floating point
+    (`speed`, the answer's largest speed or impulse) friction's part along the slip
+    after is measured against that speed, so a slip of rounding's size aims nowhere."""
     zero = num(0)
     size = abs(p_t[0]) if len(p_t) == 1 else _root(sum((x * x for x in p_t), zero), exact)
     slack = num(law.cone()) * p_n - size
@@ -413,6 +416,9 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
         along = sum((x * a for x, a in zip(p_t, aim, strict=True)), zero)
         reach = abs(aim[0]) if len(aim) == 1 else _root(sum((a * a for a in aim), zero),
                                                          exact)
+        if speed is not None:  # floating point: a slip of rounding's size aims nowhere,
+            # so friction's part along it counts in proportion to the answer's speeds
+            return {f"{name}.against_slip": max(zero, along) / max(speed, reach)}
         return {f"{name}.against_slip": max(zero, along / reach) if reach > 0 else zero}
     if beta is not None:
         return {f"{name}.tangential_restitution": max((abs(a) for a in aim), default=zero)}

@@ -281,7 +281,8 @@ class SpaceCollision:
                 out.update(friction_residuals(
                     c.name, c.laws[1], num, num(P[0]), [num(P[1]), num(P[2])],
                     [num(v_before[1]), num(v_before[2])],
-                    [num(v_after[1]), num(v_after[2])], exact=False))
+                    [num(v_after[1]), num(v_after[2])], exact=False,
+                    speed=max(abs(num(x)) for x in (*self.u_before, *u_after, *P))))
         if c.tangential == "rough" and c.friction is None:
             beta = c.tangential_restitution
             out[f"{c.name}.rough"] = max(abs(num(v_after[i] + beta * v_before[i]))
@@ -623,7 +624,8 @@ class SpaceCollision:
                     c.name, c.laws[1], sp.Float, sp.Float(impulse[3 * i], 17),
                     [sp.Float(x, 17) for x in impulse[3 * i + 1:3 * i + 3]],
                     [sp.Float(x, 17) for x in v[3 * i + 1:3 * i + 3]],
-                    [sp.Float(x, 17) for x in after[3 * i + 1:3 * i + 3]], exact=False))
+                    [sp.Float(x, 17) for x in after[3 * i + 1:3 * i + 3]], exact=False,
+                    speed=sp.Float(max(scale, float(np.abs(impulse).max())), 17)))
         return self._numeric(acting, tuple(c.name for i, c in enumerate(acting)
                                            if pushing[i]),
                              P, u_after, courses, notes, (before, lost), checks)
