@@ -329,3 +329,27 @@ def test_a_log_normal_length_is_not_refused_for_its_open_end(tmp_path, capsys):
     text = _random_barbell('L = { lognormal = ["0", "1/10"] }').replace(
         "samples = 1000000", "samples = 1000")
     assert main(["derive", scene_file(tmp_path, text)]) == 0, capsys.readouterr().err
+
+
+# ---- a 3-D body as it is: its tensor, a sphere's surface ---------------------------------
+
+def test_an_inertia_tensor_symmetric_to_rounding_is_taken_and_averaged():
+    from rigidimpact.model.space import ASYMMETRY, Body3
+
+    body = Body3.rigid(1, [[1, 0.1, 0], [0.1 + 1e-17, 2, 0], [0, 0, 2.5]], name="b")
+    assert body.inertia[0, 1] == body.inertia[1, 0]
+    with pytest.raises(InputError, match="differ by up to"):
+        Body3.rigid(1, [[1, 0.1, 0], [0.1 + 1e3 * ASYMMETRY, 2, 0], [0, 0, 2.5]], name="b")
+
+
+def test_a_sphere_takes_one_moment_and_is_touched_on_its_surface(tmp_path, capsys):
+    from rigidimpact.model.space import Body3
+
+    with pytest.raises(InputError, match="one central moment"):
+        Body3.sphere(1, 1, inertia=sp.diag(1, 2, 3))
+    text = (ROOT / "derivations" / "spinning-ball-floor.toml").read_text()
+    far = text.replace('point = ["0", "0", "0"]', 'point = ["0", "0", "-3"]')
+    refused(capsys, ["evaluate", scene_file(tmp_path, far)], "contact.point")
+    askew = text.replace('point = ["0", "0", "0"]', 'point = ["0", "0", "0"]').replace(
+        'normal = ["0", "0", "1"]', 'normal = ["0", "3/5", "4/5"]')
+    refused(capsys, ["evaluate", scene_file(tmp_path, askew, "askew.toml")], "normal")

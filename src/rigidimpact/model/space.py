@@ -88,6 +88,9 @@ def _orthonormal(R: sp.Matrix) -> bool:
     return sp.simplify(gap) == sp.zeros(3) and sp.simplify(R.det() - 1) == 0
 
 
+ASYMMETRY = 1e-12  # an inertia tensor's I_ij - I_ji taken as rounding, of its largest entry
+
+
 @dataclass(frozen=True)
 class Body3:
     """A rigid body in space at the instant of impact (see the module's text).
@@ -113,9 +116,25 @@ class Body3:
         if self.mass.is_number and not self.mass > 0:
             raise InputError(f"{self.name}.mass", f"must be positive, got {self.mass}")
         inertia = self.inertia
-        if inertia.shape != (3, 3) or any(
-                sp.simplify(inertia[i, j] - inertia[j, i]) != 0
-                for i in range(3) for j in range(i)):
+        if inertia.shape != (3, 3):
+            raise InputError(f"{self.name}.inertia", "must be a symmetric 3 x 3 tensor")
+        gaps = [inertia[i, j] - inertia[j, i] for i in range(3) for j in range(i)]
+        if all(x.is_number for x in inertia):
+            # a tensor read from measured or computed floats: differences within
+            # ASYMMETRY of its largest entry are rounding, and the mean of each pair is
+            # taken; larger ones are refused
+            largest = max(abs(float(x)) for x in inertia) or 1.0
+            worst = max(abs(float(g)) for g in gaps)
+            if worst > ASYMMETRY * largest:
+                raise InputError(f"{self.name}.inertia", f"must be a symmetric 3 x 3 "
+                                 f"tensor (I_ij and I_ji differ by up to {worst:.3g}; "
+                                 f"differences within {ASYMMETRY:g} of the largest entry "
+                                 "are taken as rounding)")
+            if worst:
+                inertia = sp.ImmutableMatrix(3, 3, lambda i, j: (inertia[i, j]
+                                                                 + inertia[j, i]) / 2)
+                object.__setattr__(self, "inertia", inertia)
+        elif any(sp.simplify(g) != 0 for g in gaps):
             raise InputError(f"{self.name}.inertia", "must be a symmetric 3 x 3 tensor")
         if all(x.is_number for x in inertia):
             values = sorted(float(x) for x in np.linalg.eigvalsh(
@@ -138,6 +157,9 @@ class Body3:
         m, r = _expr(mass, f"{name}.mass"), _expr(radius, f"{name}.radius")
         if r.is_number and not r > 0:
             raise InputError(f"{name}.radius", f"must be positive, got {r}")
+        if inertia is not None and not isinstance(inertia, (int, float, sp.Expr)):
+            raise InputError(f"{name}.inertia", "a sphere's inertia is its one central "
+                             "moment (a number); a body with three moments is a rigid one")
         moment = sp.Rational(2, 5) * m * r**2 if inertia is None else \
             _expr(inertia, f"{name}.inertia")
         return cls(name, m, sp.ImmutableMatrix(sp.eye(3) * moment),

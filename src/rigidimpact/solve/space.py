@@ -133,6 +133,10 @@ class SpaceCollision:
                 or not 4 <= self.facets <= MAX_FACETS or self.facets % 2):
             raise InputError("impact.facets", f"an even whole number from 4 to {MAX_FACETS}, "
                              f"not {self.facets!r}")
+        by_name = {b.name: b for b in self.bodies}
+        for c in self.contacts:
+            for name in c.bodies or ():
+                _touches_its_surface(by_name[name], c)
         free = [b for b in self.bodies if b.support != "fixed"]
         if not free:
             raise InputError("bodies", "at least one body must be free to move")
@@ -674,6 +678,27 @@ class SpaceCollision:
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
                               self.facets, self.rule, self.order)
+
+
+def _touches_its_surface(body: Body3, contact: Contact) -> None:
+    """A sphere is touched on its surface, along a normal through its centre (as the
+    plane asks of a disc): refused in one line otherwise, where the numbers say so."""
+    if body.radius is None or body.support == "fixed":
+        return
+    arm = sp.Matrix(contact.point) - sp.Matrix(body.position)
+    normal = sp.Matrix(contact.normal)
+    reach = sp.sqrt(arm.dot(arm))
+    across = arm.cross(normal)
+    size = sp.sqrt(normal.dot(normal)) * body.radius
+    if not all(sp.sympify(x).is_number for x in (*arm, *normal, body.radius)):
+        return
+    if abs(sp.N(reach - body.radius, 30)) > 1e-9 * sp.N(body.radius, 30):
+        raise InputError(f"{contact.name}.point", f"is {sp.N(reach, 6)} from {body.name}'s "
+                         f"centre, not its radius {sp.N(body.radius, 6)}: a sphere is "
+                         "touched on its surface")
+    if sp.N(sp.sqrt(across.dot(across)), 30) > 1e-9 * sp.N(size, 30):
+        raise InputError(f"{contact.name}.normal", f"misses {body.name}'s centre: a "
+                         "sphere's contact normal runs through its centre")
 
 
 def _tidy(x: sp.Expr) -> sp.Expr:
