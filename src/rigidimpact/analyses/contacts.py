@@ -218,7 +218,7 @@ def rough_cluster(rows: int, columns: int, friction: Any = ROUGH_CLUSTER_FRICTIO
 def _states_seconds(make: Callable[[], Collision]) -> float:
     """The rough simultaneous rule by trying every combination of contact states (its
     method for a few contacts), timed; InputError past its budget of tried
-    combinations (MAX_STATES_TRIED)."""
+    combinations (MAX_STATES_WORK)."""
     saved = simultaneous_rule.MAX_FRICTION_STATES
     simultaneous_rule.MAX_FRICTION_STATES = 10**300
     try:

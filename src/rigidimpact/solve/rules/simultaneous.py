@@ -87,9 +87,11 @@ MAX_LEMKE = 64
 # one linear complementarity problem (Stewart and Trinkle; Anitescu and Potra) by
 # Lemke's method, exact, which finds one answer
 MAX_FRICTION_STATES = 729
-# combinations of states tried at most, whatever MAX_FRICTION_STATES says (a budget of
-# work, so that a lifted count still ends alike on every machine)
-MAX_STATES_TRIED = 4096
+# the combinations of states are tried within this budget of work, whatever
+# MAX_FRICTION_STATES says: each costs (2 n)^3 for n contacts (its 2n unknowns), so every
+# combination of up to four contacts fits (256 x 512) and the bench's lifted count ends
+# alike on every machine
+MAX_STATES_WORK = 200_000
 # the frictional problem (four unknowns a contact): Lemke's method in floating point with
 # an exact confirmation up to MAX_FRICTION_LEMKE contacts (a dense tableau), and where
 # the confirmation fails, Lemke's exact tableau up to MAX_FRICTION_EXACT_LEMKE
@@ -218,11 +220,13 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     for tried, pattern in enumerate(itertools.product(*states)):
         if all(state == "off" for state in pattern):
             continue
-        if tried > MAX_STATES_TRIED:  # counted, never timed (the bench lifts the count)
+        if tried * (2 * n) ** 3 > MAX_STATES_WORK:  # counted, never timed (the bench
+            # lifts MAX_FRICTION_STATES and lets this end the enumeration)
             raise InputError("contacts", f"{n} frictional contacts have {count} "
                              "combinations of states (released, sticking, sliding either "
-                             f"way), more than the {MAX_STATES_TRIED} the rule may try: "
-                             "try the sequential rule with an order")
+                             f"way), more than the budget of work ({MAX_STATES_WORK} "
+                             "units) lets the rule try: try the sequential rule with an "
+                             "order")
         fits = _friction_pattern(problem, pattern, W, v_n, v_t, target, mu)
         if fits is None:
             continue
