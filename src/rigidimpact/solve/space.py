@@ -214,6 +214,14 @@ class SpaceCollision:
                                  "restitution")
             out = walton_impact(W, v, e, c.tangential_restitution, c.friction)
             P, course = out.impulse, out.course
+        elif self.tolerance is None and (line := _one_line(W, v)) is not None:
+            # the slip keeps to one line through the whole impact: Coulomb's law with one
+            # tangent, Routh's exact courses, as in the plane (the same one law)
+            W_line = sp.Matrix([[W[0, 0], line.dot(W[1:, 0])],
+                                [line.dot(W[1:, 0]), line.dot(W[1:, 1:] * line)]])
+            p_n, p_t, course = c.laws[1].alone(W_line, sp.Matrix([v[0], line.dot(v[1:, 0])]),
+                                               c.laws[0])
+            P = sp.Matrix([p_n, p_t * line[0], p_t * line[1]])
         else:
             out = cone_impact(W, v, e, law, c.friction, self.tolerance)
             P, course, turned = out.impulse, out.course, out.turned
@@ -678,6 +686,27 @@ class SpaceCollision:
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
                               self.facets, self.rule, self.order)
+
+
+def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
+    """The unit direction in the tangent plane to which the slip keeps throughout the
+    impact, where there is one at numbers: the slip before (or, with none, the way the
+    normal impulse drives it) along which the normal impulse's coupling lies and which
+    the tangential block W_tt keeps. None where the slip may turn (or with symbols)."""
+    if not all(sp.sympify(x).is_number for x in (*W, *v)):
+        return None
+    slip, coupling, block = sp.Matrix(v[1:, 0]), sp.Matrix(W[1:, 0]), sp.Matrix(W[1:, 1:])
+    if all(x == 0 for x in coupling):
+        return None  # the normal uncoupled (a sphere): the closed form's course
+    direction = slip if any(x != 0 for x in slip) else coupling
+
+    def across(a: sp.Matrix, b: sp.Matrix) -> sp.Expr:
+        return sp.nsimplify(a[0] * b[1] - a[1] * b[0]) if a.has(sp.Float) or \
+            b.has(sp.Float) else sp.simplify(a[0] * b[1] - a[1] * b[0])
+
+    if across(direction, coupling) != 0 or across(direction, block * direction) != 0:
+        return None
+    return (direction / sp.sqrt(direction.dot(direction))).applyfunc(sp.radsimp)
 
 
 def _touches_its_surface(body: Body3, contact: Contact) -> None:
