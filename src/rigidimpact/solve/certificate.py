@@ -47,6 +47,7 @@ Examples
 
 from __future__ import annotations
 
+import random
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -290,8 +291,6 @@ def _at_points(before, after, contacts, impulses, tangential, rule, locked, join
     case's) hold. Each key holds the worst over the
     points, relative to that point's scale (energy: to its kinetic energy); ``_points``
     says how many points were checked."""
-    import random
-
     symbols: set[sp.Symbol] = set()
     for b in before:
         symbols |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
