@@ -696,8 +696,9 @@ def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
     if not all(sp.sympify(x).is_number for x in (*W, *v)):
         return None
     slip, coupling, block = sp.Matrix(v[1:, 0]), sp.Matrix(W[1:, 0]), sp.Matrix(W[1:, 1:])
-    if all(x == 0 for x in coupling):
-        return None  # the normal uncoupled (a sphere): the closed form's course
+    size = max(abs(sp.N(x, 30)) for x in W)
+    if all(abs(sp.N(x, 30)) <= 1e-12 * size for x in coupling):
+        return None  # the normal uncoupled (a sphere; floats: to rounding): the closed form
     direction = slip if any(x != 0 for x in slip) else coupling
 
     def across(a: sp.Matrix, b: sp.Matrix) -> sp.Expr:
