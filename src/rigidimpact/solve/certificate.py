@@ -173,6 +173,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     # unloaded (and its slip turn freely) for part of the impact, and a compliant run's
     # friction follows its own springs: their laws hold step by step, not in the totals
     whole_impact = len(contacts) == 1 or rule == "simultaneous"
+    approaching = False  # whether some contact approached before: an impact to check
     speed = None if how == "exact" else _scale(bodies, later, impulses, num, zero)
 
     def velocity(body: Any, state: Any, point: Sequence[Any]) -> tuple[Any, Any]:
@@ -210,6 +211,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         (v_before, slip_before), (v_after, slip) = (
             _relative(velocity, bodies, states, first, second, c.point, n, t)
             for states in (bodies, later))
+        approaching = approaching or v_before < 0
         restitution, friction = c.laws
         out[f"{c.name}.pushes"] = max(zero, -p_n)
         out[f"{c.name}.opens"] = max(zero, -v_after)
@@ -264,6 +266,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     out["_scale"] = _scale(bodies, later, impulses, num, zero)
     out["_kinetic"] = kinetic[0]
     out["_exact"] = how == "exact"
+    out["_approaching"] = approaching
     return out
 
 
@@ -276,8 +279,11 @@ def _span(data: Sequence[Any]) -> int:
     """Twice the orders of magnitude the nonzero numbers of `data` span (at most 1000)."""
     exponents = []
     for x in data:
-        value = abs(sp.N(x, 15))
-        if value.is_number and value != 0 and value.is_finite:
+        try:
+            value = abs(float(x))
+        except (OverflowError, TypeError):  # past float64's range: SymPy's own number
+            value = abs(sp.N(x, 15))
+        if value and value != float("inf"):
             exponents.append(int(mpmath.floor(mpmath.log10(mpmath.mpf(value)))))
     return min(2 * (max(exponents) - min(exponents)), 1000) if exponents else 0
 
@@ -366,26 +372,7 @@ def _at_point(point, before, after, contacts, impulses, tangential, rule, locked
                       tuple(j.at(point) for j in joints),
                       {j.name: tuple(sp.sympify(x).xreplace(point)
                                      for x in joint_impulses[j.name]) for j in joints})
-    if not found or not any(_closing(before, c) for c in contacts):
-        return None
-    return found
-
-
-def _closing(before, contact) -> bool:
-    """Whether `contact` approaches before the impact (its touching points' normal
-    velocity, second less first, below zero)."""
-    bodies = {b.name: b for b in before}
-    first, second = contact.bodies if contact.bodies else tuple(bodies)[:2]
-
-    def velocity(body):
-        if body.support == "fixed":
-            return (0, 0)
-        r = [contact.point[k] - body.position[k] for k in range(2)]
-        return (body.velocity[0] - body.spin * r[1], body.velocity[1] + body.spin * r[0])
-
-    a, b = velocity(bodies[first]), velocity(bodies[second])
-    closing = sp.N((b[0] - a[0]) * contact.normal[0] + (b[1] - a[1]) * contact.normal[1], 30)
-    return bool(closing < 0)
+    return found if found and found["_approaching"] else None
 
 
 def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[Any],

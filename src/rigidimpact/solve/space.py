@@ -385,8 +385,10 @@ class SpaceCollision:
             return sp.Matrix([x for b in state["bodies"] if b.support != "fixed"
                               for x in b.speeds])
 
+        normals = [self.rows(c)[0, :] for c in self.contacts]
+
         def closing(k: int) -> sp.Expr:
-            return sp.N((self.rows(self.contacts[k]) * speeds())[0], 30)
+            return sp.N((normals[k] * speeds())[0], 30)
 
         def step(k: int, _now: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
             c = self.contacts[k]
@@ -701,11 +703,14 @@ def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
         return None  # the normal uncoupled (a sphere; floats: to rounding): the closed form
     direction = slip if any(x != 0 for x in slip) else coupling
 
-    def across(a: sp.Matrix, b: sp.Matrix) -> sp.Expr:
-        return sp.nsimplify(a[0] * b[1] - a[1] * b[0]) if a.has(sp.Float) or \
-            b.has(sp.Float) else sp.simplify(a[0] * b[1] - a[1] * b[0])
+    def along(a: sp.Matrix, b: sp.Matrix) -> bool:
+        """a and b on one line: exactly, or in floats to rounding's size."""
+        cross = a[0] * b[1] - a[1] * b[0]
+        if not (a.has(sp.Float) or b.has(sp.Float)):
+            return sp.simplify(cross) == 0
+        return bool(abs(sp.N(cross, 30)) <= 1e-12 * sp.N(a.norm() * b.norm(), 30))
 
-    if across(direction, coupling) != 0 or across(direction, block * direction) != 0:
+    if not (along(direction, coupling) and along(direction, block * direction)):
         return None
     return (direction / sp.sqrt(direction.dot(direction))).applyfunc(sp.radsimp)
 
