@@ -364,7 +364,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
                   f"asked for; the numbers above are the first order's, {shown}: see "
                   f"--json \"orders\" for each); contacts that acted there: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
-        elif result.extra:
+        elif "rule" in result.extra:
             print(f"rule = {result.extra['rule']}; contacts that acted: "
                   f"{', '.join(result.extra['acted']) or 'none'}")
         if result.extra.get("checks"):

@@ -195,6 +195,7 @@ class Derivation:
         """
 
         exact = self.checked(values, sources)
+        extra: dict[str, Any] = {}
         if self.solution is None:
             numbers = evaluate(self.results, exact, dps)
             return Evaluation(numbers, physics_warnings(numbers, dps, "the model"))
@@ -211,6 +212,8 @@ class Derivation:
                 solved = Impact(first, second, contact.at(at)).solve()
             numbers = evaluate(solved.results(), {}, dps)
             regime = solved.regime
+            if solved.checks:  # each law's residual at these numbers
+                extra["checks"] = {k: float(v) for k, v in solved.checks.items()}
         else:
             numbers = evaluate(self.results, exact, dps)
             regime = self.solution.regime_at(at)
@@ -223,7 +226,7 @@ class Derivation:
                          "kinematic law can create energy (the Kane-Levinson paradox); " \
                          "Poisson's or the energetic law would not"
             model += ")"
-        return Evaluation(numbers, physics_warnings(numbers, dps, model), regime)
+        return Evaluation(numbers, physics_warnings(numbers, dps, model), regime, extra)
 
 
 @dataclass(frozen=True)

@@ -122,13 +122,18 @@ class Impact:
         >>> rod = Body.rod(1, 2, sp.Rational(37, 100), sp.Rational(1, 2), name="r")
         >>> Impact(Body.particle(1, (1, 0), "p"), rod, Contact()).numeric
         True
+
+        An angle such as 201 degrees is exact in SymPy as nested radicals (a square root
+        of an expression with square roots); exact algebra over them swells the same way,
+        so they count as transcendental here.
         """
         data = [self.contact.restitution, *self.contact.normal]
         for b in (self.first, self.second):
             data += [b.mass, b.inertia, *b.position, *b.velocity, b.spin]
             data += [] if b.pivot is None else list(b.pivot)
         exact = sp.Tuple(*data)
-        return not exact.free_symbols and bool(exact.atoms(sp.sin, sp.cos, sp.tan))
+        return not exact.free_symbols and (bool(exact.atoms(sp.sin, sp.cos, sp.tan))
+                                           or _nested_radicals(exact))
 
     @cached_property
     def frame(self) -> sp.ImmutableMatrix:
@@ -512,6 +517,20 @@ def _piecewise(solutions: list[Solution], conditions: tuple[tuple, ...]) -> Solu
                   pw(lambda s: s.energy_loss_fraction)),
         regime=None, path=(),
         regimes=tuple((s.regime, c, s) for s, c in zip(solutions, conditions, strict=True)))
+
+
+def _nested_radicals(exact: sp.Basic) -> bool:
+    """True when a root is taken of something that is not a rational number.
+
+    Examples
+    --------
+    >>> _nested_radicals(sp.Tuple(sp.sqrt(2), sp.Rational(1, 3)))
+    False
+    >>> _nested_radicals(sp.Tuple(sp.cos(67 * sp.pi / 60)))
+    True
+    """
+    return any(not p.exp.is_Integer and not p.base.is_Rational
+               for p in exact.atoms(sp.Pow))
 
 
 def _in_digits(law: Any) -> Any:
