@@ -8,8 +8,7 @@ costs in time). ``derive`` prints them and ``derive --json`` adds them under
 
 from __future__ import annotations
 
-import multiprocessing
-import threading
+import random
 import time
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -36,7 +35,6 @@ CHUNK = 1_000_000  # draws a task
 # a scene with no closed form (several contacts, joints, the compliant rule) is solved
 # once a draw: 1000 draws by default, at most a million, 64 a task
 POINT_SAMPLES, MAX_POINT_SAMPLES, POINT_CHUNK = 1000, 10**6, 64
-EXACT_SECONDS = 30.0  # the closed form's budget for each output (SymPy may run for hours)
 
 
 def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
@@ -167,20 +165,80 @@ def _exact(g: sp.Expr, x: sp.Symbol, law: Distribution, values: Mapping[sp.Symbo
     return found
 
 
-def _within(seconds: float, function: Any, *args: Any) -> tuple[Any, bool]:
-    """``function(*args)`` in a child process, and whether it ran past `seconds` (the
-    child is then stopped and the answer is None): SymPy's solving and integration
-    cannot be interrupted inside this process, and on some outputs they run for many
-    minutes. The child is forked where this process has one thread (it starts at once
-    with SymPy loaded), else spawned."""
-    method = "fork" if threading.active_count() == 1 and \
-        "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    with multiprocessing.get_context(method).Pool(1) as pool:
-        job = pool.apply_async(function, args)
+# the closed form is sought where the output is a ratio of polynomials of degree at most
+# MAX_DEGREE in one of these forms of its random input: SymPy's inverse is then a
+# quadratic's root and its integrals are of a known kind, so whether a density is given
+# depends on the output's form alone (never on a clock)
+MAX_DEGREE = 2
+
+
+def closed_form_refusal(g: sp.Expr, x: sp.Symbol) -> str | None:
+    """Why the closed form of g's distribution over x is not sought, or None when it is:
+    g must be a ratio of polynomials of degree at most 2 in x, cos x, sin x or tan x
+    (one of them, the others absent).
+
+    Examples
+    --------
+    >>> x, e = sp.symbols("x e", positive=True)
+    >>> closed_form_refusal((e - sp.cos(x)**2) / (1 + sp.cos(x)**2), x) is None
+    True
+    >>> closed_form_refusal(sp.sqrt(1 + x**2), x)
+    'not a ratio of polynomials of degree at most 2 in x, cos(x), sin(x) or tan(x)'
+    """
+    k = sp.Dummy("k")
+    for kernel in (x, sp.cos(x), sp.sin(x), sp.tan(x)):
+        h = sp.together(g.xreplace({kernel: k}) if kernel != x else g.subs(x, k))
+        if h.has(x):
+            continue
+        numerator, denominator = sp.fraction(h)
         try:
-            return job.get(seconds), False
-        except multiprocessing.TimeoutError:
-            return None, True
+            degrees = [sp.Poly(part, k).degree() for part in (numerator, denominator)]
+        except sp.PolynomialError:
+            continue
+        if max(degrees) <= MAX_DEGREE:
+            return None
+    return (f"not a ratio of polynomials of degree at most {MAX_DEGREE} in {x}, cos({x}), "
+            f"sin({x}) or tan({x})")
+
+
+def _points(symbols: Sequence[sp.Symbol], roles: Sequence[Any], count: int = 3
+            ) -> list[dict[sp.Symbol, sp.Rational]]:
+    """`count` seeded rational points of `symbols` inside the ranges their roles allow
+    (a restitution coefficient in (0, 1)), or (0, 2) for a positive symbol and (-2, 2)
+    otherwise."""
+    rng = random.Random(47)
+    spans = {}
+    for s in symbols:
+        low, high = (0, 2) if s.is_positive or s.is_nonnegative else (-2, 2)
+        for role in roles:
+            if role.expr == s:
+                low = role.low if role.low is not None else low
+                high = role.high if role.high is not None else low + 2
+        spans[s] = (sp.Rational(low), sp.Rational(high))
+    return [{s: a + (b - a) * sp.Rational(rng.randint(1, 99), 100)
+             for s, (a, b) in spans.items()} for _ in range(count)]
+
+
+def _exact_for_every(g: sp.Expr, x: sp.Symbol, law: Distribution,
+                     values: Mapping[sp.Symbol, Any], free: Sequence[sp.Symbol],
+                     roles: Sequence[Any]) -> dict[str, Any] | None:
+    """:func:`_exact` where some symbols of g have no number: the signs the closed form
+    is judged by are judged at three seeded points of their allowed ranges, and the
+    answer is kept only where the same formulas come out at each (``symbolic_in``)."""
+    found = []
+    for point in _points(free, roles):
+        exact = _exact(g, x, law, {**values, **point})
+        if exact is None:
+            return None
+        found.append(exact)
+    keys = ("density", "support", "mean")
+    if any(f[k] != found[0][k] for f in found[1:] for k in keys):
+        return None
+    first = {k: found[0][k] for k in ("variable", *keys)}
+    chances = [f.get("below_zero") for f in found]
+    if chances[0] is not None and all(c == chances[0] for c in chances):
+        first["below_zero"] = chances[0]  # 0 inside the support at every point
+    return {**first, "symbolic_in": [str(s) for s in free]}
 
 
 def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | None = None,
@@ -210,20 +268,27 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
         if not drivers:
             continue
         missing = sorted(g.free_symbols - set(inputs) - set(values), key=str)
-        if missing:
-            raise InputError("values", f"{key} needs a number for {missing[0]} under "
-                             "[values] (its Monte Carlo, and the signs its closed form "
-                             "is judged by)")
         entry: dict[str, Any] = {"random": [str(s) for s in drivers]}
         if len(drivers) == 1 and inputs[drivers[0]].kind != "discrete":
-            begin = time.perf_counter()
-            exact, late = _within(EXACT_SECONDS, _exact, g, drivers[0], inputs[drivers[0]],
-                                  values)
-            entry["exact_seconds"] = time.perf_counter() - begin
-            if late:
-                entry["exact_late"] = EXACT_SECONDS
-            if exact is not None:
-                entry.update(exact)
+            refusal = closed_form_refusal(g, drivers[0])
+            if refusal is not None:
+                entry["no_closed_form"] = refusal
+            else:
+                begin = time.perf_counter()
+                exact = (_exact_for_every(g, drivers[0], inputs[drivers[0]], values,
+                                          missing, scene.roles) if missing
+                         else _exact(g, drivers[0], inputs[drivers[0]], values))
+                entry["exact_seconds"] = time.perf_counter() - begin
+                if exact is not None:
+                    entry.update(exact)
+        if missing:  # the closed form alone: the draws need every other number
+            if "density" not in entry:
+                raise InputError("values", f"{key} needs a number for {missing[0]} under "
+                                 "[values] (its Monte Carlo, and the signs its closed "
+                                 "form is judged by)")
+            entry["monte_carlo_missing"] = str(missing[0])
+            found[key] = entry
+            continue
         begin = time.perf_counter()
         drawn = {s: inputs[s] for s in drivers}
         if workers is None and scheduler is None:
@@ -248,12 +313,14 @@ def distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
                 row[name] = str(entry[name])
         if "support" in entry:
             row["support"] = [str(x) for x in entry["support"]]
-        row["monte_carlo"] = entry["monte_carlo"]
-        row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
+        for name in ("symbolic_in", "no_closed_form", "monte_carlo_missing"):
+            if name in entry:
+                row[name] = entry[name]
+        if "monte_carlo" in entry:
+            row["monte_carlo"] = entry["monte_carlo"]
+            row["monte_carlo_seconds"] = round(entry["monte_carlo_seconds"], 4)
         if "exact_seconds" in entry:
             row["exact_seconds"] = round(entry["exact_seconds"], 4)
-        if "exact_late" in entry:
-            row["exact_late"] = entry["exact_late"]
         out[key] = row
     return out
 
@@ -265,33 +332,45 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
     laws = "; ".join(f"{s} {law.kind} on {list(law.parameters)}" if law.kind == "uniform"
                      else f"{s} {law.kind} {list(law.parameters)}"
                      for s, law in table.inputs.items())
-    samples = next((int(e["monte_carlo"]["samples"]) for e in found.values()),
-                   table.samples)
+    samples = next((int(e["monte_carlo"]["samples"]) for e in found.values()
+                    if "monte_carlo" in e), table.samples)
     lines = [f"Distributions (random: {laws}; Monte Carlo at [values], {samples} "
              f"samples, seed {table.seed}):"]
     for key, entry in found.items():
         lines.append(f"  {key}:")
-        mc = entry["monte_carlo"]
         if "density" in entry:
             y = entry["variable"]
             low, high = entry["support"]
-            at = float(sp.N(entry["mean"].subs(dict(values))))
             lines += [f"      density at {y}: {entry['density']}",
-                      f"      for {low} < {y} < {high}",
-                      f"      mean: {entry['mean']}  (= {at:.10g} at [values]; "
-                      f"{entry['exact_seconds']:.2f} s)"]
-            if "below_zero" in entry:
+                      f"      for {low} < {y} < {high}"]
+            if "symbolic_in" in entry:
+                lines += [f"      mean: {entry['mean']}  ({entry['exact_seconds']:.2f} s)",
+                          f"      (for {', '.join(entry['symbolic_in'])} anywhere in "
+                          "the range allowed: the same formulas at three seeded points "
+                          "of it)"]
+            else:
+                at = float(sp.N(entry["mean"].subs(dict(values))))
+                lines.append(f"      mean: {entry['mean']}  (= {at:.10g} at [values]; "
+                             f"{entry['exact_seconds']:.2f} s)")
+            if "below_zero" in entry and "symbolic_in" in entry:
+                lines.append(f"      P({key} < 0) = {entry['below_zero']}")
+            elif "below_zero" in entry:
                 chance = float(sp.N(entry["below_zero"].subs(dict(values))))
                 lines.append(f"      P({key} < 0) = {entry['below_zero']}  "
                              f"(= {chance:.10g})")
-        elif "exact_late" in entry:
-            lines.append(f"      no closed form found within {entry['exact_late']:g} s "
-                         "(SymPy's inverse and integrals did not finish)")
+        elif "no_closed_form" in entry:
+            lines.append(f"      no closed form sought: the output is "
+                         f"{entry['no_closed_form']}")
         elif "exact_seconds" in entry:
             lines.append("      no closed form found (not monotone in pieces in closed "
                          "form)")
         elif "solved" in entry:
             lines.append(f"      no closed form: {entry['solved']}")
+        if "monte_carlo" not in entry:
+            lines.append(f"      no Monte Carlo: the draws need a number for "
+                         f"{entry['monte_carlo_missing']} under [values]")
+            continue
+        mc = entry["monte_carlo"]
         lines.append(f"      Monte Carlo: mean {mc['mean']:.10g} +- "
                      f"{mc['standard_error']:.2g} (standard error), P(< 0) "
                      f"{mc['below_zero']:.6g}; {entry['monte_carlo_seconds']:.2f} s")
