@@ -89,7 +89,7 @@ def test_energetic_coulomb_with_transcendental_data_is_prompt(tmp_path, capsys):
     assert answers["energetic"]["regime"] == "slip"
     for law in ("poisson", "newton"):
         for key, value in answers["energetic"].items():
-            if key != "regime":
+            if key not in ("regime", "checks"):  # each law's own residuals differ
                 assert value == pytest.approx(answers[law][key], rel=1e-12, abs=1e-15)
 
 
