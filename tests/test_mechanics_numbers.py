@@ -195,3 +195,31 @@ def test_a_pendulum_that_locks_against_the_floor_in_floats():
         friction=sp.Rational(3, 4), bodies=("bob", "floor"), point=at),)).simultaneous()
     assert built.courses == ("contact: slip-lock",) and built.after[0].spin == 0
     assert abs(built.impulses["contact"] - expected) < 1e-40
+
+
+def test_two_sticking_points_where_only_the_tip_need_push():
+    # elbow and tip both stick (e = 0) at q = (0.3, -0.4), u = (1, 1): the tip sticking
+    # alone stops both speeds (u+ = 0: two stick conditions on two speeds) with the
+    # elbow released, and its impulse is the one that does so, found here from the
+    # hand-derived M and rows: M (0 - u) = jn^T P_n + jt^T P_t
+    both = ri.mechanics.impact(KANE, [
+        ri.mechanics.contact(P1, -N.x, restitution=0, tangential="stick", name="elbow"),
+        ri.mechanics.contact(P2, -N.x, restitution=0, tangential="stick", name="tip")],
+        frame=N)
+    values = {**V, q1: sp.Rational(3, 10), q2: -sp.Rational(2, 5), u1: 1, u2: 1, e: 0}
+    solution = both.at(values).solve()
+    assert all(abs(x) < 1e-40 for x in solution.speeds_after)
+    M, jn, jt = _by_hand(mp.mpf(3) / 10, -mp.mpf(2) / 5)
+    rows = mp.matrix([[jn[0, 0], jt[0, 0]], [jn[0, 1], jt[0, 1]]])
+    p = mp.lu_solve(rows, -(M * mp.matrix([1, 1])))
+    assert abs(mp.mpf(str(solution.impulses["tip"])) - p[0]) < mp.mpf(10) ** -40
+    assert p[0] > 0 and solution.impulses["elbow"] == 0
+
+
+def test_a_friction_course_with_mu_left_a_symbol_is_refused_in_one_line():
+    # at mu = 0.05 the tip's slip reverses, at larger mu it stops and sticks: a course
+    # picked with mu left a symbol would hold for some mu only
+    with pytest.raises(ri.InputError, match="depends on mu: give it a number"):
+        _tip(tangential="coulomb", friction=mu).at(V).solve()
+    assert _tip(tangential="coulomb", friction=mu).at(
+        {**V, mu: sp.Rational(1, 20)}).solve().regime == "slip-reversal"

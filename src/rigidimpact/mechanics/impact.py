@@ -541,6 +541,15 @@ class SystemImpact:
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
                              "depends on the numbers: give numbers for q, the speeds and "
                              "the constants first (SystemImpact.at and the speeds' values)")
+        coefficients = sp.Tuple(*(x for x in (c.laws.restitution, c.laws.friction,
+                                              c.laws.tangential_restitution)
+                                   if x is not None))
+        if coefficients.free_symbols:  # the course (slip, stick, reversal) turns on them
+            name = sorted(map(str, coefficients.free_symbols))[0]
+            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
+                             f"depends on {name}: give it a number in SystemImpact.at (a "
+                             "course that holds for some values only is not printed as "
+                             "if it held for all)")
         normal, along, course = tangential.alone(W, v, restitution)
         impulse = sp.Matrix([normal, along])
         after = u + self._M_inv_JT * impulse
