@@ -230,3 +230,28 @@ def test_pooltools_mathavan_model_tends_to_the_same_answer(angle, top, side):
             .max() for steps in (1000, 100000)]
     assert gaps[1] < 2e-4
     assert gaps[1] < gaps[0] / 20
+
+
+def test_a_ball_lifted_off_the_table_by_the_cushion_is_followed():
+    # a stun shot at 30 degrees into a cushion of friction 0.67 or more: the cushion's
+    # friction lifts the ball (the table lets go at once), and when the cushion's
+    # contact sticks the ball comes down onto the table again within the impact; its gap
+    # is still zero, so the table touches again and rests. Once refused ("please
+    # report"). The answer is checked by the laws it must obey: the certificate, the
+    # ball leaving the table level (its vertical speed zero to the integration's
+    # tolerance), the table never pulling, and the rebound continuous in the friction
+    # across the friction where the table begins to let go
+    from rigidimpact.analyses.billiards import cushion
+
+    below = cushion(2.0, 30, topspin=0, mu_cushion=0.66)
+    for mu in (0.67, 1.0):
+        shot = cushion(2.0, 30, topspin=0, mu_cushion=mu)
+        assert shot["courses"][1].startswith("table: lets go, then slides")
+        solution = shot["solution"]
+        assert abs(shot["ball.vz"]) < 1e-9
+        assert solution.impulses["table"] >= 0
+        assert max(abs(float(v)) for v in solution.checks.values()) < 1e-9
+        assert solution.assessed()[1] == []
+    near = cushion(2.0, 30, topspin=0, mu_cushion=0.67)
+    assert abs(near["rebound_degrees"] - below["rebound_degrees"]) < 1e-2
+    assert abs(near["rebound_speed"] - below["rebound_speed"]) < 1e-3
