@@ -80,6 +80,10 @@ class _Work:
 # the simultaneous rule: Lemke's exact dense tableau up to this many contacts; past it
 # (or past MAX_ENUMERATED with irrational numbers) floating point with an exact check
 MAX_LEMKE = 64
+# with roots in W (sqrt(3)), more contacts than this are solved as at scale: the acting
+# set found in floating point and confirmed exactly in the numbers' field (a fan of 12
+# contacts took more than ten minutes of symbolic determinants when enumerated)
+MAX_ALGEBRAIC_ENUMERATED = 4
 
 
 # the simultaneous rule with friction: every combination of contact states is tried
@@ -616,7 +620,9 @@ def _lcp(problem: ImpactProblem, v: sp.Matrix,
     with its residual) and how the problem was solved (at scale)."""
     rational = problem._rational_W and all(isinstance(x, sp.Rational)
                                         for x in list(v) + list(target))
-    if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED):
+    if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED) or (
+            not rational and len(v) > MAX_ALGEBRAIC_ENUMERATED
+            and _algebraic(problem._W, v, target)):
         return _lcp_at_scale(problem, v, target, rational)
     if rational:
         W = problem._W.to_DM()
@@ -669,6 +675,8 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
                 [[(j, field(x)) for j, x in row] for row in problem._J_rows],
                 [field(x) for x in problem._inverse_inertia],
                 [field(x) for x in v - target], acting)
+        elif not rational and _algebraic(problem._W, v, target):  # sqrt(3) in W
+            exact = _confirm_in_field(problem._W, v, target, acting)
         elif rational:  # W rational, J not (sqrt(3) in a hexagonal cluster)
             rows: dict[int, dict[int, Fraction]] = {i: {} for i in range(n)}
             for i, j, x in problem._W_entries:
@@ -678,6 +686,9 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
         else:
             exact = None
         if exact is not None:
+            if isinstance(exact, sp.Matrix):  # already SymPy's (a field with roots)
+                return exact, (), (f"{n} contacts: the acting set found in floating "
+                                   f"point ({method}) and confirmed in exact arithmetic")
             return sp.Matrix([sp.sympify(QQ.to_sympy(x) if not isinstance(x, Fraction)
                                          else sp.Rational(x.numerator, x.denominator))
                               for x in exact]), (), (
@@ -691,6 +702,51 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
             f"residual {error:.1e} of the largest closing speed"
             + ("" if error < 1e-9 else " (LARGE: do not trust these numbers)"))
     return sp.Matrix([sp.Float(float(x), 17) for x in z]), (note,), note
+
+
+def _algebraic(W: sp.Matrix, v: sp.Matrix, target: sp.Matrix) -> bool:
+    """Whether W and the speeds are numbers built from roots of rationals (sqrt(3) in a
+    fan of contacts at multiples of 30 degrees): exact in a field of numbers."""
+    data = sp.Tuple(*W, *v, *target)
+    return not data.free_symbols and not data.atoms(sp.Float, sp.sin, sp.cos, sp.tan)
+
+
+def _confirm_in_field(W: sp.Matrix, v: sp.Matrix, target: sp.Matrix,
+                      acting: Sequence[int]) -> sp.Matrix | None:
+    """The impulses of the acting set `acting` solved exactly in the numbers' own field
+    (the rationals with sqrt(3) adjoined, say), and kept only if they are the answer:
+    each acting impulse positive and each other contact's speed at least its target.
+    Signs of numbers in the field are decided at 50 digits after an exact zero test.
+    None where the set is not confirmed."""
+    n = len(v)
+    if not acting:
+        return sp.zeros(n, 1) if all(sp.N(v[i] - target[i], 50) >= 0 for i in range(n)) \
+            else None
+    A = list(acting)
+    block = W.extract(A, A)
+    rhs = sp.Matrix([target[i] - v[i] for i in A])
+    M, b = block.to_DM(extension=True), rhs.to_DM(extension=True)
+    M, b = M.unify(b)
+    try:
+        solved = M.to_field().lu_solve(b.to_field()).to_Matrix()
+    except (ZeroDivisionError, ValueError, sp.polys.matrices.exceptions.DMError):
+        return None  # a singular block
+    P = sp.zeros(n, 1)
+    for k, i in enumerate(A):
+        P[i] = sp.nsimplify(solved[k]) if solved[k].has(sp.Float) else solved[k]
+    after = (W * P + v - target).to_DM(extension=True).to_Matrix()
+
+    def positive(x: sp.Expr, strict: bool) -> bool:
+        x = sp.expand(x)
+        if x == 0:
+            return not strict
+        return bool(sp.N(x, 50) > 0)
+
+    if not all(positive(P[i], True) for i in A):
+        return None
+    if not all(positive(after[i], False) for i in range(n) if i not in A):
+        return None
+    return P.applyfunc(sp.radsimp)
 
 
 def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
