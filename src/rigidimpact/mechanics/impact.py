@@ -44,6 +44,7 @@ l*u(t)*A.x
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -71,6 +72,11 @@ from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.solution import Solution
 
 FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
+# a closed form (symbols left) is sought where its work is at most this: the symbols
+# times the product of the linear system's rows' terms (a bound on the fraction-free
+# solve's terms). A chain of four point masses on links (3.9e5) solves in 8 s, the compass
+# gait (6.5e6) in seconds; a chain of five (1.4e7) ran past 200 s
+MAX_SYMBOLIC_TERMS = 10**7
 # a residual of the checks beyond this (relative to the largest speed or impulse) is a
 # wrong answer: the exact paths give zero, the floating ones about 1e-45
 CHECK_TOLERANCE = 1e-30
@@ -454,6 +460,16 @@ class SystemImpact:
             return self._floating(A, b, n, M, u)
         # numbers alone: the rationals, with the one square root _exact_enough allows
         # adjoined where the data hold it (sqrt(3) of a 60 degree angle)
+        if gens:  # the exact solve's terms: at most the product of the rows' terms
+            bound = len(gens) * math.prod(max(1, sum(len(sp.Add.make_args(x))
+                                                     for x in A.row(i) if x != 0))
+                                          for i in range(A.rows))
+            if bound > MAX_SYMBOLIC_TERMS:
+                raise InputError("values", f"the closed form of this impact costs about "
+                                 f"{bound:.2g} units of work, past the budget of "
+                                 f"{MAX_SYMBOLIC_TERMS:.0e} (it grows with every speed "
+                                 "and symbol): give numbers with SystemImpact.at (q, the "
+                                 "speeds and the constants), or fewer symbols")
         ring = sp.QQ[tuple(gens)] if gens else construct_domain(
             [*A, *b], extension=True)[0]
         dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
@@ -464,11 +480,14 @@ class SystemImpact:
             x = [field.convert_from(numerators[i, 0].element, ring)
                  / field.convert_from(denominator, ring) for i in range(n + 2 * k)]
             solved = sp.Matrix([field.to_sympy(v) for v in x])
-            dM = DomainMatrix.from_Matrix(M).convert_to(field)
+            # twice the energy lost, u-.M u- - u+.M u+ = -(u+ - u-).M (u+ + u-), is the
+            # impulses' work -P.J (u- + u+) (M (u+ - u-) = J^T P): k rows of J, not M's
+            # n x n products, in the field
+            dJ = DomainMatrix.from_Matrix(J).convert_to(field)
             du = DomainMatrix.from_Matrix(u).convert_to(field)
             dx = DomainMatrix([[v] for v in x[:n]], (n, 1), field)
-            twice = field.to_sympy((du.transpose() * dM * du
-                                    - dx.transpose() * dM * dx)[0, 0].element)
+            dP = DomainMatrix([[v] for v in x[n:]], (2 * k, 1), field)
+            twice = field.to_sympy(-(dP.transpose() * (dJ * (du + dx)))[0, 0].element)
         else:  # more conditions than freedoms: with numbers, consistent or not at all
             found = None if gens else least_norm(A, b)
             if found is None:
