@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import importlib.util
 import math
-from fractions import Fraction
 from dataclasses import replace
+from fractions import Fraction
 from pathlib import Path
 
 import pytest

@@ -226,11 +226,11 @@ def test_a_friction_course_with_mu_left_a_symbol_is_refused_in_one_line():
 
 
 def _chain(links: int):
-    """A chain of `links` point masses m on massless links l hanging from O, its tip
+    """A chain of `links` point masses m on massless links of length l hanging from O, its tip
     striking a wall (normal -x) with Newton's e, every quantity a symbol."""
     q = me.dynamicsymbols(f"c1:{links + 1}")
     u = me.dynamicsymbols(f"w1:{links + 1}")
-    m, l = sp.symbols("m l", positive=True)
+    m, length = sp.symbols("m l", positive=True)
     frame = me.ReferenceFrame("F")
     top = me.Point("T")
     top.set_vel(frame, 0)
@@ -238,7 +238,7 @@ def _chain(links: int):
     for i in range(links):
         link = frame.orientnew(f"L{i}", "Axis", [q[i], frame.z])
         link.set_ang_vel(frame, u[i] * frame.z)
-        point = tip.locatenew(f"Q{i}", -l * link.y)
+        point = tip.locatenew(f"Q{i}", -length * link.y)
         point.v2pt_theory(tip, frame, link)
         particles.append(me.Particle(f"b{i}", point, m))
         tip = point
@@ -246,7 +246,7 @@ def _chain(links: int):
     kane.kanes_equations(particles, [(p.point, -m * g * frame.y) for p in particles])
     system = ri.mechanics.impact(kane, [ri.mechanics.contact(tip, -frame.x, restitution=e,
                                                              name="tip")], frame=frame)
-    return system, q, u, m, l
+    return system, q, u, m, length
 
 
 def test_a_closed_form_past_its_term_budget_is_refused_and_below_it_agrees():
@@ -258,10 +258,10 @@ def test_a_closed_form_past_its_term_budget_is_refused_and_below_it_agrees():
     five = _chain(5)[0]
     with pytest.raises(ri.InputError, match="past the budget of 1e\\+07"):
         five.solve()
-    three, q, u, m, l = _chain(3)
+    three, q, u, m, length = _chain(3)
     closed = three.solve()
     point = {q[0]: sp.Rational(1, 5), q[1]: -sp.Rational(1, 3), q[2]: sp.Rational(1, 2),
-             u[0]: 1, u[1]: -2, u[2]: 3, m: 2, l: sp.Rational(3, 2), e: sp.Rational(1, 2),
+             u[0]: 1, u[1]: -2, u[2]: 3, m: 2, length: sp.Rational(3, 2), e: sp.Rational(1, 2),
              g: 10}
     at = three.at(point).solve()
     for x, y in zip(closed.speeds_after, at.speeds_after, strict=True):
@@ -271,8 +271,8 @@ def test_a_closed_form_past_its_term_budget_is_refused_and_below_it_agrees():
     def kinetic(speeds):  # mass i moves at l sum_{j <= i} w_j (cos c_j, sin c_j)
         total, vx, vy = 0, 0, 0
         for angle, w in zip((point[a] for a in q), speeds, strict=True):
-            vx += point[l] * w * sp.cos(angle)
-            vy += point[l] * w * sp.sin(angle)
+            vx += point[length] * w * sp.cos(angle)
+            vy += point[length] * w * sp.sin(angle)
             total += point[m] * (vx ** 2 + vy ** 2) / 2
         return total
 

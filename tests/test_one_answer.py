@@ -386,7 +386,7 @@ def test_a_rod_at_201_degrees_and_a_ring_under_the_energetic_law(tmp_path, capsy
     # course analysis to minutes; such data are now taken as 50-digit numbers, like a
     # sine of 0.37. The answer is held against the independent oracle's Routh
     # integration (tests/oracle.py) on the two bodies' W, built here by hand.
-    from oracle import mp, routh_w, Touch
+    from oracle import Touch, mp, routh_w
     out = evaluated(capsys, ["evaluate", scene_file(tmp_path, ROD_AND_RING), "--json"])
     angle = mp.pi * 201 / 180
     m1, i1 = mp.mpf(27) / 7, mp.mpf(27) / 7 / 12
