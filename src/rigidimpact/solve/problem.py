@@ -337,11 +337,9 @@ class ImpactProblem:
         return self.W if self._J is self.J else self._product(self._J)
 
     def _product(self, J: sp.Matrix) -> sp.Matrix:
-        if not (J.free_symbols or self.M_inverse.free_symbols):
-            # numbers: in their own field (the rationals, or with sqrt(3) adjoined), where
-            # the product of sparse rows is exact and fast at hundreds of contacts
-            J, Minv = J.to_DM(extension=True), self.M_inverse.to_DM(extension=True)
-            J, Minv = J.unify(Minv)
+        exact = _in_field(J, self.M_inverse)
+        if exact:  # numbers: in their own field, where the product of sparse rows is
+            J, Minv = exact  # exact and fast at hundreds of contacts
             return (J * Minv * J.transpose()).to_Matrix()
         return (J * self.M_inverse * J.T).applyfunc(tidied)
 
