@@ -219,13 +219,37 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
             s, a = rate(angle)
             return float(a[0] * s[1] - a[1] * s[0])
 
-        angles = np.linspace(0, 2 * np.pi, 721)
-        best = max(angles, key=along)
-        lo, hi = best - np.pi / 360, best + np.pi / 360
-        if across(lo) * across(hi) < 0:
-            from scipy.optimize import brentq  # scipy on first use
+        angles = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+        values = np.array([along(a) for a in angles])
+        tiny = 1e-9 * float(np.linalg.norm(J[i] @ A[i]))
+        # the consistent directions: where the rate turns to lie along s and grows (the
+        # peaks of `along` above the integration's noise)
+        found = []
+        for j in np.flatnonzero((values > tiny) & (values >= np.roll(values, 1))
+                                & (values >= np.roll(values, -1))):
+            lo, hi = angles[j] - np.pi / 360, angles[j] + np.pi / 360
+            a_lo, a_hi = across(lo), across(hi)
+            if a_lo * a_hi < 0:
+                from scipy.optimize import brentq  # scipy on first use
 
-            best = brentq(across, lo, hi, xtol=1e-15)
+                found.append(brentq(across, lo, hi, xtol=1e-15))
+            elif min(abs(a_lo), abs(a_hi)) <= tiny:
+                found.append(float(angles[j]))
+        if not found:
+            # wedged: no way of slipping grows while the cone cannot hold it (the closed
+            # contacts hold the bodies while the striking one pushes)
+            raise InputError("contacts", f"at p = {p:.6g} contact {i} can neither stick "
+                             "nor start to slip in any direction: the rigid model does "
+                             "not determine the impulses here (a limit of the model, as "
+                             "in Painleve's paradox)")
+        distinct = [a for j, a in enumerate(found) if all(
+            abs(math.remainder(a - b, 2 * np.pi)) > 1e-6 for b in found[:j])]
+        if len(distinct) > 1:
+            raise InputError("contacts", f"at p = {p:.6g} contact {i} could start to "
+                             f"slip in {len(distinct)} directions: the rigid model does "
+                             "not determine which (a limit of the model, as in Painleve's "
+                             "paradox)")
+        best = distinct[0]
         return np.array([math.cos(best), math.sin(best)])
 
     y = np.concatenate([u0, np.zeros(3 * k + 1)])
