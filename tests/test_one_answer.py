@@ -481,3 +481,49 @@ def test_a_bar_wedged_at_rest_mid_impact_is_refused_in_the_plane_and_in_space():
     assert answer(spatial(case), space=True) == "refused: contacts"
     with pytest.raises(InputError, match="rigid model does not"):
         ri.parse_scene(planar(case)).outcomes()
+
+
+class _Plastic(ri.Rule):
+    """Every contact touching or approaching ends at rest, all together: a user's rule
+    written on the public protocol alone (the contacts to act are `acting`)."""
+
+    name = "plastic"
+
+    def __init__(self, only_approaching: bool = False):
+        self.only_approaching = only_approaching
+
+    def outcomes(self, problem):
+        problem.numbers_only(self.name)
+        problem.smooth_only(self.name)
+        v = problem.scaled_velocity_before
+        acting = [k for k in range(len(v)) if v[k] < 0 or (v[k] == 0 and
+                                                            not self.only_approaching)]
+        W = problem.scaled_W.extract(acting, acting)
+        P = W.LUsolve(-v.extract(acting, [0]))
+        impulses = sp.zeros(len(v), 1)
+        for i, k in enumerate(acting):
+            impulses[k] = P[i]
+        u = problem.kick(problem.u_before, impulses)
+        return (problem.outcome(self.name, (), u, problem.named(impulses),
+                                [problem.contacts[k].name for k in acting]),)
+
+
+def test_a_new_rule_is_one_class_on_the_public_protocol():
+    # three equal balls, the first at 1: perfectly plastic, all end at 1/3 (momentum
+    # shared by three), so the first contact carries 2/3 and the second 1/3 (by hand)
+    cradle = ri.chain(3)
+    (out,) = cradle.solve(_Plastic())
+    results = out.results()
+    assert [results[f"ball{k}.vx"] for k in range(3)] == [sp.Rational(1, 3)] * 3
+    assert (results["c0.normal_impulse"], results["c1.normal_impulse"]) == \
+        (sp.Rational(2, 3), sp.Rational(1, 3))
+    assert out.rule == "plastic" and "at rest, all together" in _Plastic().laws()
+    # its equations are printed like a built-in rule's and hold at its answer
+    equations = cradle.equations(out)
+    values = cradle.solved_values(out)
+    assert equations and all(sp.simplify(eq.as_sympy().lhs - eq.as_sympy().rhs)
+                             .subs(values) == 0 for eq in equations)
+    # the certificate guards a new rule as it guards the built-in ones: acting only at
+    # the contact that approaches leaves ball 1 running into ball 2 at 1/2
+    with pytest.raises(InputError, match="plastic rule's answer fails its own check"):
+        cradle.solve(_Plastic(only_approaching=True))

@@ -59,7 +59,7 @@ def test_the_rows_of_a_rational_normal_stay_rational():
 
     text = (SCENES / "c-three-rough-simultaneous.toml").read_text()
     collision = ri.parse_scene(text).collision({})
-    assert all(x.is_Rational for x in collision._W)
+    assert all(x.is_Rational for x in collision.scaled_W)
     assert [str(s) for s in collision.row_scale] == ["sqrt(58)/8", "sqrt(65)/8", "sqrt(61)/8"]
 
 

@@ -77,9 +77,9 @@ def test_the_path_at_scale_moves_bodies_as_enumeration_says(problem):
     # where W is singular many impulses fit and one motion after; the floating-point
     # path (the proximal point method there) must find enumeration's motion
     v, target = _targets(problem)
-    exact = problem._kick(problem.u_before, rule._complementarity(problem, v, target))
+    exact = problem.kick(problem.u_before, rule._complementarity(problem, v, target))
     impulses, notes, _ = rule._lcp_at_scale(problem, v, target, True)
-    scaled = problem._kick(problem.u_before, impulses)
+    scaled = problem.kick(problem.u_before, impulses)
     W = problem.W.to_DM()
     if W.rank() < W.shape[0]:
         assert "W is singular" in notes[0]

@@ -909,7 +909,7 @@ class _AsCollision(Collision):
         pass  # the system checked its contacts and the approach
 
     @property
-    def _dense(self) -> bool:
+    def dense(self) -> bool:
         return True
 
     @cached_property
@@ -938,11 +938,11 @@ class _AsCollision(Collision):
         return sp.SparseMatrix(self.system.J[1::2, :])
 
     @cached_property
-    def _J(self) -> sp.Matrix:
+    def scaled_J(self) -> sp.Matrix:
         return self.J
 
     @cached_property
-    def _J_t(self) -> sp.Matrix:
+    def scaled_J_t(self) -> sp.Matrix:
         return self.J_t
 
     @cached_property
@@ -955,7 +955,7 @@ class _AsCollision(Collision):
     def _pivot_reactions(self, outcome: Solution) -> dict:
         return {}
 
-    def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                  **more: Any) -> Solution:
         system = self.system
@@ -971,7 +971,7 @@ class _AsCollision(Collision):
         # the contact's own printed laws hold where the rule imposed them as they are
         # (Newton's law at each acting contact, smooth or sticking); otherwise the
         # rule's impulses are what is printed
-        own = rule == "simultaneous" and not self._poisson() and all(
+        own = rule == "simultaneous" and not self.acts_by_impulse() and all(
             courses[c.name] in ("acts", "released", "sticks")
             for c in self.contacts)
         for c in self.contacts:  # a contact that stuck prints its no-slip law

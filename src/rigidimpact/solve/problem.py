@@ -3,7 +3,7 @@ inverse mass M^-1 (diagonal for free shapes, projected where joints or a mechani
 system couple the speeds), the contact rows J (normal) and J_t (tangent), and
 W = J M^-1 J^T.
 
-It knows how the bodies move under impulses (:meth:`ImpactProblem._kick`), how fast
+It knows how the bodies move under impulses (:meth:`ImpactProblem.kick`), how fast
 each contact closes, what each body is after, and how the printed equations read;
 it does not know how contacts act together: that is a rule's
 (:mod:`rigidimpact.solve.rules`), and every rule works on this one type, whatever
@@ -82,7 +82,7 @@ class ImpactProblem:
         if self.joints:
             self._check_joints(names)
         # in numbers (a closing speed may hold a sine: compared at 30 digits)
-        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self._velocity_before):
+        if not self.symbols and all(sp.N(v, 30) >= 0 for v in self.scaled_velocity_before):
             raise InputError("bodies", "no contact is approaching: there is no impact")
 
     def _check_joints(self, names: list[str]) -> None:
@@ -148,7 +148,7 @@ class ImpactProblem:
         """M^-1 of the bodies as if no joint held them (diagonal)."""
         n = len(self.coordinates)
         return sp.SparseMatrix(n, n, dict(((j, j), x)
-                                          for j, x in enumerate(self._inverse_inertia)))
+                                          for j, x in enumerate(self.inverse_inertia)))
 
     @cached_property
     def _joint_S(self) -> sp.Matrix:
@@ -188,14 +188,14 @@ class ImpactProblem:
     def symbols(self) -> frozenset[sp.Symbol]:
         """The symbols left in the collision (none: every rule runs; some: the
         simultaneous and one-pass sequential formulas, each with its conditions)."""
-        return frozenset(self._J.free_symbols | self._free_M_inverse.free_symbols
+        return frozenset(self.scaled_J.free_symbols | self._free_M_inverse.free_symbols
                          | (self.G.free_symbols if self.joints else set())
                          | self.u_before.free_symbols
                          | set().union(*(sp.Tuple(t.restitution, t.friction or 0,
                                                   t.tangential_restitution or 0).free_symbols
                                          for t in self.contacts)))
 
-    def _smooth_only(self, where: str) -> None:
+    def smooth_only(self, where: str) -> None:
         rough = [t.name for t in self.contacts if t.laws[1].grips]
         if rough:
             needed = (f": give [values] (or --set) for "
@@ -206,7 +206,7 @@ class ImpactProblem:
                              f"solved with numbers, by the simultaneous or sequential rule; "
                              f"not {where}{needed}")
 
-    def _numbers_only(self, rule: str) -> None:
+    def numbers_only(self, rule: str) -> None:
         if self.symbols:
             raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
                              f"{', '.join(sorted(map(str, self.symbols)))}")
@@ -289,14 +289,14 @@ class ImpactProblem:
                      for t in self.contacts)
 
     @cached_property
-    def _J(self) -> sp.Matrix:
+    def scaled_J(self) -> sp.Matrix:
         """J with each row times its :attr:`row_scale` (what the rules solve with)."""
         if all(s == 1 for s in self.row_scale):
             return self.J
         return self._rows(lambda t, s: t.unit_normal if s == 1 else t.normal)
 
     @cached_property
-    def _J_t(self) -> sp.Matrix:
+    def scaled_J_t(self) -> sp.Matrix:
         """J_t with each row times its :attr:`row_scale`."""
         if all(s == 1 for s in self.row_scale):
             return self.J_t
@@ -332,9 +332,9 @@ class ImpactProblem:
         return self._product(self.J)
 
     @cached_property
-    def _W(self) -> sp.Matrix:
+    def scaled_W(self) -> sp.Matrix:
         """W of the scaled rows (:attr:`row_scale`): what the rules solve with."""
-        return self.W if self._J is self.J else self._product(self._J)
+        return self.W if self.scaled_J is self.J else self._product(self.scaled_J)
 
     def _product(self, J: sp.Matrix) -> sp.Matrix:
         exact = _in_field(J, self.M_inverse)
@@ -353,29 +353,29 @@ class ImpactProblem:
         return (self.J * self.u_before).applyfunc(tidy)
 
     @cached_property
-    def _velocity_before(self) -> sp.Matrix:
+    def scaled_velocity_before(self) -> sp.Matrix:
         """The closing velocities of the scaled rows (:attr:`row_scale`)."""
-        return self._times(self.u_before)
+        return self.closings(self.u_before)
 
-    def _closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
+    def closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
         """Contact k's normal closing velocity at the generalized velocities u (its row
         of J, two bodies' coordinates), tidied."""
-        return tidy(sp.Add(*(value * u[j] for j, value in self._J_rows[k])))
+        return tidy(sp.Add(*(value * u[j] for j, value in self.sparse_rows[k])))
 
-    def _times(self, u: Sequence[sp.Expr]) -> sp.Matrix:
+    def closings(self, u: Sequence[sp.Expr]) -> sp.Matrix:
         """``J u``: every contact's normal closing velocity, one sparse row at a time."""
-        return sp.Matrix([self._closing(k, u) for k in range(len(self.contacts))])
+        return sp.Matrix([self.closing(k, u) for k in range(len(self.contacts))])
 
     @cached_property
-    def _J_rows(self) -> list[list[tuple[int, sp.Expr]]]:
+    def sparse_rows(self) -> list[list[tuple[int, sp.Expr]]]:
         """Each row of J as its nonzero (column, value) pairs."""
         found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
-        for i, j, value in self._J.row_list():
+        for i, j, value in self.scaled_J.row_list():
             found[i].append((j, value))
         return found
 
     @cached_property
-    def _inverse_inertia(self) -> list[sp.Expr]:
+    def inverse_inertia(self) -> list[sp.Expr]:
         """The diagonal of M^-1, one entry per coordinate."""
         return [1 / c.inertia for c in self.coordinates]
 
@@ -385,7 +385,7 @@ class ImpactProblem:
         return tuple(b if b.support != "pivot" else b.with_motion(
             b.velocity.applyfunc(tidied), b.spin) for b in after)
 
-    def _outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                  **more: Any) -> Solution:
         """The one :class:`Solution` a rule gives: the bodies moving with `u` after,
@@ -400,31 +400,31 @@ class ImpactProblem:
         return certified(solution)
 
     @property
-    def _dense(self) -> bool:
+    def dense(self) -> bool:
         """Whether M^-1 is dense (joints couple the bodies' coordinates; a model source
         with a full mass matrix): then an impulse moves every coordinate through it."""
         return bool(self.joints)
 
-    def _kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
-        if self._dense:  # the joints spread each impulse over every joined body
-            return (sp.Matrix(u) + self.M_inverse * (self._J.T * sp.Matrix(impulses))
+    def kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        if self.dense:  # the joints spread each impulse over every joined body
+            return (sp.Matrix(u) + self.M_inverse * (self.scaled_J.T * sp.Matrix(impulses))
                     ).applyfunc(tidy)
         change: dict[int, sp.Expr] = {}
-        for i, row in enumerate(self._J_rows):
+        for i, row in enumerate(self.sparse_rows):
             if impulses[i] != 0:
                 for j, value in row:
                     change[j] = change.get(j, 0) + value * impulses[i]
-        inverse = self._inverse_inertia
+        inverse = self.inverse_inertia
         return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
                           else u[j] for j in range(len(u))])
 
-    def _leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
+    def leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
         """The normal velocity after that contact k's restitution law asks on a straight
         impulse path, from its closing velocity before (the law's own, so a new law is
         one class)."""
         return tidy(self.contacts[k].laws[0].leaving(closing))
 
-    def _poisson(self) -> bool:
+    def acts_by_impulse(self) -> bool:
         """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
         if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
             return False
@@ -439,36 +439,36 @@ class ImpactProblem:
         return forms[0] == "impulse"
 
     @cached_property
-    def _rational_rows(self) -> bool:
+    def rational_rows(self) -> bool:
         """Whether J's rows and M^-1 are rational (then so is W)."""
-        return not self._dense and \
-            all(isinstance(x, sp.Rational) for row in self._J_rows for _, x in row) and \
-            all(isinstance(x, sp.Rational) for x in self._inverse_inertia)
+        return not self.dense and \
+            all(isinstance(x, sp.Rational) for row in self.sparse_rows for _, x in row) and \
+            all(isinstance(x, sp.Rational) for x in self.inverse_inertia)
 
     @cached_property
-    def _rational_W(self) -> bool:
+    def rational_W(self) -> bool:
         """Whether W is rational (it can be where J is not: sqrt(3)^2)."""
-        return self._rational_rows or all(isinstance(x, sp.Rational)
-                                          for _, _, x in self._W_entries)
+        return self.rational_rows or all(isinstance(x, sp.Rational)
+                                          for _, _, x in self.W_entries)
 
-    def _float_W(self) -> Any:
+    def float_W(self) -> Any:
         """W in float64 as a SciPy sparse matrix, from J's sparse rows (W itself, dense
         when one body touches every contact, is never formed exactly at scale)."""
         import scipy.sparse as sps
 
-        rows = self._J_rows
+        rows = self.sparse_rows
         J = sps.csr_matrix(([float(x) for row in rows for _, x in row],
                             ([i for i, row in enumerate(rows) for _ in row],
                              [j for row in rows for j, _ in row])),
                            shape=(len(rows), len(self.coordinates)))
-        inverse = sps.diags([float(x) for x in self._inverse_inertia])
+        inverse = sps.diags([float(x) for x in self.inverse_inertia])
         return (J @ inverse @ J.T).tocsc()
 
     @cached_property
-    def _W_entries(self) -> list[tuple[int, int, sp.Expr]]:
-        return [(i, j, x) for (i, j), x in sorted(self._W.todok().items()) if x != 0]
+    def W_entries(self) -> list[tuple[int, int, sp.Expr]]:
+        return [(i, j, x) for (i, j), x in sorted(self.scaled_W.todok().items()) if x != 0]
 
-    def _order_index(self, order: Sequence[str]) -> dict[str, int]:
+    def order_index(self, order: Sequence[str]) -> dict[str, int]:
         index = {t.name: k for k, t in enumerate(self.contacts)}
         unknown = [name for name in order if name not in index]
         if unknown or sorted(order) != sorted(index):
@@ -565,13 +565,15 @@ class ImpactProblem:
                 how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
                                      "impact)",
                        "compliant": f"{t.name}'s spring impulse, integrated",
+                       "driven": f"{t.name}'s impulse, integrated in the striking "
+                                 "contact's normal impulse",
                        "simultaneous": f"{t.name} alone by its own {tangential.name} law "
-                                       "(Routh's or Walton's regimes)"}
-                found.append(Equation(how[outcome.rule], "", P_n[k], normal,
-                                      law="rule"))
+                                       "(Routh's or Walton's regimes)"}.get(
+                    outcome.rule, f"{t.name}'s impulse by the {outcome.rule} rule")
+                found.append(Equation(how, "", P_n[k], normal, law="rule"))
                 if self.frictional:
-                    found.append(Equation(how[outcome.rule] + ", tangential", "", P_t[k],
-                                          along, law="rule"))
+                    found.append(Equation(how + ", tangential", "", P_t[k], along,
+                                          law="rule"))
                 continue
             if t.name not in outcome.acted:
                 found.append(Equation(f"{t.name} released: no impulse", "", P_n[k], 0,
@@ -590,7 +592,7 @@ class ImpactProblem:
                 closed = before.is_negative
                 found.append(Equation(f"restitution at {t.name} (Newton's law" + (
                     ")" if closed else "; at rest before, it leaves at rest)"), "", closing,
-                    self._leaving(k, before) if closed else 0, law="restitution"))
+                    self.leaving(k, before) if closed else 0, law="restitution"))
             if not self.frictional:
                 continue
             after_slip = tidy((J_t[k, :] * u)[0])
@@ -636,7 +638,7 @@ class ImpactProblem:
     def _by_name(self, name: str) -> Contact:
         return next(t for t in self.contacts if t.name == name)
 
-    def _named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
+    def named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
         """Each contact's impulse along its unit normal (or tangent), by name, from the
         impulses of its scaled rows (see :attr:`row_scale`)."""
         return {t.name: impulses[k] if s == 1 else tidy(impulses[k] * s)

@@ -42,8 +42,11 @@ FRICTION_LAWS = {
 
 
 def rule_laws(rule: str, frictional: bool = False) -> str:
-    """The laws a rule imposes, in words (with friction when any contact has it)."""
-    return FRICTION_LAWS[rule] if frictional and rule in FRICTION_LAWS else RULE_LAWS[rule]
+    """The laws a rule imposes, in words (with friction when any contact has it); a rule
+    not built in is named, never a KeyError."""
+    if frictional and rule in FRICTION_LAWS:
+        return FRICTION_LAWS[rule]
+    return RULE_LAWS.get(rule, f"the {rule} rule (not built in: see its class)")
 
 
 def whole_number(name: str, value: Any, least: int, most: int | None = None,
@@ -81,6 +84,27 @@ class Rule:
     built-in shapes, joints, a sympy.physics.mechanics system).
     :data:`~rigidimpact.solve.rules.RULE_TYPES` lists the built-in ones for the scene
     reader; a new rule needs no entry there to be used from Python.
+
+    The protocol: what a rule may read of the problem, all public on
+    :class:`~rigidimpact.solve.problem.ImpactProblem` (a mechanics system's problem has the
+    same members):
+
+    - the data: ``contacts`` (each with its ``laws``: restitution, tangential),
+      ``u_before``, ``M_inverse``, ``symbols``, ``frictional``, ``dense``;
+    - the rows the rules solve with, each contact's scaled by its :attr:`row_scale`
+      (rational where the data are): ``scaled_J``, ``scaled_J_t``, ``scaled_W``,
+      ``scaled_velocity_before``, ``sparse_rows``, ``inverse_inertia``, and at scale
+      ``W_entries``, ``float_W()``, ``rational_rows``, ``rational_W``;
+    - the steps: ``closing(k, u)`` and ``closings(u)`` (normal velocities at u),
+      ``kick(u, impulses)`` (u after impulses on the scaled rows), ``leaving(k, v)``
+      (contact k's restitution law's target), ``acts_by_impulse()`` (Poisson's law
+      together), ``order_index(order)``;
+    - the refusals: ``numbers_only(rule)``, ``smooth_only(where)``.
+
+    What it returns: ``problem.outcome(rule, order, u_after, problem.named(impulses),
+    acted, ...)``, one :class:`Solution` each, certified on the way out (an answer that
+    breaks a law is never returned). Its description in words is :meth:`laws`: a new
+    rule overrides it or is named by its docstring's first line.
     """
 
     name: ClassVar[str] = ""
@@ -90,4 +114,6 @@ class Rule:
 
     def laws(self, frictional: bool = False) -> str:
         """What the rule imposes, in words."""
-        return rule_laws(self.name, frictional)
+        if self.name in RULE_LAWS:
+            return rule_laws(self.name, frictional)
+        return (type(self).__doc__ or f"the {self.name} rule").strip().split("\n\n")[0]

@@ -94,8 +94,8 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     from scipy.integrate import ode, solve_ivp
     from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-    problem._numbers_only("compliant")
-    problem._smooth_only("under the compliant rule")
+    problem.numbers_only("compliant")
+    problem.smooth_only("under the compliant rule")
     for t in problem.contacts:  # the springs' damping is chosen to give Newton's e
         if type(t.laws[0]).leaving is not NewtonRestitution.leaving:
             raise InputError(f"{t.name}.law", f"the {t.laws[0].name} law has no "
@@ -108,7 +108,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     # only the coordinates some contact moves are integrated (a chain's balls do not
     # spin or move across it); J is sparse, each contact touching two bodies
     entries = problem.J.row_list()  # the springs push along the unit normals
-    dense = problem._dense  # joints or a mechanics system: M^-1 couples the speeds
+    dense = problem.dense  # joints or a mechanics system: M^-1 couples the speeds
     moved = list(range(len(problem.coordinates))) if dense else \
         sorted({j for _, j, _ in entries})
     column = {j: c for c, j in enumerate(moved)}
@@ -121,7 +121,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
         m_full = np.array(problem.M_inverse.evalf(30), dtype=float)
         w_diag = np.einsum("ij,jk,ik->i", J.toarray(), m_full, J.toarray())
     else:
-        m_inv = np.array([float(problem._inverse_inertia[j]) for j in moved])
+        m_inv = np.array([float(problem.inverse_inertia[j]) for j in moved])
         w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
 
     def accelerate(f):
@@ -149,7 +149,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
 
     u_all = np.array(problem.u_before.evalf(), dtype=float).ravel()
     y = np.concatenate([u_all[moved], np.zeros(k), np.zeros(k)])
-    speed = float(max(abs(v) for v in problem._velocity_before))
+    speed = float(max(abs(v) for v in problem.scaled_velocity_before))
     mass = 1 / w_diag  # each contact's effective mass
     if hertz:  # a Hertz contact lasts about 3 (m^2 / (k^2 v))^(1/5)
         period = 3 * float(((mass / stiff) ** 2 / speed).max() ** 0.2)
@@ -231,7 +231,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     u_after = sp.Matrix([sp.Float(x, 17) for x in y[:n]])
     impulses = sp.Matrix([sp.Float(x, 17) for x in y[n + k:]])
     history = (np.concatenate(times), np.concatenate(states, axis=1)) if record else None
-    return problem._outcome("compliant", (), u_after,
+    return problem.outcome("compliant", (), u_after,
                    {t.name: impulses[i] for i, t in enumerate(problem.contacts)},
                    tuple(t.name for t, p in zip(problem.contacts, impulses, strict=True)
                          if p > 0), history=history,

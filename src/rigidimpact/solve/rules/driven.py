@@ -58,7 +58,7 @@ class Driven(Rule):
 
 def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     """The driven rule on a planar impulse problem (see the module's text)."""
-    problem._numbers_only("driven")
+    problem.numbers_only("driven")
     for c in problem.contacts:
         if c.tangential not in ("smooth", "coulomb"):
             raise InputError(f"{c.name}.tangential", "the driven rule follows Coulomb's "
@@ -68,8 +68,8 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
                          "simultaneous or sequential rule")
     # the solvers' rows (each contact's scaled alike, which no law minds); the impulses
     # are put back on the unit normal by _named
-    J = np.array(problem._J.evalf(30), dtype=float)
-    J_t = np.array(problem._J_t.evalf(30), dtype=float)
+    J = np.array(problem.scaled_J.evalf(30), dtype=float)
+    J_t = np.array(problem.scaled_J_t.evalf(30), dtype=float)
     u = np.array(problem.u_before.evalf(30), dtype=float).ravel()
     size = max(float(np.abs(u).max()), 1e-300)
     speeds = J @ u
@@ -95,10 +95,10 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     notes = (f"{striking.name} strikes and the contacts touching at rest stay closed while "
              f"they push: the impulses are integrated in {striking.name}'s normal impulse "
              f"to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",)
-    return problem._outcome(
+    return problem.outcome(
         "driven", (), sp.Matrix([sp.Float(x, 17) for x in out.u_after]),
-        problem._named(normal), tuple(problem.contacts[i].name for i in acting
+        problem.named(normal), tuple(problem.contacts[i].name for i in acting
                                       if normal[i] > 0),
-        tangential=problem._named(along), courses=courses, notes=notes,
+        tangential=problem.named(along), courses=courses, notes=notes,
         method=f"integrated to {out.tolerance:g}")
 

@@ -98,14 +98,14 @@ class Sequential(Rule):
 def _smooth_step(problem: ImpactProblem, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
     """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
     (only the two bodies' coordinates the contact moves)."""
-    impulse = tidy((problem._leaving(k, closing) - closing) / problem._W[k, k])
-    if problem._dense:
-        change = problem.M_inverse * problem._J[k, :].T * impulse
+    impulse = tidy((problem.leaving(k, closing) - closing) / problem.scaled_W[k, k])
+    if problem.dense:
+        change = problem.M_inverse * problem.scaled_J[k, :].T * impulse
         for j in range(len(u)):
             u[j] = tidy(u[j] + change[j])
         return impulse
-    for j, value in problem._J_rows[k]:
-        u[j] = tidy(u[j] + value * impulse * problem._inverse_inertia[j])
+    for j, value in problem.sparse_rows[k]:
+        u[j] = tidy(u[j] + value * impulse * problem.inverse_inertia[j])
     return impulse
 
 
@@ -116,8 +116,8 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
     geometrically (a stack coming to rest): they stop once every closing speed left
     is below 1e-40 of the largest before, so such results are exact to that size.
     """
-    problem._numbers_only("sequential")
-    index = problem._order_index(order)
+    problem.numbers_only("sequential")
+    index = problem.order_index(order)
     u = list(problem.u_before)
     floating: list[str] = []
 
@@ -144,8 +144,8 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
         return _smooth_step(problem, k, u, closing), sp.Integer(0), None
 
     count, steps = sequential_passes([index[name] for name in order],
-                                     lambda k: problem._closing(k, u), step,
-                                     max(abs(v) for v in problem._velocity_before))
+                                     lambda k: problem.closing(k, u), step,
+                                     max(abs(v) for v in problem.scaled_velocity_before))
     total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
     for k, impulse, along, _ in steps:
         total[k] += impulse
@@ -157,11 +157,11 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
              "step from there started from "
              f"them rounded to {FLOAT_DIGITS} digits (the results are good to about "
              "that many digits, not exact)",) if floating else ()
-    return problem._outcome("sequential", tuple(order), sp.Matrix(u),
-                         problem._named(total.applyfunc(tidy)),
+    return problem.outcome("sequential", tuple(order), sp.Matrix(u),
+                         problem.named(total.applyfunc(tidy)),
                          tuple(t.name for t, p in zip(problem.contacts, total, strict=True)
                                if p > 0),
-                         count, tangential=problem._named(tangential.applyfunc(tidy))
+                         count, tangential=problem.named(tangential.applyfunc(tidy))
                          if problem.frictional else {}, courses=courses, notes=notes,
                          method=f"rounded to {FLOAT_DIGITS} digits between steps"
                          if floating else "")
@@ -172,7 +172,7 @@ def _routh_step(problem: ImpactProblem, k: int,
     """Contact k's impact alone under its own laws (Routh's method for Coulomb,
     Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
     restitution, tangential = problem.contacts[k].laws
-    rows = sp.Matrix.vstack(problem._J[k, :], problem._J_t[k, :])
+    rows = sp.Matrix.vstack(problem.scaled_J[k, :], problem.scaled_J_t[k, :])
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
         raise InputError(f"{problem.contacts[k].name}.tangential",
@@ -182,8 +182,8 @@ def _routh_step(problem: ImpactProblem, k: int,
                          "\"coulomb\" follows them (Routh's method), or make it smooth")
     normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
     normal, along = tidy(normal), tidy(along)
-    u_after = (u + problem.M_inverse * (problem._J[k, :].T * normal
-                                     + problem._J_t[k, :].T * along)).applyfunc(tidy)
+    u_after = (u + problem.M_inverse * (problem.scaled_J[k, :].T * normal
+                                     + problem.scaled_J_t[k, :].T * along)).applyfunc(tidy)
     return normal, along, course, u_after
 
 
@@ -206,19 +206,19 @@ def sequential_pass(problem: ImpactProblem, order: Sequence[str]) -> Solution:
     >>> out.conditions
     (e**2 - 2*e <= -1,)
     """
-    problem._smooth_only("with symbols")
-    index = problem._order_index(order)
+    problem.smooth_only("with symbols")
+    index = problem.order_index(order)
     u = list(problem.u_before)
     total = sp.zeros(len(index), 1)
     conditions = []
     for name in order:
         k = index[name]
-        closing = problem._closing(k, u)
+        closing = problem.closing(k, u)
         conditions.append(sp.Lt(closing, 0))
         total[k] = _smooth_step(problem, k, u, closing)
-    conditions += [sp.Ge(x, 0) for x in problem._times(u)]
-    return problem._outcome("sequential", tuple(order), sp.Matrix(u),
-                   problem._named(total.applyfunc(tidy)), tuple(order),
+    conditions += [sp.Ge(x, 0) for x in problem.closings(u)]
+    return problem.outcome("sequential", tuple(order), sp.Matrix(u),
+                   problem.named(total.applyfunc(tidy)), tuple(order),
                    conditions=case_conditions(conditions))
 
 
@@ -254,7 +254,7 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
     """
     if not problem.frictional:
         return (sequential_pass(problem, order),)
-    index = problem._order_index(order)
+    index = problem.order_index(order)
     n = len(index)
     # each path so far: (u, normal impulses, tangential impulses, conditions, courses)
     branches: list[tuple[sp.Matrix, sp.Matrix, sp.Matrix, list, list[str]]] = [
@@ -262,7 +262,7 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
     for name in order:
         k = index[name]
         restitution, tangential = problem.contacts[k].laws
-        rows = sp.Matrix.vstack(problem._J[k, :], problem._J_t[k, :])
+        rows = sp.Matrix.vstack(problem.scaled_J[k, :], problem.scaled_J_t[k, :])
         W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
         grown = []
         for u, total, along, conditions, courses in branches:
@@ -286,12 +286,12 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
         branches = grown
     cases = []
     for u, total, along, conditions, courses in branches:
-        kept = case_conditions([*conditions, *(sp.Ge(x, 0) for x in problem._times(u))])
+        kept = case_conditions([*conditions, *(sp.Ge(x, 0) for x in problem.closings(u))])
         if kept == (sp.false,):
             continue
-        cases.append(problem._outcome("sequential", tuple(order), u,
-                                   problem._named(total.applyfunc(tidy)), tuple(order),
-                                   tangential=problem._named(along.applyfunc(tidy)),
+        cases.append(problem.outcome("sequential", tuple(order), u,
+                                   problem.named(total.applyfunc(tidy)), tuple(order),
+                                   tangential=problem.named(along.applyfunc(tidy)),
                                    courses=tuple(courses), conditions=kept))
     if not cases:
         symbols = ", ".join(sorted(map(str, problem.symbols)))
@@ -320,7 +320,7 @@ def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solut
     """The sequential rule in `count` orders drawn at random (``random.Random(seed)``,
     each a uniform shuffle; repeats possible when the orders are few): a sample of
     the outcomes' spread, not every order."""
-    problem._numbers_only("sequential")
+    problem.numbers_only("sequential")
     if not 1 <= count <= MAX_SAMPLED_ORDERS:
         raise InputError("impact.orders", f"must lie in [1, {MAX_SAMPLED_ORDERS}], got "
                          f"{count}")

@@ -139,19 +139,19 @@ def simultaneous(problem: ImpactProblem) -> Solution:
     an exact check (a 1001-ball cradle in about 1 s); the outcome's `method` and
     notes say which when it is not the first.
     """
-    problem._numbers_only("simultaneous")
+    problem.numbers_only("simultaneous")
     if problem.frictional:
         return _frictional_simultaneous(problem)
-    v = problem._velocity_before
-    poisson = problem._poisson()
+    v = problem.scaled_velocity_before
+    poisson = problem.acts_by_impulse()
     target = sp.zeros(len(v), 1) if poisson else \
-        sp.Matrix([problem._leaving(i, min(v[i], 0)) for i in range(len(v))])
+        sp.Matrix([problem.leaving(i, min(v[i], 0)) for i in range(len(v))])
     impulses, how, method = _lcp(problem, v, target)
     if poisson:  # each law makes its whole impulse from its compression impulse
         impulses = sp.Matrix([problem.contacts[i].laws[0].from_compression(impulses[i])
                               for i in range(len(v))])
-    u = problem._kick(problem.u_before, impulses)
-    return problem._outcome("simultaneous", (), u, problem._named(impulses),
+    u = problem.kick(problem.u_before, impulses)
+    return problem.outcome("simultaneous", (), u, problem.named(impulses),
                    tuple(t.name for t, p in zip(problem.contacts, impulses, strict=True)
                          if p > 0), notes=how + (_still_closing(problem, u) if poisson else ()),
                          method=method)
@@ -161,8 +161,8 @@ def _still_closing(problem: ImpactProblem, u: sp.Matrix) -> tuple[str, ...]:
     """A warning for every contact that still approaches after the impact (the bodies
     would pass into each other): Poisson's law scales each compression impulse by
     its own 1 + e, which need not leave every contact opening."""
-    after = problem._times(u)
-    scale = max(abs(x) for x in problem._velocity_before)
+    after = problem.closings(u)
+    scale = max(abs(x) for x in problem.scaled_velocity_before)
     closing = [(t.name, after[i] / problem.row_scale[i]) for i, t in enumerate(problem.contacts)
                if after[i] < -sp.Rational(1, 10**12) * scale]
     return tuple(f"{name} still approaches after the impact (normal velocity "
@@ -190,7 +190,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         return _one_acting(problem, 0, [sp.Integer(0)])
     restitution, tangential = zip(*(t.laws for t in problem.contacts), strict=True)
     n = len(problem.contacts)
-    v_n = problem._velocity_before
+    v_n = problem.scaled_velocity_before
     late = [t.name for t, r in zip(problem.contacts, restitution, strict=True)
             if r.together != "velocity"]
     formless = [(t.name, law.name) for t, law in zip(problem.contacts, tangential,
@@ -210,14 +210,14 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
                          "has no form for contacts acting together: use the "
                          "sequential rule (each contact's own impact)")
-    v_t = _sparse_times(problem._J_t, problem.u_before)
+    v_t = _sparse_times(problem.scaled_J_t, problem.u_before)
     mu = [law.cone() for law in tangential]
-    target = [problem._leaving(i, min(v_n[i], 0)) for i in range(n)]
+    target = [problem.leaving(i, min(v_n[i], 0)) for i in range(n)]
     states = [("off",) + law.velocity_states for law in tangential]
     count = math.prod(len(s) for s in states)
     if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
         return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
-    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
     not_unique = False
@@ -271,11 +271,11 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
                      _STATE[s] for s in pattern) + "; others: " + "; ".join(
                      ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
     normal = impulses[:n, 0]
-    return problem._outcome("simultaneous", (), u,
-                   problem._named(normal), tuple(t.name for t, p in
+    return problem.outcome("simultaneous", (), u,
+                   problem.named(normal), tuple(t.name for t, p in
                                               zip(problem.contacts, normal, strict=True)
                                               if p > 0),
-                   tangential=problem._named(impulses[n:, 0]),
+                   tangential=problem.named(impulses[n:, 0]),
                    courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                  zip(problem.contacts, pattern, strict=True)),
                    notes=notes)
@@ -312,7 +312,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     so), which the enumeration of states finds for few contacts.
     """
     n = len(problem.contacts)
-    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
     data = [*v_n, *v_t, *target, *(m for m in mu if m is not None)]
     if n > MAX_FRICTION_LEMKE or rows.free_symbols or problem.M_inverse.free_symbols or not all(
             sp.sympify(x).is_Rational for x in data):
@@ -423,9 +423,9 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     note = (f"{n} frictional contacts: solved as one linear complementarity problem "
             f"({size} unknowns), {how}; it gives one answer, and with friction others "
             "may exist")
-    return problem._outcome("simultaneous", (), u, problem._named(normal),
+    return problem.outcome("simultaneous", (), u, problem.named(normal),
                             tuple(problem.contacts[i].name for i in acting),
-                            tangential=problem._named(along),
+                            tangential=problem.named(along),
                             courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                           zip(problem.contacts, states, strict=True)),
                             notes=(note,), method="lemke")
@@ -444,10 +444,10 @@ def _float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t:
     J = sps.csr_matrix(([float(x) for _, _, x in entries],
                         ([i for i, _, _ in entries], [j for _, j, _ in entries])),
                        shape=rows.shape)
-    if problem._dense:
+    if problem.dense:
         Minv = sps.csr_matrix(np.array(problem.M_inverse.evalf(), dtype=float))
     else:
-        Minv = sps.diags([float(x) for x in problem._inverse_inertia]).tocsr()
+        Minv = sps.diags([float(x) for x in problem.inverse_inertia]).tocsr()
     W = (J @ Minv @ J.T).tocsr()
     b = np.array([float(v_n[i] - target[i]) for i in range(n)]
                  + [float(v_t[i]) for i in range(n)])
@@ -489,7 +489,7 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
               "slide+" if slip[i] > 0 else "slide-" for i in range(n)]
 
     shared = ""
-    if not problem._dense:  # the least-norm impulses with this motion, if others fit it
+    if not problem.dense:  # the least-norm impulses with this motion, if others fit it
         least = least_norm_rough(J, 1.0 / Minv.diagonal(), u - u0, lam, cone, slip)
         if least is not None and np.abs(least - lam).max() > 1e-9 * big:
             lam, shared = least, (
@@ -510,10 +510,10 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
             f"Newton method on Alart and Curnier's function ({2 * n} unknowns, {steps} "
             f"steps), residual {error:.1e} of the largest closing speed; it gives one "
             "answer, and with friction others may exist" + shared)
-    return problem._outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
-                            problem._named(normal), tuple(problem.contacts[i].name
+    return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
+                            problem.named(normal), tuple(problem.contacts[i].name
                                                           for i in acting),
-                            tangential=problem._named(along),
+                            tangential=problem.named(along),
                             courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
                                           zip(problem.contacts, states, strict=True)),
                             notes=(note,), method="newton")
@@ -524,7 +524,7 @@ def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Soluti
     for one contact under every rule), if that leaves every other contact opening
     at least as fast as its law asks; otherwise one line saying so."""
     normal, along, course, u = _routh_step(problem, k, problem.u_before)
-    after = problem._times(u)
+    after = problem.closings(u)
     blocked = [t.name for i, t in enumerate(problem.contacts)
                if i != k and after[i] < target[i]]
     name = problem.contacts[k].name
@@ -536,9 +536,9 @@ def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Soluti
     zeros = sp.zeros(len(problem.contacts), 1)
     normals, tangentials = zeros.copy(), zeros.copy()
     normals[k], tangentials[k] = normal, along
-    return problem._outcome("simultaneous", (), u,
-                   problem._named(normals), (name,),
-                   tangential=problem._named(tangentials) if problem.frictional else {},
+    return problem.outcome("simultaneous", (), u,
+                   problem.named(normals), (name,),
+                   tangential=problem.named(tangentials) if problem.frictional else {},
                    courses=tuple(f"{t.name}: {course}" if i == k else
                                  f"{t.name}: {_STATE['off']}"
                                  for i, t in enumerate(problem.contacts)))
@@ -597,7 +597,7 @@ def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
     for size in range(n, 0, -1):
         for active in itertools.combinations(range(n), size):
             work.spend(size)  # counted for singular blocks too
-            block = problem._W.extract(list(active), list(active))
+            block = problem.scaled_W.extract(list(active), list(active))
             det = tidy(block.det())
             if det == 0 or (block.has(sp.Float) and det.is_number and abs(det) <= 1e-35
                             * abs(sp.prod(block[i, i] for i in range(size)))):
@@ -606,7 +606,7 @@ def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
             impulses = sp.zeros(n, 1)
             for k, i in enumerate(active):
                 impulses[i] = tidy(solved[k])
-            yield active, impulses, v + problem._W * impulses
+            yield active, impulses, v + problem.scaled_W * impulses
 
 
 def _lcp(problem: ImpactProblem, v: sp.Matrix,
@@ -618,17 +618,17 @@ def _lcp(problem: ImpactProblem, v: sp.Matrix,
     exact check (:func:`_lcp_at_scale`); otherwise by enumerating the acting sets.
     Returns the impulses, the notes a reader must see (an answer in floating point,
     with its residual) and how the problem was solved (at scale)."""
-    rational = problem._rational_W and all(isinstance(x, sp.Rational)
+    rational = problem.rational_W and all(isinstance(x, sp.Rational)
                                         for x in list(v) + list(target))
     if len(v) > MAX_LEMKE or (not rational and len(v) > MAX_ENUMERATED) or (
             not rational and len(v) > MAX_ALGEBRAIC_ENUMERATED
-            and _algebraic(problem._W, v, target)):
+            and _algebraic(problem.scaled_W, v, target)):
         return _lcp_at_scale(problem, v, target, rational)
     if rational:
-        W = problem._W.to_DM()
+        W = problem.scaled_W.to_DM()
         if W.rank() == W.shape[0]:
             q = [Fraction(int(x.p), int(x.q)) for x in v - target]
-            M = [[Fraction(int(x.p), int(x.q)) for x in problem._W.row(i)]
+            M = [[Fraction(int(x.p), int(x.q)) for x in problem.scaled_W.row(i)]
                  for i in range(len(v))]
             try:
                 z = lemke(M, q)
@@ -653,7 +653,7 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
     from scipy.sparse.linalg import splu
 
     n = len(v)
-    W = problem._float_W()
+    W = problem.float_W()
     q = np.array([float(v[i] - target[i]) for i in range(n)])
     try:
         pivots = np.abs(splu(W, permc_spec="MMD_AT_PLUS_A").U.diagonal())
@@ -667,19 +667,19 @@ def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
         z, steps, _ = pivoting(W, q)
         method = f"block principal pivoting, {steps} steps"
         acting = [i for i in range(n) if z[i] > 0]
-        if rational and problem._rational_rows:  # in SymPy's QQ (python-flint's fmpq
+        if rational and problem.rational_rows:  # in SymPy's QQ (python-flint's fmpq
             def field(x: sp.Rational) -> Any:  # where it is installed), W unformed
                 return QQ(int(x.p), int(x.q))
 
             exact = confirm_by_rows(
-                [[(j, field(x)) for j, x in row] for row in problem._J_rows],
-                [field(x) for x in problem._inverse_inertia],
+                [[(j, field(x)) for j, x in row] for row in problem.sparse_rows],
+                [field(x) for x in problem.inverse_inertia],
                 [field(x) for x in v - target], acting)
-        elif not rational and _algebraic(problem._W, v, target):  # sqrt(3) in W
-            exact = _confirm_in_field(problem._W, v, target, acting)
+        elif not rational and _algebraic(problem.scaled_W, v, target):  # sqrt(3) in W
+            exact = _confirm_in_field(problem.scaled_W, v, target, acting)
         elif rational:  # W rational, J not (sqrt(3) in a hexagonal cluster)
             rows: dict[int, dict[int, Fraction]] = {i: {} for i in range(n)}
-            for i, j, x in problem._W_entries:
+            for i, j, x in problem.W_entries:
                 rows[i][j] = Fraction(int(x.p), int(x.q))
             exact = confirm(rows, [Fraction(int(x.p), int(x.q)) for x in v - target],
                             acting)
@@ -785,10 +785,10 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
     """
     regimes = [t.name for t in problem.contacts if t.laws[1].solved_by_regimes]
     if regimes:  # Coulomb's and Walton's courses: no closed form acting together
-        problem._smooth_only("with symbols")
+        problem.smooth_only("with symbols")
     stick = [i for i, t in enumerate(problem.contacts) if t.laws[1].grips]
-    v = problem._velocity_before
-    poisson = problem._poisson()
+    v = problem.scaled_velocity_before
+    poisson = problem.acts_by_impulse()
     n = len(v)
     if stick and poisson:
         raise InputError(f"{problem.contacts[stick[0]].name}.law", "a sticking contact "
@@ -800,7 +800,7 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
         if poisson or tidy(v[i]).is_zero:
             options.append([(sp.true, sp.Integer(0), v[i].is_negative is True)])
             continue
-        options.append([(sp.Le(v[i], 0), problem._leaving(i, v[i]), True),
+        options.append([(sp.Le(v[i], 0), problem.leaving(i, v[i]), True),
                         (sp.Ge(v[i], 0), sp.Integer(0), False)])
     count = math.prod(len(o) for o in options) * 2**n  # sign patterns x acting sets
     if count > MAX_SYMBOLIC_CASES:
@@ -828,10 +828,10 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
                 for i in range(n)]).applyfunc(tidy)
             if extra:  # sticking contacts: their tangential impulses move u too
                 tangential, free = extra
-                u = (problem.u_before + problem.M_inverse * (problem._J.T * impulses
-                                                       + problem._J_t.T * tangential)
+                u = (problem.u_before + problem.M_inverse * (problem.scaled_J.T * impulses
+                                                       + problem.scaled_J_t.T * tangential)
                      ).applyfunc(tidy)
-                more: dict[str, Any] = {"tangential": problem._named(tangential),
+                more: dict[str, Any] = {"tangential": problem.named(tangential),
                         "courses": tuple(f"{t.name}: " + (_STATE["stick"] if i in active
                                                           else _STATE["off"])
                                          for i, t in enumerate(problem.contacts))}
@@ -840,9 +840,9 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
                                      f"not: {', '.join(map(str, free))} may take any "
                                      "value that meets the conditions",)
             else:
-                u, more = problem._kick(problem.u_before, impulses), {}
+                u, more = problem.kick(problem.u_before, impulses), {}
             more["conditions"] = held
-            cases.append(problem._outcome("simultaneous", (), u, problem._named(impulses),
+            cases.append(problem.outcome("simultaneous", (), u, problem.named(impulses),
                                        tuple(problem.contacts[i].name for i in active),
                                        **more))
     return tuple(cases)
@@ -853,9 +853,9 @@ def _sticking_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix, stic
     where they act (their tangential impulse an unknown of its own, no cone):
     ``(active, P_n, v_n + (W P)_n, P_t)`` for each set whose block is invertible."""
     n = len(v)
-    rows = sp.Matrix.vstack(problem._J, problem._J_t)
+    rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
-    slip = (problem._J_t * problem.u_before).applyfunc(tidy)
+    slip = (problem.scaled_J_t * problem.u_before).applyfunc(tidy)
     work = _Work(problem, _too_many_cases(n, 2**n))
     for size in range(n, 0, -1):
         for active in itertools.combinations(range(n), size):
