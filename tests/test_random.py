@@ -450,3 +450,41 @@ def test_a_density_needs_no_number_for_e(tmp_path, capsys):
     assert row["symbolic_in"] == ["e"] and "monte_carlo" not in row
     assert main(["derive", str(path)]) == 0
     assert "no Monte Carlo: the draws need a number for e" in capsys.readouterr().out
+
+
+def _in_session(sid: int) -> list[str]:
+    """Every process (zombies too) of session `sid`, as 'pid state name'."""
+    from pathlib import Path
+
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            text = stat.read_text()
+        except OSError:  # ended while listed
+            continue
+        name_end = text.rindex(")")
+        fields = text[name_end + 2:].split()
+        if int(fields[3]) == sid:  # state, ppid, pgrp, session
+            found.append(f"{stat.parent.name} {fields[0]} {text[:name_end + 1]}")
+    return found
+
+
+@pytest.mark.skipif(not __import__("pathlib").Path("/proc/self/stat").exists(),
+                    reason="reads the process table from /proc")
+def test_a_run_on_local_workers_leaves_no_process_behind():
+    # the command is started in its own session: once it has exited, nothing it started
+    # (the workers, their nannies, multiprocessing's resource tracker) is left in it,
+    # not even a finished process waiting to be reaped
+    pytest.importorskip("dask.distributed")
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    command = subprocess.Popen([sys.executable, "-m", "rigidimpact", "derive", str(scene),
+                                "--workers", "2", "--json"], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.PIPE, start_new_session=True)
+    _, err = command.communicate(timeout=300)
+    left = _in_session(command.pid)  # at once: an orphan is reaped within moments
+    assert command.returncode == 0, err
+    assert left == [], left

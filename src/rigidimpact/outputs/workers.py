@@ -52,3 +52,15 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         client.close()
         if cluster is not None:
             cluster.close()
+            _stop_resource_tracker()
+
+
+def _stop_resource_tracker() -> None:
+    """Wait here for the process that multiprocessing started beside the workers (its
+    resource tracker), so nothing the command started outlives it: left alone it exits
+    only after the command has, an orphan until the system reaps it."""
+    from multiprocessing import resource_tracker
+
+    stop = getattr(resource_tracker._resource_tracker, "_stop", None)
+    if stop is not None:
+        stop()
