@@ -31,7 +31,7 @@ from rigidimpact.symbolic.distributions import (
 __all__ = ["scene_distributions", "monte_carlo_on_dask", "point_monte_carlo",
            "point_chunk", "distributions_json", "distributions_text"]
 
-CHUNK = 1_000_000  # draws a task
+CHUNK = 1_000_000  # draws a chunk (a worker takes a run of them)
 # a scene with no closed form (several contacts, joints, the compliant rule) is solved
 # once a draw: 1000 draws by default, at most a million, 64 a task
 POINT_SAMPLES, MAX_POINT_SAMPLES, POINT_CHUNK = 1000, 10**6, 64
@@ -51,15 +51,47 @@ def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     on the standard error."""
     sizes = chunk_sizes(samples, chunk)
     with dask_client(workers, scheduler, processes) as client:
-        futures = client.map(chunk_sums, [g] * len(sizes), [inputs] * len(sizes),
-                             [values] * len(sizes), [seed] * len(sizes),
-                             range(len(sizes)), sizes, pure=False)
+        # a few runs of consecutive chunks a worker (the expression and its inputs sent
+        # once a run, not once a chunk), each chunk still its own stream: the sums are
+        # the one-process sums, in the chunks' order
+        count = len(client.scheduler_info().get("workers", {})) or 1
+        runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
+        futures = [client.submit(chunk_run, g, inputs, values, seed, start,
+                                 sizes[start:stop], pure=False) for start, stop in runs]
         if progress:
             from dask.distributed import progress as bar
 
             bar(futures)
-        sums = client.gather(futures)
+        sums = [part for run in client.gather(futures) for part in run]
     return combine(sums, samples)
+
+
+BLOCKS_PER_WORKER = 4  # runs of chunks a worker: enough to even out, few to send
+
+
+def _runs(count: int, runs: int) -> list[tuple[int, int]]:
+    """[start, stop) of at most `runs` consecutive runs covering range(count), their
+    lengths differing by at most one.
+
+    Examples
+    --------
+    >>> _runs(10, 4)
+    [(0, 3), (3, 6), (6, 8), (8, 10)]
+    """
+    runs = max(1, min(runs, count))
+    base, extra = divmod(count, runs)
+    edges = [0]
+    for k in range(runs):
+        edges.append(edges[-1] + base + (1 if k < extra else 0))
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
+def chunk_run(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
+              values: dict[sp.Symbol, Any], seed: int, start: int,
+              sizes: Sequence[int]) -> list[tuple[float, float, float]]:
+    """The sums of chunks start, start + 1, ... (one :func:`chunk_sums` each)."""
+    return [chunk_sums(g, inputs, values, seed, start + k, size)
+            for k, size in enumerate(sizes)]
 
 
 def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Distribution],
@@ -113,7 +145,8 @@ def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
                  for k, size in jobs]
     else:
         with dask_client(workers, scheduler, processes) as client:
-            futures = [client.submit(point_chunk, scene, list(keys), inputs, seed, k, size,
+            sent = client.scatter(scene, broadcast=True)  # once a worker, not once a task
+            futures = [client.submit(point_chunk, sent, list(keys), inputs, seed, k, size,
                                      pure=False) for k, size in jobs]
             if progress:
                 from dask.distributed import progress as bar

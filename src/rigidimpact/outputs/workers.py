@@ -36,8 +36,12 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         # 0.030 to 0.036 s without it, as in one process.
         with dask.config.set({"distributed.nanny.pre-spawn-environ."
                               "MALLOC_TRIM_THRESHOLD_": None}):
+            # no dashboard; the scheduler's own HTTP endpoint (health, metrics) on a free
+            # port of this machine only, not on 8787 of every interface, where a second
+            # run at the same time would collide
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                   processes=processes, dashboard_address=None)
+                                   processes=processes, dashboard_address=None,
+                                   scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
         client = Client(cluster)
     else:
         try:

@@ -350,15 +350,16 @@ def _draws(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
     subexpressions once)."""
     fixed = {s: v for s, v in values.items() if s not in inputs}
     drawn = {s.name: inputs[s].sample(rng, size, fixed) for s in sorted(inputs, key=str)}
-    out = _kernel(sp.sympify(g).subs(fixed))(**drawn)["y"]
+    at = tuple(sorted(((s, sp.sympify(v)) for s, v in fixed.items()), key=lambda x: str(x[0])))
+    out = _kernel(sp.sympify(g), at)(**drawn)["y"]
     return np.broadcast_to(np.asarray(out, dtype=float), (size,))
 
 
 @lru_cache(maxsize=32)
-def _kernel(g: sp.Expr) -> Any:
-    """The fused kernel of g, built once a process (a worker runs many chunks of one
-    output)."""
-    return fused({"y": g})
+def _kernel(g: sp.Expr, at: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()) -> Any:
+    """The fused kernel of g with the symbols in `at` given their values, built once a
+    process (a worker runs many chunks of one output)."""
+    return fused({"y": g.subs(dict(at))})
 
 
 def stream(seed: int, index: int) -> np.random.SeedSequence:
