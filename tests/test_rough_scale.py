@@ -356,3 +356,26 @@ def test_where_the_newton_method_stops_short_the_rule_refuses_in_one_line(monkey
     monkeypatch.setattr(simultaneous_rule, "coulomb_newton", stops)
     with pytest.raises(ri.InputError, match="stopped at a residual of 1.0e-03"):
         rough_cluster(2, 2).simultaneous()
+
+
+@pytest.mark.parametrize("make", [lambda: rough_fan(12), lambda: rough_chain(9),
+                                  lambda: rough_fan(33)])
+def test_the_exact_confirmation_through_sparse_rows_is_the_product_with_m(make,
+                                                                           monkeypatch):
+    # the frictional problem's exact check takes M z through J's sparse rows; here each
+    # call is also made with M itself (its rows as built), and the two must agree on
+    # every answer and every refusal
+    from rigidimpact.solve.lcp import confirm_support
+
+    calls = []
+
+    def both(M, q, support, raised=(), times=None):
+        through = confirm_support(M, q, support, raised, times)
+        direct = confirm_support(M, q, support, raised)
+        assert through == direct
+        calls.append(through is not None)
+        return through
+
+    monkeypatch.setattr(simultaneous_rule, "confirm_support", both)
+    make().simultaneous()
+    assert calls and calls[-1]

@@ -33,7 +33,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 from typing import Any
 
@@ -161,53 +161,69 @@ def lemke_float(M: np.ndarray, q: np.ndarray, max_pivots: int | None = None
     return None
 
 
-def confirm_support(M: Sequence[dict[int, Fraction]], q: Sequence[Fraction],
-                    support: Sequence[int], raised: Sequence[int] = ()
-                    ) -> list[Fraction] | None:
+def confirm_support(M: Sequence[dict[int, Any]], q: Sequence[Any],
+                    support: Sequence[int], raised: Sequence[int] = (),
+                    times: Callable[[list[Any]], list[Any]] | None = None
+                    ) -> list[Any] | None:
     """The exact z whose positive part is on `support` (M given as sparse rows):
-    ``(q + M z)_i = 0`` there, z zero elsewhere, solved in the rationals (python-flint's
-    where installed); each index in `raised` (an unknown the equations leave free, such
-    as a released contact's slack) is then raised to the least value >= 0 that keeps
-    every row it enters non-negative. None unless z >= 0, q + M z >= 0 and
-    z (q + M z) = 0 hold exactly (then z solves the LCP)."""
+    ``(q + M z)_i = 0`` there, z zero elsewhere, solved in the rationals; each index in
+    `raised` (an unknown the equations leave free, such as a released contact's slack)
+    is then raised to the least value >= 0 that keeps every row it enters non-negative.
+    None unless z >= 0, q + M z >= 0 and z (q + M z) = 0 hold exactly (then z solves
+    the LCP). M's and q's entries are elements of SymPy's QQ (python-flint's fmpq where
+    it is installed: the arithmetic of thousands of contacts stays in C) or Fractions;
+    z comes back in QQ. `times`, where given, is M z by another way (the same numbers:
+    a product through sparse factors of M, where M itself is dense)."""
     n = len(q)
+    q = [_qq(x) for x in q]
+    if any(isinstance(x, Fraction) for row in M[:1] for x in row.values()):
+        M = [{j: _qq(x) for j, x in row.items()} for row in M]
+    zero = QQ(0)
     support = list(support)
-    z = [Fraction(0)] * n
+    z = [zero] * n
     if support:
         where = {j: k for k, j in enumerate(support)}
-        block = DomainMatrix({k: {where[j]: QQ(x.numerator, x.denominator)
-                                  for j, x in M[i].items() if j in where}
+        block = DomainMatrix({k: {where[j]: x for j, x in M[i].items() if j in where}
                               for k, i in enumerate(support)},
                              (len(support), len(support)), QQ)
-        rhs = DomainMatrix({k: {0: QQ(-q[i].numerator, q[i].denominator)}
-                            for k, i in enumerate(support) if q[i]},
+        rhs = DomainMatrix({k: {0: -q[i]} for k, i in enumerate(support) if q[i]},
                            (len(support), 1), QQ)
         try:
             solved = block.to_dense().lu_solve(rhs.to_dense())
         except Exception:  # noqa: BLE001 - singular: the support does not fix z
             return None
         for k, i in enumerate(support):
-            x = solved[k, 0].element
-            z[i] = Fraction(int(x.numerator), int(x.denominator))
+            z[i] = solved[k, 0].element
     if any(x < 0 for x in z):
         return None
-    columns: dict[int, list[tuple[int, Fraction]]] = {}  # M's columns, their nonzeros
-    for i, row in enumerate(M):
-        for j, x in row.items():
-            columns.setdefault(j, []).append((i, x))
-    w = list(q)
-    for j in range(n):
-        if z[j]:
-            for i, m in columns.get(j, ()):
-                w[i] += m * z[j]
-    for k in raised:
-        z[k] = max([Fraction(0), *(-w[i] / m for i, m in columns.get(k, ()) if m > 0)])
-        if z[k]:
-            for i, m in columns.get(k, ()):
-                w[i] += m * z[k]
+    # w = q + M z, a sparse product in QQ; each raised unknown then enters its column
+    if times is not None:
+        w = [a + b for a, b in zip(q, times(z), strict=True)]
+    else:
+        rows = DomainMatrix({i: row for i, row in enumerate(M) if row}, (n, n), QQ)
+        column = DomainMatrix({j: {0: x} for j, x in enumerate(z) if x}, (n, 1), QQ)
+        product = (rows * column).to_sdm()
+        w = [q[i] + product[i][0] if i in product else q[i] for i in range(n)]
+    if raised:
+        columns: dict[int, list[tuple[int, Any]]] = {k: [] for k in raised}
+        for i, row in enumerate(M):
+            for k in columns.keys() & row.keys():
+                columns[k].append((i, row[k]))
+        for k in raised:
+            z[k] = max([zero, *(-w[i] / m for i, m in columns[k] if m > 0)])
+            if z[k]:
+                for i, m in columns[k]:
+                    w[i] += m * z[k]
     if any(x < 0 for x in w) or any(z[i] and w[i] for i in range(n)):
         return None
     return z
+
+
+def _qq(x: Any) -> Any:
+    """x (a Fraction, an int or already QQ's) as an element of QQ."""
+    if isinstance(x, Fraction):
+        return QQ(x.numerator, x.denominator)
+    return x if isinstance(x, QQ.dtype) else QQ(x)
 
 
 # ---- floating point at scale, with an exact check ------------------------------------

@@ -290,6 +290,16 @@ def _sparse_times(rows: sp.Matrix, u: sp.Matrix) -> sp.Matrix:
     return sp.Matrix([tidy(x) for x in out])
 
 
+def _fraction(x: Any) -> Fraction:
+    """A rational of QQ (or a Fraction, or 0) as a Fraction."""
+    return Fraction(int(x.numerator), int(x.denominator)) if x else Fraction(0)
+
+
+def _rational(x: Any) -> sp.Rational:
+    """A rational of QQ (or a Fraction) as SymPy's."""
+    return sp.Rational(int(x.numerator), int(x.denominator))
+
+
 def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                     mu: Sequence[Any], target: Sequence[sp.Expr],
                     tangential: Sequence[Any]) -> Solution:
@@ -324,25 +334,24 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
 
-    def f(x: Any) -> Fraction:
-        return Fraction(int(x.numerator), int(x.denominator))
-
-    def g(x: Any) -> Fraction:
+    # every entry an element of QQ (python-flint's fmpq where installed, as W's own
+    # entries are): the confirmation below adds and compares them without converting
+    def g(x: Any) -> Any:
         x = sp.Rational(x)
-        return Fraction(int(x.p), int(x.q))
+        return QQ(int(x.p), int(x.q))
 
     sticks = [m is None and law.grips for m, law in zip(mu, tangential, strict=True)]
-    cone = [Fraction(0) if (m is None or not law.grips) else g(m)
+    cone = [QQ(0) if (m is None or not law.grips) else g(m)
             for m, law in zip(mu, tangential, strict=True)]
     size = 4 * n
-    M: list[dict[int, Fraction]] = [{} for _ in range(size)]  # sparse rows
-    q = [Fraction(0)] * size
+    M: list[dict[int, Any]] = [{} for _ in range(size)]  # sparse rows
+    q = [QQ(0)] * size
     for i in range(n):
         q[i] = g(v_n[i]) - g(target[i])
         q[n + i], q[2 * n + i] = g(v_t[i]), -g(v_t[i])
     for i, row in W.items():
         for j, value in row.items():
-            x = f(value)
+            x = value
             if i < n and j < n:
                 M[i][j] = x
             elif i < n:  # W_nt: the tangential impulses' effect on the normal velocity
@@ -356,13 +365,13 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                 M[n + i][j], M[n + i][n + j] = -x, x
     for i in range(n):
         if sticks[i]:
-            M[3 * n + i][3 * n + i] = Fraction(1)  # no slack: the slip after is zero
+            M[3 * n + i][3 * n + i] = QQ(1)  # no slack: the slip after is zero
         else:
-            M[n + i][3 * n + i] = M[2 * n + i][3 * n + i] = Fraction(1)
+            M[n + i][3 * n + i] = M[2 * n + i][3 * n + i] = QQ(1)
             if cone[i]:
                 M[3 * n + i][i] = cone[i]
-            M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = Fraction(-1)
-    def confirmed(guess: np.ndarray) -> list[Fraction] | None:
+            M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = QQ(-1)
+    def confirmed(guess: np.ndarray) -> list[Any] | None:
         """The exact solution on the support of a floating-point `guess`, if it is one."""
         cut = 1e-9 * max(1.0, float(np.abs(guess).max()))
         support = {int(i) for i in np.nonzero(guess > cut)[0]}
@@ -372,7 +381,26 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         # a released contact's slack is any value at least its slip after: raised to it
         released = [3 * n + i for i in range(n) if i not in support and not sticks[i]]
         support -= set(released)
-        return confirm_support(M, q, sorted(int(i) for i in support), released)
+        return confirm_support(M, q, sorted(int(i) for i in support), released, times)
+
+    Jt = J.transpose()
+
+    def times(z: list[Any]) -> list[Any]:
+        """M z through J's sparse rows (W = J M^-1 J^T is dense when one body touches
+        every contact; J is not): the rows of M as built above."""
+        x = DomainMatrix({k: {0: v} for k, v in enumerate(
+            [*z[:n], *(z[n + i] - z[2 * n + i] for i in range(n))]) if v}, (2 * n, 1), QQ)
+        y = (J * (Minv * (Jt * x))).to_sdm()
+        Wx = [y[k][0] if k in y else QQ(0) for k in range(2 * n)]
+        out = [*Wx[:n], *Wx[n:], *(-v for v in Wx[n:]), *([QQ(0)] * n)]
+        for i in range(n):
+            if sticks[i]:
+                out[3 * n + i] = z[3 * n + i]
+            else:
+                out[n + i] += z[3 * n + i]
+                out[2 * n + i] += z[3 * n + i]
+                out[3 * n + i] = cone[i] * z[i] - z[n + i] - z[2 * n + i]
+        return out
 
     z, how = None, ("found in floating point by a semismooth Newton method and confirmed "
                     "in exact arithmetic")
@@ -398,21 +426,22 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         if n > MAX_FRICTION_EXACT_LEMKE:  # too large for the exact tableau
             return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
         try:
-            z = lemke([[row.get(j, Fraction(0)) for j in range(size)] for row in M], q)
+            z = lemke([[_fraction(row.get(j, 0)) for j in range(size)] for row in M],
+                      [_fraction(x) for x in q])
         except NoSolution as exc:
             raise InputError("impact.rule", "no impulses satisfy the simultaneous rule "
                              f"with friction here ({exc}: a Painleve-type inconsistency); "
                              "try the sequential rule") from None
         how = "solved by Lemke's exact tableau"
     P = [z[i] for i in range(n)] + [z[n + i] - z[2 * n + i] for i in range(n)]
-    impulses = DomainMatrix([[QQ(x.numerator, x.denominator)] for x in P], (2 * n, 1), QQ)
+    impulses = DomainMatrix([[QQ(int(x.numerator), int(x.denominator))] for x in P],
+                            (2 * n, 1), QQ)
     u0 = problem.u_before.to_DM().convert_to(QQ)
     u_dm = u0 + Minv * (J.transpose() * impulses)
     slip_dm = J * u_dm
     u = sp.Matrix([QQ.to_sympy(u_dm[k, 0].element) for k in range(u_dm.shape[0])])
-    normal = sp.Matrix([sp.Rational(P[i].numerator, P[i].denominator) for i in range(n)])
-    along = sp.Matrix([sp.Rational(P[n + i].numerator, P[n + i].denominator)
-                       for i in range(n)])
+    normal = sp.Matrix([_rational(P[i]) for i in range(n)])
+    along = sp.Matrix([_rational(P[n + i]) for i in range(n)])
     acting = [i for i in range(n) if P[i] > 0]
     if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
         return _one_acting(problem, acting[0], list(target))
