@@ -51,7 +51,7 @@ $(VENV)/.peers-stamp: $(VENV)/.pooltool-stamp
 	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
 	touch $@
 
-peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool): make test then runs their comparisons
+peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool, Pinocchio): make test then runs their comparisons
 
 bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench

@@ -1,0 +1,203 @@
+"""rigidimpact's impact maps of sympy.physics.mechanics systems beside Pinocchio's
+``impulseDynamics`` (the robotics library's impact of a kinematic tree, package `pin`):
+the same systems written both ways, their speeds after compared, and what one impact
+costs in each.
+
+- a planar chain of point masses hanging from O, its tip striking a wall (Newton's
+  e = 1/2, the normal row only): rigidimpact from KanesMethod's mass matrix and the
+  tip's partial velocities, Pinocchio from a tree of revolute joints (relative angles);
+- the floating compass-gait biped of derivations/compass_gait.py at heel strike (e = 0
+  and stick: both rows of the heel).
+
+Run: ``python derivations/beside_pinocchio.py [--links N] [--json]`` (needs `make peers`).
+The tests in tests/test_pinocchio.py hold the two to 1e-10 at seeded random states.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import random
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+import sympy.physics.mechanics as me
+
+import rigidimpact as ri
+
+try:
+    import pinocchio as pin
+except ImportError:  # the peer is optional: main() says how to get it
+    pin = None
+
+HERE = Path(__file__).resolve().parent
+
+
+def point_mass(mass: float, where):
+    return pin.Inertia(mass, np.array(where, float), np.zeros((3, 3)))
+
+
+def chain_in_sympy(links: int):
+    """The chain of tests/test_mechanics_numbers.py at numbers: point masses m = 1 on
+    massless links of length l = 1 hanging from O, absolute angles q_i, the tip striking
+    a wall of normal -x with Newton's e = 1/2."""
+    q = me.dynamicsymbols(f"c1:{links + 1}")
+    u = me.dynamicsymbols(f"w1:{links + 1}")
+    frame = me.ReferenceFrame("F")
+    top = me.Point("T")
+    top.set_vel(frame, 0)
+    tip, particles = top, []
+    for i in range(links):
+        link = frame.orientnew(f"L{i}", "Axis", [q[i], frame.z])
+        link.set_ang_vel(frame, u[i] * frame.z)
+        point = tip.locatenew(f"Q{i}", -link.y)
+        point.v2pt_theory(tip, frame, link)
+        particles.append(me.Particle(f"b{i}", point, 1))
+        tip = point
+    kane = me.KanesMethod(frame, q, u, [q[i].diff() - u[i] for i in range(links)])
+    kane.kanes_equations(particles, [(p.point, -10 * p.mass * frame.y) for p in particles])
+    system = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        tip, -frame.x, restitution=sp.Rational(1, 2), name="tip")], frame=frame)
+    return system, q, u
+
+
+def chain_in_pinocchio(links: int):
+    """The same chain as a Pinocchio tree: revolute joints about z, each the next link's
+    angle relative to its parent (q_i - q_{i-1}), a point mass at (0, -1) of each link's
+    frame, and a frame at the last mass (the tip)."""
+    model = pin.Model()
+    parent = 0
+    for i in range(links):
+        place = pin.SE3.Identity() if i == 0 else pin.SE3(np.eye(3), np.array([0, -1.0, 0]))
+        parent = model.addJoint(parent, pin.JointModelRZ(), place, f"j{i}")
+        model.appendBodyToJoint(parent, point_mass(1.0, (0, -1, 0)), pin.SE3.Identity())
+    tip = model.addFrame(pin.Frame("tip", parent, 0, pin.SE3(np.eye(3), np.array(
+        [0, -1.0, 0])), pin.FrameType.OP_FRAME))
+    return model, tip
+
+
+def relative(values):
+    """Absolute angles (or rates) to Pinocchio's relative ones."""
+    return np.array([values[0]] + [values[i] - values[i - 1] for i in range(1, len(values))])
+
+
+def absolute(values):
+    return np.cumsum(values)
+
+
+def pinocchio_after(model, frame, q, v, rows, restitution):
+    data = model.createData()
+    pin.computeJointJacobians(model, data, q)
+    pin.updateFramePlacements(model, data)
+    J = pin.getFrameJacobian(model, data, frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    return pin.impulseDynamics(model, data, q, v, J[rows, :], restitution, 0.0).copy()
+
+
+def compass_gait():
+    """(kane, rigidimpact's heel-strike solution, symbol values, Pinocchio's model and its
+    heel frame) for the compass-gait biped: x and y of the stance foot, the stance leg's
+    angle (from the slope's normal, the leg along its frame's +y), the swing leg's angle
+    relative to it at the hip (the swing leg along its frame's -y); masses m = 5 at
+    a = 1/2 on the stance leg, m_H = 10 at the hip, m at b = 1/2 below the hip."""
+    sys.path.insert(0, str(HERE))
+    try:
+        import compass_gait as cg
+    finally:
+        sys.path.remove(str(HERE))
+    kane, _, solution = cg.heel_strike()
+    values = {cg.m: 5, cg.m_H: 10, cg.a: sp.Rational(1, 2), cg.b: sp.Rational(1, 2)}
+    model = pin.Model()
+    j = model.addJoint(0, pin.JointModelPX(), pin.SE3.Identity(), "x")
+    j = model.addJoint(j, pin.JointModelPY(), pin.SE3.Identity(), "y")
+    j = model.addJoint(j, pin.JointModelRZ(), pin.SE3.Identity(), "stance")
+    model.appendBodyToJoint(j, point_mass(5.0, (0, 0.5, 0)) + point_mass(10.0, (0, 1.0, 0)),
+                            pin.SE3.Identity())
+    j = model.addJoint(j, pin.JointModelRZ(), pin.SE3(np.eye(3), np.array([0, 1.0, 0])),
+                       "swing")
+    model.appendBodyToJoint(j, point_mass(5.0, (0, -0.5, 0)), pin.SE3.Identity())
+    heel = model.addFrame(pin.Frame("heel", j, 0, pin.SE3(np.eye(3), np.array(
+        [0, -1.0, 0])), pin.FrameType.OP_FRAME))
+    return kane, solution, values, model, heel
+
+
+def chain_state(rng: random.Random, links: int) -> tuple[list[float], list[float]]:
+    """Seeded angles and rates of the chain, the tip moving into the wall (+x)."""
+    angles = [rng.uniform(-1.2, 1.2) for _ in range(links)]
+    rates = [rng.uniform(-2, 2) for _ in range(links)]
+    if sum(np.cos(a) * w for a, w in zip(angles, rates, strict=True)) <= 0.05:
+        rates = [-w for w in rates]
+    return angles, rates
+
+
+def _per_call(run, repeat: int) -> float:
+    begin = time.perf_counter()
+    for _ in range(repeat):
+        run()
+    return (time.perf_counter() - begin) / repeat
+
+
+def costs(links: int = 5, repeat: int = 20) -> list[dict]:
+    """Seconds per impact of each path (the mean of `repeat` calls in this process)."""
+    rows = []
+    system, q, u = chain_in_sympy(links)
+    model, tip = chain_in_pinocchio(links)
+    angles, rates = chain_state(random.Random(45), links)
+    point = {**dict(zip(q, map(sp.Float, angles), strict=True)),
+             **dict(zip(u, map(sp.Float, rates), strict=True))}
+    ours = [float(x) for x in system.at(point).solve().speeds_after]
+    theirs = absolute(pinocchio_after(model, tip, relative(angles), relative(rates), [0], 0.5))
+    rows.append({"system": f"chain of {links}, tip on a wall",
+                 "rigidimpact at numbers": _per_call(lambda: system.at(point).solve(),
+                                                     max(1, repeat // 10)),
+                 "pinocchio": _per_call(lambda: pinocchio_after(
+                     model, tip, relative(angles), relative(rates), [0], 0.5), repeat * 50),
+                 "largest difference": float(np.max(np.abs(np.array(ours) - theirs)))})
+    kane, solution, values, model, heel = compass_gait()
+    x, y, st, sw = kane.q
+    ux, uy, w_st, w_sw = kane.u
+    closed = sp.lambdify([st, sw, ux, uy, w_st, w_sw],
+                         list(solution.speeds_after.xreplace({x: 0, y: 0, **values})),
+                         "numpy", cse=True)
+    half, before = 0.25, [0.0, 0.0, -1.1, -0.4]
+    ours = closed(-half, half, *before)
+    q_pin = np.array([0.0, 0.0, -half, 2 * half])
+    v_pin = np.array([*before[:3], before[3] - before[2]])
+    theirs = pinocchio_after(model, heel, q_pin, v_pin, [0, 1], 0.0)
+    theirs[3] += theirs[2]
+    rows.append({"system": "compass gait, heel strike",
+                 "rigidimpact at numbers": None,
+                 "rigidimpact closed form, evaluated": _per_call(
+                     lambda: closed(-half, half, *before), repeat * 50),
+                 "pinocchio": _per_call(lambda: pinocchio_after(
+                     model, heel, q_pin, v_pin, [0, 1], 0.0), repeat * 50),
+                 "largest difference": float(np.max(np.abs(np.array(ours, float) - theirs)))})
+    return rows
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--links", type=int, default=5)
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args(argv)
+    if pin is None:
+        print("beside_pinocchio: Pinocchio is not installed (make peers installs it)",
+              file=sys.stderr)
+        return 2
+    rows = costs(args.links)
+    if args.json:
+        print(json.dumps(rows, indent=2))
+        return 0
+    for row in rows:
+        print(row["system"])
+        for key, value in row.items():
+            if key != "system" and value is not None:
+                print(f"  {key}: {value:.3g}" + (" s per impact" if "differ" not in key
+                                                 else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
