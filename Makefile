@@ -39,16 +39,21 @@ notebooks: $(STAMP)  ## re-execute the notebooks in place; read the diff before 
 # pooltool 0.6.0 pins a development build of panda3d that no registry serves: it is
 # installed without its pins, then its requirements with a released panda3d
 $(VENV)/.pooltool-stamp: $(STAMP)
-	$(PY) -m pip install --quiet --no-deps pooltool-billiards==0.6.0
+	$(PY) -m pip install --quiet --no-deps pooltool-billiards==0.6.0 2>$(VENV)/pip-pooltool.log \
+		|| { cat $(VENV)/pip-pooltool.log >&2; exit 1; }
 	$(PY) -m pip install --quiet -c constraints.txt panda3d==1.10.16 panda3d-gltf==1.3.0 \
 		panda3d-simplepbr==0.13.1 numpy-quaternion==2024.0.13 cattrs h5py msgpack \
-		msgpack-numpy rich pyyaml
+		msgpack-numpy rich 'h11>=0.16' pyyaml 2>>$(VENV)/pip-pooltool.log \
+		|| { cat $(VENV)/pip-pooltool.log >&2; exit 1; }
+	$(PY) tools/pip_check.py
 	touch $@
 
 pooltool: $(VENV)/.pooltool-stamp  ## pooltool, so make test runs the billiards comparison
 
 $(VENV)/.peers-stamp: $(VENV)/.pooltool-stamp
-	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]'
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,peers]' 2>$(VENV)/pip-peers.log \
+		|| { cat $(VENV)/pip-peers.log >&2; exit 1; }
+	$(PY) tools/pip_check.py
 	touch $@
 
 peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool, Pinocchio): make test then runs their comparisons
@@ -58,7 +63,9 @@ bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); s
 	$(PY) -m pytest $(PARALLEL) -m slow
 
 $(VENV)/.lab-stamp: $(STAMP)
-	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,lab]'
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,lab]' 2>$(VENV)/pip-lab.log \
+		|| { cat $(VENV)/pip-lab.log >&2; exit 1; }
+	$(PY) tools/pip_check.py
 	touch $@
 
 # root (a container) must say so to Jupyter; anyone else needs no flag

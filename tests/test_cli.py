@@ -219,3 +219,40 @@ def test_start_up_imports_only_what_is_needed():
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "[]"
+
+
+_SHIPPED = Path(__file__).resolve().parents[1] / "derivations"
+
+
+def test_a_sweep_of_chosen_keys_names_only_the_files_it_wrote(tmp_path, capsys):
+    # the energy lost is evaluated for its warnings but not written: its line says so
+    out = tmp_path / "sweep"
+    assert main(["sweep", "barbell", "--grid", "theta=0:1:5", "--set", "L=1", "--set",
+                 "M=2", "--set", "e=1/2", "--set", "m=1", "--set", "v_ix=1", "--keys",
+                 "V_x", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    written = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
+    assert written == ["V_x.npy", "summary.json"]
+    named = [line.split(".npy")[0].strip() + ".npy" for line in printed.splitlines()
+             if ".npy:" in line]
+    assert named == ["V_x.npy"]
+    assert "energy_loss_fraction (checked for the warnings, not written)" in printed
+
+
+def test_a_linkage_explains_its_flight_and_counts_its_steps(capsys):
+    # the double pendulum swings under gravity with its joints held: not straight lines,
+    # and its integration's steps are counted
+    scene = str(_SHIPPED / "double-pendulum-wall.toml")
+    assert main(["simulate", scene, "--explain"]) == 0
+    explained = capsys.readouterr().out
+    assert "straight lines" not in explained
+    assert "every joint and pivot held" in explained
+    assert main(["simulate", scene, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["cost"]["ode_steps"] > 0
+
+
+def test_an_animation_says_where_it_was_written(tmp_path, capsys):
+    movie = tmp_path / "restrike.gif"
+    assert main(["simulate", str(_SHIPPED / "restrike.toml"), "--animate", str(movie)]) == 0
+    assert movie.exists()
+    assert f"animation written to {movie}" in capsys.readouterr().err

@@ -224,6 +224,10 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         return 0
     numbered = any(eq.paper for eq in d.equations)
     print("\nLaws (paper's equation numbers):" if numbered else "\nLaws:")
+    if scene is not None and len(getattr(scene, "contacts", ())) == 1:
+        print("  (in the contact's frame, from its point: x along its normal, y along its "
+              "tangent,\n  the normal turned +90 degrees; the results below are in the "
+              "scene's x and y)")
     for eq in d.equations:
         number = f"{eq.paper:<14} " if numbered else ""
         print(f"  {number}{eq.label}:\n      {eq.lhs} = {eq.rhs}")
@@ -515,8 +519,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.plot:
         _plot_outcome(scene, outcome, Path(args.plot))
+        print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
     if args.animate:
         _animate_outcome(scene, outcome, Path(args.animate))
+        print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -726,7 +732,11 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
           f" in {summary['seconds']:.3g} s with {args.backend}; written to {args.out}/")
     for key, stat in summary["results"].items():
         extra = f", {stat['not_finite']} not finite" if stat["not_finite"] else ""
-        print(f"  {key}.npy: from {stat['min']!r} to {stat['max']!r}{extra}")
+        if args.keys and key not in chosen:  # evaluated for its warnings only
+            print(f"  {key} (checked for the warnings, not written): from {stat['min']!r}"
+                  f" to {stat['max']!r}{extra}")
+        else:
+            print(f"  {key}.npy: from {stat['min']!r} to {stat['max']!r}{extra}")
     return 0
 
 

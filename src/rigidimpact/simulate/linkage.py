@@ -313,4 +313,5 @@ def run_linkage(scene: Scene, values: Mapping[sp.Symbol, Any] | None = None) -> 
         details["warnings"] = [*solution.warnings, *solution.notes]
     track = LinkageTrack(model, ts, ys, ends)
     return finite(Outcome(plan, final, events, time.perf_counter() - start,
+                          ode_steps=max(len(found.t) - 1, 0) if t_end > 0 else 0,
                           details=details, trajectory=track))

@@ -45,6 +45,14 @@ def explain(scene: Scene) -> str:
     """  # noqa: E501
     plan = make_plan(scene.simulate)
     lines = [plan.explain()]
+    if scene.joints:  # a linkage flies with its joints held: not straight lines
+        held = "under gravity" if "gravity" in plan.effects else "with no force"
+        lines = [line.replace(
+            "free-flight: no force between impacts: straight lines and steady spin in "
+            "closed form, with an exact search for the next contact",
+            f"linkage flight: the bodies move {held} with every joint and pivot held "
+            "(the linkage's equations of motion, integrated with DOP853 at rtol 1e-10), "
+            "watched for the next contact") for line in plan.explain().splitlines()]
     if len(scene.contacts) > 1:
         frictional = any(t.laws[1].grips for t in scene.contacts)
         lines.append(f"impact rule: {scene.rule}: {rule_laws(scene.rule, frictional)}")
