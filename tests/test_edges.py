@@ -668,6 +668,7 @@ def test_a_run_that_ends_at_the_impact_is_drawn_as_the_impact(tmp_path, capsys):
     picture = tmp_path / "hinged.png"
     assert main(["simulate", str(path), "--plot", str(picture)]) == 0
     assert matplotlib.image.imread(picture).shape[:2] == (400, 800)
+    assert f"figure written to {picture}" in capsys.readouterr().err
     refused(capsys, ["simulate", str(path), "--animate", str(tmp_path / "m.gif")],
             "nothing moves")
     assert not (tmp_path / "m.gif").exists()
