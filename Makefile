@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test test-slow test-all lint notebooks bench lab clean peers pooltool
+.PHONY: run test test-slow test-all lint notebooks bench lab clean peers pooltool docs
 
 # pytest-xdist over every core; a file's tests stay on one worker (a notebook's cells
 # share one kernel, in order)
@@ -29,7 +29,7 @@ test-slow: $(STAMP)  ## the slow tier alone: wide grids, whole benches, 1,000-di
 test-all: test test-slow  ## both tiers, as CI runs them
 
 lint: $(STAMP)  ## ruff, the import layers (import-linter), and mypy over the package
-	$(PY) -m ruff check src tests derivations notebooks
+	$(PY) -m ruff check src tests derivations notebooks docs tools
 	$(VENV)/bin/lint-imports --no-cache
 	$(PY) -m mypy
 
@@ -68,12 +68,22 @@ $(VENV)/.lab-stamp: $(STAMP)
 	$(PY) tools/pip_check.py
 	touch $@
 
+$(VENV)/.docs-stamp: $(STAMP)
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev,docs]' 2>$(VENV)/pip-docs.log \
+		|| { cat $(VENV)/pip-docs.log >&2; exit 1; }
+	$(PY) tools/pip_check.py
+	touch $@
+
+docs: $(VENV)/.docs-stamp  ## the documentation site in build/docs (warnings are errors; reads offline)
+	$(PY) -m sphinx -W --keep-going -q -b html docs $(BUILD)/docs
+	@echo "the site: $(BUILD)/docs/index.html"
+
 # root (a container) must say so to Jupyter; anyone else needs no flag
 LAB_FLAGS ?= $(if $(filter 0,$(shell id -u)),--allow-root)
 
 lab: $(VENV)/.lab-stamp  ## open the notebooks in JupyterLab (installed on first use)
 	$(PY) -m jupyter lab $(LAB_FLAGS) notebooks/
 
-clean:
-	rm -rf $(BUILD) .pytest_cache .ruff_cache .hypothesis
+clean:  ## remove build outputs (the site and its generated gallery too)
+	rm -rf $(BUILD) docs/gallery .pytest_cache .ruff_cache .hypothesis
 	find . -name __pycache__ -prune -exec rm -rf {} +

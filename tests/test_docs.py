@@ -19,3 +19,17 @@ def test_the_scene_guide_has_python_examples():
 @pytest.mark.parametrize("block", BLOCKS)
 def test_a_python_example_of_the_scene_guide_runs(block):
     exec(compile(block, str(DOCS), "exec"), {})  # noqa: S102 - our own documentation
+
+
+START = DOCS.parent / "getting-started.md"
+
+
+def test_the_getting_started_page_runs_as_written():
+    import rigidimpact as ri
+
+    text = START.read_text()
+    (python,) = re.findall(r"```python\n(.*?)```", text, re.S)
+    exec(compile(python, str(START), "exec"), {})  # noqa: S102 - our own documentation
+    (toml,) = re.findall(r"```toml\n(.*?)```", text, re.S)
+    (solution,) = ri.parse_scene(toml).outcomes()
+    assert solution.results()["rod.vy"] is not None

@@ -3,8 +3,8 @@
 pooltool 0.6.0 pins a development build of panda3d that no registry serves, so `make
 pooltool` installs it without its pins and a released panda3d beside it; and it asks for
 an llvmlite older than the one numba 0.68 needs and a rich older than the one pinned in
-constraints.txt. pip then reports those three pins as broken. Any other broken requirement is an error: its lines are printed and the
-exit status is 1.
+constraints.txt. pip then reports those three pins as broken. Any other broken
+requirement is an error: its lines are printed and the exit status is 1.
 """
 
 from __future__ import annotations

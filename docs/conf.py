@@ -1,0 +1,49 @@
+"""The documentation site: `make docs` builds it into build/docs (warnings are errors).
+
+Sphinx with MyST (Markdown pages, the README's own syntax) and myst-nb (the notebooks,
+rendered from their stored outputs: nbval already re-executes them in `make test`);
+autodoc with napoleon for the API reference (the docstrings are in NumPy's style); the
+gallery is written from derivations/*.toml by docs/_ext/gallery.py at each build; MathJax
+is served from the site itself (sphinx-mathjax-offline), so the site reads offline.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE / "_ext"))
+
+import rigidimpact  # noqa: E402
+
+project = "rigidimpact"
+author = "the rigidimpact authors"
+copyright = "2026, the rigidimpact authors"  # noqa: A001 - Sphinx's name
+release = version = rigidimpact.__version__
+
+extensions = [
+    "myst_nb",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.viewcode",
+    "sphinx-mathjax-offline",  # its module name has hyphens
+    "gallery",
+]
+source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
+exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
+myst_enable_extensions = ["dollarmath", "amsmath"]
+myst_heading_anchors = 3
+nb_execution_mode = "off"  # the stored outputs; nbval runs the notebooks
+nb_render_markdown_format = "myst"
+autodoc_member_order = "bysource"
+autodoc_typehints = "none"
+napoleon_numpy_docstring = True
+napoleon_google_docstring = False
+suppress_warnings = ["myst.header", "mystnb.unknown_mime_type", "misc.highlighting_failure"]
+
+html_theme = "furo"
+html_title = f"rigidimpact {release}"
+html_static_path: list[str] = []
+# notebook 02's slider is shown as its stored picture: no widget script from the network
+nb_ipywidgets_js: dict[str, dict[str, str]] = {}

@@ -1,0 +1,96 @@
+"""The documentation site as a reader gets it: built by `make docs` (which CI runs before
+these tests), read offline, its math typeset by MathJax in a real browser (headless
+Chromium), every shipped scene in the gallery, every notebook rendered with its figures.
+
+Where the site or Chromium is missing these tests skip, unless RIGIDIMPACT_SITE=1 (CI):
+then a missing site or browser is a failure, not a skip.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SITE = ROOT / "build" / "docs"
+REQUIRED = os.environ.get("RIGIDIMPACT_SITE") == "1"
+
+
+def _need(condition: bool, why: str) -> None:
+    if not condition:
+        if REQUIRED:
+            pytest.fail(why)
+        pytest.skip(why)
+
+
+@pytest.fixture(scope="module")
+def site() -> Path:
+    _need((SITE / "index.html").exists(), "no site: run make docs first")
+    return SITE
+
+
+def _browser() -> str:
+    found = shutil.which("chromium") or shutil.which("chromium-browser")
+    _need(found is not None, "no Chromium (apt-get install chromium)")
+    return found  # type: ignore[return-value]
+
+
+def _rendered(page: Path) -> str:
+    """The page's DOM after its scripts ran (MathJax typesets on load)."""
+    run = subprocess.run([_browser(), "--headless", "--no-sandbox", "--disable-gpu",
+                          "--virtual-time-budget=15000", "--dump-dom", page.as_uri()],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return run.stdout
+
+
+def test_every_shipped_scene_has_a_gallery_page_with_its_figure(site):
+    scenes = sorted(p.stem for p in (ROOT / "derivations").glob("*.toml"))
+    assert scenes
+    for stem in scenes:
+        page = (site / "gallery" / f"{stem}.html").read_text()
+        assert "The equations solved" in page, stem
+        assert "The scene file" in page, stem
+        assert f"{stem}.png" in page or "No figure: a 3-D scene" in page, stem
+
+
+def test_every_notebook_is_rendered_with_its_stored_figures(site):
+    for notebook in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        page = site / "notebooks" / f"{notebook.stem}.html"
+        assert page.exists(), notebook.name
+        stored = notebook.read_text().count('"image/png"')
+        shown = len(re.findall(r'<img [^>]*src="[^"]*_images/', page.read_text()))
+        assert shown >= min(stored, 1), (notebook.name, stored, shown)
+
+
+def test_the_site_reads_offline(site):
+    # no script, style sheet or image is fetched from the network
+    for page in site.rglob("*.html"):
+        text = page.read_text()
+        remote = re.findall(r'<(?:script|link|img)[^>]*(?:src|href)="(https?:[^"]+)"', text)
+        assert not remote, (page.relative_to(site), remote[:3])
+        for local in re.findall(r'<(?:script|img)[^>]*src="([^"#?]+)', text):
+            assert (page.parent / local).exists(), (page.relative_to(site), local)
+
+
+@pytest.mark.parametrize("page, formulas", [
+    ("index.html", False), ("gallery/barbell.html", True),
+    ("gallery/rod-rough-floor.html", True), ("notebooks/01-ball-meets-barbell.html", True),
+    ("notebooks/05-two-bodies.html", True), ("guide/friction.html", False),
+    ("api.html", False)])
+def test_math_is_typeset_in_a_real_browser(site, page, formulas):
+    dom = _rendered(site / page)
+    assert (dom.count("<mjx-container") > 0) == formulas, page
+    assert "<mjx-merror" not in dom, page  # a formula MathJax could not read
+    assert "rigidimpact" in dom
+
+
+def test_the_site_says_which_version_it_was_built_from(site):
+    import rigidimpact
+
+    assert f"rigidimpact {rigidimpact.__version__}" in (site / "index.html").read_text()
