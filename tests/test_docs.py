@@ -33,3 +33,16 @@ def test_the_getting_started_page_runs_as_written():
     (toml,) = re.findall(r"```toml\n(.*?)```", text, re.S)
     (solution,) = ri.parse_scene(toml).outcomes()
     assert solution.results()["rod.vy"] is not None
+
+
+def test_the_notebooks_use_only_what_a_user_may_use():
+    # a notebook is a user's first program: it imports the package's public names (and
+    # its outputs, analyses and paper modules), never the internals of its core
+    import json
+
+    internal = re.compile(r"^\s*(from|import)\s+rigidimpact\.(laws|solve|model|symbolic)\b",
+                          re.M)
+    for notebook in sorted((DOCS.parents[1] / "notebooks").glob("*.ipynb")):
+        cells = json.loads(notebook.read_text())["cells"]
+        code = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code")
+        assert not internal.search(code), (notebook.name, internal.search(code).group(0))

@@ -81,7 +81,8 @@ def test_the_site_reads_offline(site):
 @pytest.mark.parametrize("page, formulas", [
     ("index.html", False), ("gallery/barbell.html", True),
     ("gallery/rod-rough-floor.html", True), ("notebooks/01-ball-meets-barbell.html", True),
-    ("notebooks/05-two-bodies.html", True), ("guide/friction.html", False),
+    ("notebooks/05-two-bodies.html", True),
+    ("notebooks/16-random-restitution.html", True), ("guide/friction.html", False),
     ("api.html", False)])
 def test_math_is_typeset_in_a_real_browser(site, page, formulas):
     dom = _rendered(site / page)

@@ -1,4 +1,5 @@
-"""rigidimpact: derive, verify and simulate impulsive planar collisions of rigid bodies.
+"""rigidimpact: derive, verify and simulate impulsive collisions of rigid bodies, in the
+plane and in space.
 
 Starting from C. E. Mungan, "Collision of a ball with a barbell and related impulse
 problems", Eur. J. Phys. 28 (2007) 563-568.
@@ -19,6 +20,7 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact import mechanics as mechanics
     from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
+    from rigidimpact.laws.cone import cone_impact as cone_impact
     from rigidimpact.laws.contact import Contact as Contact
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
     from rigidimpact.laws.law import Equation as Equation
@@ -46,9 +48,15 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.solve.collision import fan as fan
     from rigidimpact.solve.derivation import Derivation as Derivation
     from rigidimpact.solve.impact import Impact as Impact
+    from rigidimpact.solve.rules.driven import Driven as Driven
     from rigidimpact.solve.solution import Solution as Solution
     from rigidimpact.solve.space import SpaceCollision as SpaceCollision
+    from rigidimpact.symbolic.distributions import histogram as histogram
+    from rigidimpact.symbolic.distributions import monte_carlo as monte_carlo
+    from rigidimpact.symbolic.distributions import pushforward as pushforward
     from rigidimpact.symbolic.notation import symbol as symbol
+    from rigidimpact.symbolic.numeric import Kernel as Kernel
+    from rigidimpact.symbolic.numeric import evaluate as evaluate
     from rigidimpact.verify import run_checks as run_checks
 
 # name -> module; imported on first use, so `import rigidimpact` (and the command line's
@@ -76,6 +84,13 @@ _PUBLIC = {
     "run_checks": "verify",
     # after the impact
     "critical_angle": "analyses.restrike", "make_plan": "simulate", "run": "simulate",
+    # the driven rule; the 3-D contact law in contact space
+    "Driven": "solve.rules.driven", "cone_impact": "laws.cone",
+    # numbers from closed forms: a compiled kernel, one evaluation
+    "Kernel": "symbolic.numeric", "evaluate": "symbolic.numeric",
+    # random inputs: the Monte Carlo, its histogram, the exact density
+    "monte_carlo": "symbolic.distributions", "histogram": "symbolic.distributions",
+    "pushforward": "symbolic.distributions",
 }
 
 __all__ = list(_PUBLIC)
