@@ -14,7 +14,10 @@ from rigidimpact.simulate.sphere import flight, landing_time, sliding
 R = sp.Rational
 
 
-def _about_contact(m, k, radius, v, w, n=sp.Matrix([0, 0, 1])):
+UP = sp.ImmutableMatrix([0, 0, 1])
+
+
+def _about_contact(m, k, radius, v, w, n=UP):
     """Angular momentum about the touching point, a point of the flat under the centre:
     I w + (R n) x m v (the centre is R n above it)."""
     return k * m * radius ** 2 * w + (radius * n).cross(m * v)
