@@ -77,6 +77,7 @@ $(VENV)/.docs-stamp: $(STAMP)
 docs: $(VENV)/.docs-stamp  ## the documentation site in build/docs (warnings are errors; reads offline)
 	$(PY) -m sphinx -W --keep-going -q -b html docs $(BUILD)/docs
 	@echo "the site: $(BUILD)/docs/index.html"
+	$(PY) docs/browse.py $(BUILD)/docs
 
 # root (a container) must say so to Jupyter; anyone else needs no flag
 LAB_FLAGS ?= $(if $(filter 0,$(shell id -u)),--allow-root)

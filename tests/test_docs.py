@@ -46,3 +46,7 @@ def test_the_notebooks_use_only_what_a_user_may_use():
         cells = json.loads(notebook.read_text())["cells"]
         code = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code")
         assert not internal.search(code), (notebook.name, internal.search(code).group(0))
+        # and shows at least one typeset result among its stored outputs
+        typeset = [o for c in cells if c["cell_type"] == "code" for o in c["outputs"]
+                   if "text/latex" in o.get("data", {})]
+        assert typeset, f"{notebook.name} shows no typeset result"

@@ -95,3 +95,26 @@ def test_the_site_says_which_version_it_was_built_from(site):
     import rigidimpact
 
     assert f"rigidimpact {rigidimpact.__version__}" in (site / "index.html").read_text()
+
+
+def test_a_reader_in_chromium_finds_the_math_the_figures_and_the_search(site):
+    # served from 127.0.0.1 with every other host unreachable: the front page, a guide
+    # page, a notebook and the gallery typeset their math, load every image, raise no
+    # script error, and the search finds "critical angle"; each page's screenshot is
+    # saved under build/docs/screens/
+    import sys
+
+    _browser()
+    sys.path.insert(0, str(ROOT / "docs"))
+    try:
+        import browse
+    finally:
+        sys.path.remove(str(ROOT / "docs"))
+    found = browse.browse(site)
+    assert browse.problems(found) == []
+    assert found["notebooks/01-ball-meets-barbell.html"]["typeset"] > 0
+    assert found["gallery/barbell.html"]["typeset"] > 0
+    assert found["index.html"]["images"] > 0
+    for page, result in found.items():
+        if "screenshot" in result:
+            assert (ROOT / result["screenshot"]).stat().st_size > 10_000, page

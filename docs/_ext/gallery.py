@@ -17,6 +17,11 @@ SCENES = ROOT / "derivations"
 OUT = Path(__file__).resolve().parents[1] / "gallery"
 
 
+def _plain(text: str) -> str:
+    """`text` shown as written (a product's * is not emphasis)."""
+    return "".join("\\" + c if c in "*_`[]<>" else c for c in text)
+
+
 def _latex_blocks(derivation: Any) -> list[str]:
     from rigidimpact.outputs.latex import equation_latex, to_latex
 
@@ -74,7 +79,7 @@ def write_gallery(scenes: Path = SCENES, out: Path = OUT) -> list[str]:
                 "the figure.", ""]
         text += [f"![{title}]({path.stem}.png)", ""] if why is None else \
             [f"(No figure: {why}.)", ""]
-        text += ["## Setup", ""] + [f"- {line}" for line in derivation.setup] + [""]
+        text += ["## Setup", ""] + [f"- {_plain(line)}" for line in derivation.setup] + [""]
         text += _latex_blocks(derivation)
         text += ["## The scene file", "", "```toml", path.read_text().rstrip(), "```", ""]
         (out / f"{path.stem}.md").write_text("\n".join(text))
