@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 BUILD ?= build
 
-.PHONY: run test test-slow test-all lint notebooks bench lab clean peers pooltool docs
+.PHONY: run test test-slow test-all lint notebooks bench lab clean peers pooltool docs browser
 
 # pytest-xdist over every core; a file's tests stay on one worker (a notebook's cells
 # share one kernel, in order)
@@ -78,6 +78,13 @@ docs: $(VENV)/.docs-stamp  ## the documentation site in build/docs (warnings are
 	$(PY) -m sphinx -W --keep-going -q -b html docs $(BUILD)/docs
 	@echo "the site: $(BUILD)/docs/index.html"
 	$(PY) docs/browse.py $(BUILD)/docs
+
+# Debian's chromium, for the site's browser test (docs/browse.py, tests/test_site.py)
+SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
+
+browser:  ## install Debian's chromium, so make docs reads the site in a real browser
+	$(SUDO) apt-get update -qq
+	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends chromium
 
 # root (a container) must say so to Jupyter; anyone else needs no flag
 LAB_FLAGS ?= $(if $(filter 0,$(shell id -u)),--allow-root)
