@@ -40,7 +40,9 @@ autodoc_member_order = "bysource"
 autodoc_typehints = "none"
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
-suppress_warnings = ["myst.header", "mystnb.unknown_mime_type", "misc.highlighting_failure"]
+# ref.python: a field named alike in two classes (Contact.law, Equation.law) is ambiguous
+suppress_warnings = ["myst.header", "mystnb.unknown_mime_type", "misc.highlighting_failure",
+                     "ref.python"]
 
 html_theme = "furo"
 html_title = f"rigidimpact {release}"
