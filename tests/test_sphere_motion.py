@@ -83,3 +83,44 @@ def test_bad_input_is_refused_in_one_line():
         sliding((1, 0, 1), (0, 0, 0), 1, R(2, 5), R(1, 5), 10)
     with pytest.raises(InputError, match="three components"):
         sliding((1, 0), (0, 0, 0), 1, R(2, 5), R(1, 5), 10)
+
+
+def _superball_bounce(v, w, z_normal):
+    """One bounce of Garwin's superball (uniform, R = 1, m = 1; perfectly rough and
+    elastic: Walton's law with e = 1, beta = 1 and friction ample) on a flat of normal
+    (0, 0, z_normal) below it (1) or above it (-1), by rigidimpact's 3-D core."""
+    from rigidimpact import Body3, Contact, SpaceCollision
+
+    ball = Body3.sphere(1, 1, (0, 0, z_normal), v, w, name="ball")
+    out = SpaceCollision((Body3.fixed("flat"), ball), (Contact(
+        normal=(0, 0, z_normal), restitution=1, tangential="rough", friction=100,
+        tangential_restitution=1, bodies=("flat", "ball"), point=(0, 0, 0)),)).solve()
+    r = out.results()
+    assert all(value == 0 for value in out.checks.values())
+    return ([r[f"ball.v{a}"] for a in "xyz"], [r[f"ball.omega_{a}"] for a in "xyz"])
+
+
+def test_garwins_superball_bounces_with_three_sevenths_and_returns_under_a_table():
+    # Garwin (Am. J. Phys. 37, 88, 1969): perfectly rough and elastic, a uniform sphere
+    # thrown without spin at the floor leaves it at 3/7 of its horizontal speed, spinning
+    # at 10/7 of it over R. By hand, in (v_x, R w_y): the floor's map is (1/7)[[3, 4],
+    # [10, -3]] and the table's underside's (1/7)[[3, -4], [-10, -3]] (the touching
+    # point above the centre); floor, table, floor take (1, 0) to (-333/343, -130/343):
+    # the ball comes back toward the thrower at 0.97 of its speed
+    v, w = _superball_bounce((1, 0, -1), (0, 0, 0), 1)
+    assert (v, w) == ([R(3, 7), 0, 1], [0, R(10, 7), 0])
+    v, w = _superball_bounce(v, w, -1)  # it rises to the underside of the table
+    assert (v[0], w[1], v[2]) == (R(-31, 49), R(-60, 49), -1)
+    v, w = _superball_bounce(v, w, 1)  # and falls to the floor again
+    assert (v[0], w[1], v[2]) == (R(-333, 343), R(-130, 343), 1)
+    # the two laws of a perfectly rough elastic bounce, checked on their own: the
+    # touching point's tangential velocity reverses, and the angular momentum about it
+    # is kept (the impulse passes through it)
+    before_v, before_w = sp.Matrix([1, 0, -1]), sp.Matrix([0, 0, 0])
+    after_v, after_w = (sp.Matrix(x) for x in _superball_bounce((1, 0, -1), (0, 0, 0), 1))
+    arm = sp.Matrix([0, 0, -1])  # from the centre to the touching point
+    slip_before = before_v + before_w.cross(arm)
+    slip_after = after_v + after_w.cross(arm)
+    assert (slip_after[0], slip_after[1]) == (-slip_before[0], -slip_before[1])
+    assert R(2, 5) * after_w + (-arm).cross(after_v) == \
+        R(2, 5) * before_w + (-arm).cross(before_v)
