@@ -527,3 +527,24 @@ def test_a_new_rule_is_one_class_on_the_public_protocol():
     # the contact that approaches leaves ball 1 running into ball 2 at 1/2
     with pytest.raises(InputError, match="plastic rule's answer fails its own check"):
         cradle.solve(_Plastic(only_approaching=True))
+
+
+def test_each_step_of_the_sequential_rule_is_checked_on_its_own(monkeypatch):
+    # a step that moved the balls by half its impulse (a broken step) is caught at that
+    # step, from the velocities before and after it and its impulse alone
+    import rigidimpact.solve.rules.sequential as seq
+
+    cradle = ri.chain(3)
+    (good,) = cradle.solve(ri.Sequential(("c0", "c1")))
+    assert good.results()["ball2.vx"] == 1
+    honest = seq._smooth_step
+
+    def broken(problem, k, u, closing):
+        before = list(u)
+        impulse = honest(problem, k, u, closing)
+        u[:] = [b + (a - b) / 2 for a, b in zip(u, before, strict=True)]
+        return impulse
+
+    monkeypatch.setattr(seq, "_smooth_step", broken)
+    with pytest.raises(InputError, match=r"sequential rule's step 1 \(c0\) fails its own"):
+        cradle.solve(ri.Sequential(("c0", "c1")))

@@ -143,8 +143,17 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
             return impulse, along, course
         return _smooth_step(problem, k, u, closing), sp.Integer(0), None
 
+    def checked(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
+        before = list(u)
+        taken = step(k, closing)
+        _check_step(problem, k, before, u, taken[0], closing, bool(floating),
+                    len(checked_steps) + 1)
+        checked_steps.append(k)
+        return taken
+
+    checked_steps: list[int] = []
     count, steps = sequential_passes([index[name] for name in order],
-                                     lambda k: problem.closing(k, u), step,
+                                     lambda k: problem.closing(k, u), checked,
                                      max(abs(v) for v in problem.scaled_velocity_before))
     total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
     for k, impulse, along, _ in steps:
@@ -165,6 +174,42 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
                          if problem.frictional else {}, courses=courses, notes=notes,
                          method=f"rounded to {FLOAT_DIGITS} digits between steps"
                          if floating else "")
+
+
+def _check_step(problem: ImpactProblem, k: int, before: Sequence[sp.Expr],
+                after: Sequence[sp.Expr], impulse: sp.Expr, closing: sp.Expr,
+                rounded: bool, number: int) -> None:
+    """Each step of the sequential rule is an impact of its own, checked on its own from
+    the velocities before and after it and its impulse: the contact does not pull,
+    it does not close after, and (smooth) it leaves as its restitution law asks, with
+    the momentum of every coordinate it moves changed by its impulse alone (M du =
+    J_k^T P_k, from M itself, not the M^-1 the step moved them with). Exact, or to the
+    rounding of FLOAT_DIGITS-digit steps; a failure is refused in one line."""
+    slack = sp.Integer(0) if not rounded else \
+        sp.Float(10) ** (5 - FLOAT_DIGITS) * max(1, *(abs(x) for x in before))
+    contact = problem.contacts[k]
+    failures = []
+    if impulse < -slack:
+        failures.append(f"its impulse {sp.N(impulse, 6)} pulls")
+    leaving = problem.closing(k, after)
+    if leaving < -slack:
+        failures.append(f"it still closes after ({sp.N(leaving, 6)})")
+    if not contact.laws[1].grips:
+        target = problem.leaving(k, closing)
+        if abs(leaving - target) > slack:
+            failures.append(f"it leaves at {sp.N(leaving, 6)}, not its law's "
+                            f"{sp.N(target, 6)}")
+        if not problem.dense:
+            for j, value in problem.sparse_rows[k]:
+                change = (after[j] - before[j]) / problem.inverse_inertia[j]
+                if abs(tidy(change - value * impulse)) > slack:
+                    failures.append(f"the momentum of coordinate {j} changes by "
+                                    f"{sp.N(change, 6)}, not by the impulse's "
+                                    f"{sp.N(value * impulse, 6)}")
+    if failures:
+        raise InputError("impact", f"the sequential rule's step {number} ({contact.name}) "
+                         f"fails its own check ({'; '.join(failures[:3])}): it is not "
+                         "given; please report the scene")
 
 
 def _routh_step(problem: ImpactProblem, k: int,
