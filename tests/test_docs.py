@@ -50,3 +50,12 @@ def test_the_notebooks_use_only_what_a_user_may_use():
         typeset = [o for c in cells if c["cell_type"] == "code" for o in c["outputs"]
                    if "text/latex" in o.get("data", {})]
         assert typeset, f"{notebook.name} shows no typeset result"
+
+
+def test_the_sphere_example_of_the_3d_guide_runs(capsys):
+    page = DOCS.parent / "three-d.md"
+    (block,) = [b for b in re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
+                if "rigidimpact.simulate.sphere" in b]
+    exec(compile(block, str(page), "exec"), {})  # noqa: S102 - our own documentation
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[-1] == "1"  # the landing time the page states
