@@ -242,8 +242,10 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
                              "nor start to slip in any direction: the rigid model does "
                              "not determine the impulses here (a limit of the model, as "
                              "in Painleve's paradox)")
+        # neighbouring samples of one peak are one direction: distinct directions lie
+        # more than the scan's two steps apart
         distinct = [a for j, a in enumerate(found) if all(
-            abs(math.remainder(a - b, 2 * np.pi)) > 1e-6 for b in found[:j])]
+            abs(math.remainder(a - b, 2 * np.pi)) > np.pi / 180 for b in found[:j])]
         if len(distinct) > 1:
             raise InputError("contacts", f"at p = {p:.6g} contact {i} could start to "
                              f"slip in {len(distinct)} directions: the rigid model does "

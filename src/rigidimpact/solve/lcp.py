@@ -176,7 +176,7 @@ def confirm_support(M: Sequence[dict[int, Any]], q: Sequence[Any],
     a product through sparse factors of M, where M itself is dense)."""
     n = len(q)
     q = [_qq(x) for x in q]
-    if any(isinstance(x, Fraction) for row in M[:1] for x in row.values()):
+    if any(not isinstance(x, QQ.dtype) for row in M for x in row.values()):
         M = [{j: _qq(x) for j, x in row.items()} for row in M]
     zero = QQ(0)
     support = list(support)

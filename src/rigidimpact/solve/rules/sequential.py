@@ -143,15 +143,15 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
             return impulse, along, course
         return _smooth_step(problem, k, u, closing), sp.Integer(0), None
 
+    taken_steps = itertools.count(1)
+
     def checked(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
         before = list(u)
         taken = step(k, closing)
         _check_step(problem, k, before, u, taken[0], closing, bool(floating),
-                    len(checked_steps) + 1)
-        checked_steps.append(k)
+                    next(taken_steps))
         return taken
 
-    checked_steps: list[int] = []
     count, steps = sequential_passes([index[name] for name in order],
                                      lambda k: problem.closing(k, u), checked,
                                      max(abs(v) for v in problem.scaled_velocity_before))
