@@ -279,3 +279,42 @@ def test_a_closed_form_past_its_term_budget_is_refused_and_below_it_agrees():
     lost = kinetic([point[w] for w in u]) - kinetic(list(at.speeds_after))
     assert abs(sp.N(lost - at.energies[1], 50)) < 1e-40
     assert abs(sp.N(lost - closed.energies[1].xreplace(point), 50)) < 1e-40
+
+
+# ---- the certificate reads the system's own kinematics, not the M and J solved with ---
+
+def test_the_certificate_catches_a_wrong_jacobian():
+    # the tip's normal row with one entry doubled: solved with that J and M, the old
+    # residual M du - J^T P was zero; the system's own bodies and points say otherwise
+    from dataclasses import replace
+
+    hit = _tip().at(V)
+    right = hit.solve()
+    assert right.checks["momentum"] < 1e-40 and right.checks["tip.restitution"] < 1e-40
+    J = sp.Matrix(hit.J)
+    J[0, 1] *= 2
+    with pytest.raises(ri.InputError, match="fails its own check.*momentum"):
+        replace(hit, J=sp.ImmutableMatrix(J)).solve()
+
+
+def test_the_certificate_reads_each_law_from_the_points_velocities():
+    # Newton's e at one contact, from the tip's own velocity before and after:
+    # v+ = -e v- (hand derivation in _newton), and the energy from the particles
+    solution = _tip().at(V).solve()
+    assert set(solution.checks) >= {"momentum", "tip.pushes", "tip.opens",
+                                    "tip.restitution", "tip.smooth", "energy"}
+    assert max(solution.checks.values()) < 1e-40
+    expected = _newton(mp.mpf(3) / 10, -mp.mpf(1) / 2, mp.matrix([1, 2]), mp.mpf(1) / 2)
+    got = [mp.mpf(str(x)) for x in solution.speeds_after]
+    assert max(abs(got[i] - expected[i]) for i in range(2)) < mp.mpf(10) ** -40
+
+
+def test_a_float_angle_is_solved_to_the_solves_digits():
+    # 1/4 and -1/2 are exact in binary: the float angles are the same numbers as the
+    # rationals, so the 50-digit answer must agree with the exact one to its digits
+    # (cos(0.25) taken at the input's 15 digits once left 1e-17 between them)
+    exact = _tip().at({**V, q1: sp.Rational(1, 4)}).solve()
+    rounded = _tip().at({**V, q1: sp.Float(0.25), q2: sp.Float(-0.5)}).solve()
+    assert "50-digit floating point" in rounded.notes[0]
+    for a, b in zip(exact.speeds_after, rounded.speeds_after, strict=True):
+        assert abs(sp.N(a, 60) - b) < 1e-45

@@ -165,6 +165,12 @@ class SystemImpact:
     # rows (n, t1, t2) of every contact in turn where a rough or sticking contact's point
     # can slide across a tangent plane (a 3-D contact; laws.cone.tangents gives t1, t2)
     J_plane: Any = None
+    # the system's own bodies, its kinematic equations (q' as the speeds give it) and the
+    # numbers put in by at(): the certificate's independent view of the same system (its
+    # kinetic energy and its points' velocities), apart from the M and J solved with
+    bodies: tuple[Any, ...] = ()
+    kinematics: tuple[tuple[Any, Any], ...] = ()
+    values: tuple[tuple[Any, Any], ...] = ()
 
     @property
     def u_before(self) -> sp.Matrix:
@@ -281,27 +287,9 @@ class SystemImpact:
         M = sp.Matrix(self.M)
         before = (self.u_before.T * M * self.u_before)[0] / 2
         lost = _small(before - (after.T * M * after)[0] / 2)
-        checks = None
-        if all(sp.sympify(x).is_number for x in (*after, *P, *M, *J)):
-            def num(x: Any) -> Any:
-                return sp.N(x, 50)
-            change = M * (after - self.u_before) - J.T * P
-            v_after = J * after
-            checks = {f"momentum_{k}": abs(num(x)) for k, x in enumerate(change)}
-            checks |= {f"{c.name}.pushes": max(0, -num(P[0])),
-                       f"{c.name}.opens": max(0, -num(v_after[0])),
-                       "energy": max(0, -num(lost)),
-                       "_scale": max(abs(num(x)) for x in (*after, *P, *self.u_before)),
-                       "_kinetic": num(before),
-                       "_tolerance": CHECK_TOLERANCE if all(
-                           x.is_Rational or not x.is_Float for x in P) else 1e-8}
-            if tangential.name == "stick":
-                checks[f"{c.name}.sticks"] = max(abs(num(v_after[1])), abs(num(v_after[2])))
-            else:
-                checks[f"{c.name}.cone"] = max(0, sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
-                                               - num(c.laws.friction) * num(P[0]))
-            if c.laws.law == "newton":
-                checks[f"{c.name}.restitution"] = abs(num(v_after[0] + e * v[0]))
+        checks = self._checks(after, P, before, lost)
+        if checks is not None and not all(x.is_Rational or not x.is_Float for x in P):
+            checks["_tolerance"] = 1e-8
         solution = Solution(
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: _small(sp.sqrt(P[1] ** 2 + P[2] ** 2))},
@@ -598,7 +586,7 @@ class SystemImpact:
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
-        checks = self._checks(back(after), P, before, lost)
+        checks = self._checks(back(after), P, before, lost, rule)
         if checks is not None and rule == "compliant":  # integrated in floating point:
             checks.pop("_tolerance")  # the rule's own tolerance, not the exact paths'
         solution = Solution(
@@ -617,12 +605,19 @@ class SystemImpact:
         return solution if checks is None else certified(solution, limits=False)
 
     def _checks(self, u_after: sp.Matrix, P: sp.Matrix, before: sp.Expr,
-                lost: sp.Expr) -> dict[str, Any] | None:
-        """The residuals of the laws in the system's own coordinates, apart from the
-        path that solved them: ``M (u+ - u-) - J^T P``, each contact's push-only impulse,
-        its normal velocity after (none closing beyond the sequential rule's settling),
-        Coulomb's cone, a sticking contact's slip; and the energy created. None with
-        symbols left (the closed forms are checked in the tests)."""
+                lost: sp.Expr, rule: str = "simultaneous") -> dict[str, Any] | None:
+        """The residuals of the laws, apart from the path that solved them and from the
+        M and J it solved with: the system's own bodies and points (:meth:`_own`) give
+        the generalized momentum balance (``dT/du`` after less before, less each contact
+        impulse's generalized impulse ``P . dv/du``), each contact's normal velocity
+        after (none closing beyond the sequential rule's settling) and slip, the
+        restitution law's end where the velocities fix it (Newton's law at one contact,
+        whatever the path; a law acting at the velocity level under the simultaneous
+        rule: the acting contacts leave at its target, the released ones at least as
+        fast), and the energy; the impulses give the push-only condition and Coulomb's
+        cone. A system
+        built without its bodies is checked with M and J themselves. None with symbols
+        left (the closed forms are checked in the tests)."""
         numbers = [*u_after, *P, *self.u_before, *self.M, *self.J]
         if not all(sp.sympify(x).is_number for x in numbers):
             return None
@@ -630,32 +625,102 @@ class SystemImpact:
             def num(x: Any) -> Any:
                 return mpmath.mpf(sp.N(x, FLOAT_DIGITS + 10)._to_mpmath(mpmath.mp.prec))
 
-            M = mpmath.matrix([[num(x) for x in self.M.row(i)] for i in range(self.M.rows)])
-            J = mpmath.matrix([[num(x) for x in self.J.row(i)] for i in range(self.J.rows)])
-            du = mpmath.matrix([num(a) - num(b) for a, b in zip(u_after, self.u_before,
-                                                                strict=True)])
             p = mpmath.matrix([num(x) for x in P])
-            balance = M * du - J.T * p
-            v = J * mpmath.matrix([num(x) for x in u_after])
-            v0 = J * mpmath.matrix([num(x) for x in self.u_before])
+            own = self._own(u_after, P, num)
+            if own is None:
+                balance, v, v0, kinetic = self._by_M_and_J(u_after, P, num)
+            else:
+                balance, v, v0, kinetic = own
+            width = len(P) // len(self.contacts)
             scale = max([abs(x) for x in v0] + [abs(x) for x in p] + [mpmath.mpf(1e-300)])
             out: dict[str, Any] = {"momentum": max(abs(x) for x in balance)}
             for i, c in enumerate(self.contacts):
                 tangential = c.laws.laws[1]
-                out[f"{c.name}.pushes"] = max(0, -p[2 * i])
-                out[f"{c.name}.opens"] = max(0, -v[2 * i] - SETTLING * scale)
+                k = width * i
+                out[f"{c.name}.pushes"] = max(0, -p[k])
+                out[f"{c.name}.opens"] = max(0, -v[k] - SETTLING * scale)
                 mu = tangential.cone()
+                size = mpmath.sqrt(sum(p[k + j] ** 2 for j in range(1, width)))
                 if not tangential.grips:
-                    out[f"{c.name}.smooth"] = abs(p[2 * i + 1])
+                    out[f"{c.name}.smooth"] = size
                 elif mu is not None:
-                    out[f"{c.name}.cone"] = max(0, abs(p[2 * i + 1]) - num(mu) * p[2 * i])
-                if tangential.unknown_tangential and p[2 * i] > 0:
-                    out[f"{c.name}.sticks"] = abs(v[2 * i + 1])
-            out["energy"] = max(0, -num(lost))
+                    out[f"{c.name}.cone"] = max(0, size - num(mu) * p[k])
+                if tangential.unknown_tangential and p[k] > 0:
+                    out[f"{c.name}.sticks"] = max(abs(v[k + j]) for j in range(1, width))
+                restitution = c.laws.laws[0]
+                one = len(self.contacts) == 1 and restitution.name == "newton"
+                if one or (rule == "simultaneous" and restitution.together == "velocity"):
+                    target = num(restitution.leaving(sp.Float(min(v0[k], 0), FLOAT_DIGITS)))
+                    if one or p[k] > 0:
+                        out[f"{c.name}.restitution"] = abs(v[k] - target)
+                    else:
+                        out[f"{c.name}.released"] = max(0, target - v[k])
+            out["energy"] = max(0, kinetic[1] - kinetic[0])
             out["_scale"] = scale
-            out["_kinetic"] = num(before)
+            out["_kinetic"] = kinetic[0]
             out["_tolerance"] = CHECK_TOLERANCE
         return out
+
+    def _by_M_and_J(self, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple:
+        """The balance, the contact velocities after and before and the kinetic energies
+        from the M and J the solve used (a system given without its bodies)."""
+        M = mpmath.matrix([[num(x) for x in self.M.row(i)] for i in range(self.M.rows)])
+        J = self.J if len(P) == self.J.rows else self.J_plane
+        J = mpmath.matrix([[num(x) for x in J.row(i)] for i in range(J.rows)])
+        after = mpmath.matrix([num(x) for x in u_after])
+        before = mpmath.matrix([num(x) for x in self.u_before])
+        balance = M * (after - before) - J.T * mpmath.matrix([num(x) for x in P])
+        kinetic = [(x.T * M * x)[0] / 2 for x in (before, after)]
+        return balance, J * after, J * before, kinetic
+
+    def _own(self, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple | None:
+        """The system's own view of an answer, from its bodies and points alone: the
+        generalized momentum balance along the independent speeds, each contact's
+        velocity after and before in its own frame (normal, then tangents), and the
+        kinetic energy before and after. None for a system given without bodies."""
+        if not self.bodies:
+            return None
+        speeds = list(self.fold[0] if self.fold is not None else self.u)
+        kinematics, values = dict(self.kinematics), dict(self.values)
+
+        wide = _wide
+        values = {k: wide(v) for k, v in values.items()}
+
+        def ready(x: Any) -> sp.Expr:  # q' as the speeds give it, then the numbers
+            x = sp.sympify(x)
+            if kinematics:
+                x = x.subs(kinematics)
+            return wide(x).xreplace(values)
+
+        def at(x: sp.Expr, state: sp.Matrix) -> Any:
+            return num(x.xreplace({s: wide(v) for s, v in zip(speeds, state, strict=True)}))
+
+        states = [self._all(sp.Matrix(self.u_before)), self._all(sp.Matrix(u_after))]
+        energy = ready(sum((b.kinetic_energy(self.frame) for b in self.bodies),
+                           sp.Integer(0)))
+        momentum = [energy.diff(s) for s in speeds]
+        width = len(P) // len(self.contacts)
+        generalized = [mpmath.mpf(0)] * len(speeds)
+        seen: list[list[Any]] = [[], []]
+        for i, c in enumerate(self.contacts):
+            velocity = c.point.vel(self.frame)
+            if c.other is not None:
+                velocity = velocity - c.other.vel(self.frame)
+            axes = self._plane(c) if width == 3 else self._unit(c)
+            push = sum((P[width * i + j] * axes[j] for j in range(width)), me.Vector(0))
+            for j, s in enumerate(speeds):
+                generalized[j] += num(ready(push.dot(velocity.diff(s, self.frame))))
+            for k, state in enumerate(states):
+                seen[k] += [at(ready(velocity.dot(axis)), state) for axis in axes]
+        change = [at(x, states[1]) - at(x, states[0]) - g
+                  for x, g in zip(momentum, generalized, strict=True)]
+        # along the independent speeds' partial velocities (the velocity constraints'
+        # reactions do no work there)
+        fold = sp.eye(len(speeds)) if self.fold is None else self.fold[1]
+        balance = [sum((num(fold[j, r]) * change[j] for j in range(len(speeds))),
+                       mpmath.mpf(0)) for r in range(fold.cols)]
+        kinetic = [at(energy, state) for state in states]
+        return balance, seen[1], seen[0], kinetic
 
     def _all(self, independent: sp.Matrix) -> sp.Matrix:
         """Every speed from the independent ones (the dependent ones by the velocity
@@ -674,9 +739,11 @@ class SystemImpact:
               for c in self.contacts))
         for key, value in values.items():
             _check_value(key, value, key in used)
-        # SymPy numbers (a Python int or float put in by xreplace stays one)
-        put = {k: sp.sympify(v) for k, v in values.items() if k not in self.u}
-        speeds = tuple(sp.sympify(values.get(s, b)) for s, b in
+        # SymPy numbers (a Python int or float put in by xreplace stays one), a float
+        # widened to the solve's digits: cos(0.3) put in at 15 digits would be evaluated
+        # there, and the 50-digit solve would answer for a rounded M and J
+        put = {k: _wide(v) for k, v in values.items() if k not in self.u}
+        speeds = tuple(_wide(values.get(s, b)) for s, b in
                        zip(self.u, self.u_before, strict=True))
         contacts = tuple(PointContact(c.point, c.normal, c.laws.at(put), c.other)
                          for c in self.contacts)
@@ -700,7 +767,8 @@ class SystemImpact:
             if fold is not None:
                 fold = (fold[0], fold[1].applyfunc(num))
         return SystemImpact(self.frame, self.q, self.u, M, contacts, speeds, J, fold,
-                            digits, plane)
+                            digits, plane, self.bodies, self.kinematics,
+                            self.values + tuple(put.items()))
 
     def _equations(self, v: sp.Matrix, courses: dict[str, str],
                    normal: dict[str, sp.Expr], along: dict[str, sp.Expr],
@@ -796,6 +864,13 @@ def _exact_enough(numbers: Sequence[Any]) -> bool:
                 if r.exp.q == 2}) <= 1 and all(r.exp.q == 2 for r in radicals)
 
 
+def _wide(x: Any) -> sp.Expr:
+    """`x` with every float in it at the solve's precision and more (SymPy rounds a
+    product of floats, or the sine of one, to its narrowest operand's digits)."""
+    x = sp.sympify(x)
+    return x.xreplace({f: sp.Float(f, FLOAT_DIGITS + 10) for f in x.atoms(sp.Float)})
+
+
 def _no_tan(expr: Any) -> sp.Expr:
     """tan written as sin/cos (the solver's stand-ins are sines and cosines)."""
     return sp.sympify(expr).replace(sp.tan, lambda a: sp.sin(a) / sp.cos(a))
@@ -858,7 +933,20 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
         frame = getattr(system, "frame", None)
     if frame is None:
         frame = contacts[0].normal.args[0][1]
-    return SystemImpact(frame, q, u, M, tuple(contacts), fold=fold)
+    return SystemImpact(frame, q, u, M, tuple(contacts), fold=fold,
+                        bodies=tuple(getattr(system, "bodies", None) or ()),
+                        kinematics=_kinematics(system))
+
+
+def _kinematics(system: Any) -> tuple[tuple[Any, Any], ...]:
+    """The system's q' in terms of its speeds (its kinematic differential equations), as
+    pairs: a body's angular velocity may be written in q' where its points' are in u."""
+    for source in (system, getattr(system, "eom_method", None)):
+        try:
+            return tuple(source.kindiffdict().items())
+        except (AttributeError, ValueError, TypeError):
+            continue
+    return ()
 
 
 def _folded(M: sp.MatrixBase, u: tuple, dependent: tuple

@@ -37,6 +37,7 @@ from collections.abc import Callable, Sequence
 from fractions import Fraction
 from typing import Any
 
+import mpmath
 import numpy as np
 import sympy as sp
 from sympy.polys.domains import QQ
@@ -473,7 +474,17 @@ def least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
     Matrix([[1, 1]])
     >>> least_norm(sp.Matrix([[1, 1], [1, 1]]), sp.Matrix([2, 3])) is None
     True
+
+    Floats (a 50-digit solve) are rounded, so their rank is read from the singular
+    values, as exactly as their digits allow:
+
+    >>> third = sp.Float(1, 50) / 3
+    >>> [float(x) for x in least_norm(sp.Matrix([[third, third], [1, 1]]),
+    ...                               sp.Matrix([third, 1]))]
+    [0.5, 0.5]
     """
+    if matrix.has(sp.Float) or rhs.has(sp.Float):
+        return _least_norm_rounded(matrix, rhs)
     augmented = sp.Matrix.hstack(matrix, rhs).to_DM(extension=True)
     reduced, pivots = augmented.rref()
     size = matrix.shape[1]
@@ -482,3 +493,30 @@ def least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
     rows = reduced.to_Matrix()[:len(pivots), :]
     A, b = rows[:, :size], rows[:, size]
     return (A.T * (A * A.T).inv() * b).applyfunc(tidy)
+
+
+def _least_norm_rounded(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
+    """:func:`least_norm` of rounded numbers: the pseudo-inverse from the singular
+    values at the numbers' own precision and ten digits more, a singular value below
+    1e-35 of the largest taken as zero; None when the system is inconsistent beyond
+    that rounding."""
+    digits = max([getattr(x, "_prec", 53) for x in (*matrix, *rhs) if x.is_Float]
+                 + [53]) * 3 // 10
+    with mpmath.workdps(digits + 10):
+        A = mpmath.matrix([[mpmath.mpf(sp.Float(x, digits + 10)._to_mpmath(mpmath.mp.prec))
+                            for x in matrix.row(i)] for i in range(matrix.rows)])
+        b = mpmath.matrix([mpmath.mpf(sp.Float(x, digits + 10)._to_mpmath(mpmath.mp.prec))
+                           for x in rhs])
+        U, S, V = mpmath.svd_r(A)
+        cut = max(S) * mpmath.mpf(10) ** -min(35, digits * 7 // 10) if len(S) else 0
+        x = mpmath.matrix(A.cols, 1)
+        for k in range(len(S)):
+            if S[k] > cut:
+                along = sum(U[i, k] * b[i] for i in range(A.rows)) / S[k]
+                for j in range(A.cols):
+                    x[j] += V[k, j] * along
+        scale = max([abs(v) for v in b] + [max(S) * max([abs(v) for v in x] + [0])]
+                    + [mpmath.mpf(10) ** -300])
+        if max(abs(v) for v in A * x - b) > cut / max(S) * scale * 10 if len(S) else False:
+            return None
+        return sp.Matrix([sp.Float(v, digits) for v in x])

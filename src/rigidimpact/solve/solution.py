@@ -155,7 +155,9 @@ class Solution:
         """Each law's residual, computed from the bodies and impulses alone (see
         :mod:`rigidimpact.solve.certificate`): zero where it holds, exact where the
         answer is exact; empty with symbols left (the closed forms are checked where
-        they are derived) and for a mechanics system (its own coordinates).
+        they are derived). A mechanics system gives its own, from its bodies' kinetic
+        energy and its points' velocities, apart from the M and J it was solved with
+        (:meth:`rigidimpact.mechanics.impact.SystemImpact._checks`).
 
         Examples
         --------
