@@ -216,3 +216,50 @@ def test_every_mechanics_solution_certifies_itself_or_says_why():
             else:
                 assert key.split(".")[0] in said, (key, value, solution.warnings)
     assert seen >= 15 and rules == {"simultaneous", "sequential"}
+
+
+# ---- one contact's impulse path: friction piece by piece, each law's own end ---------
+
+def _bar_on_rough_floor(law):
+    """A bar (m = 1, I = 1/3) landing at (1/2, -1) without spin, its centre at (3/5, 4/5)
+    from the touching point, on a floor with friction 1/2 and e = 1/2: slip stops during
+    the impact (slip-stick), so the three restitution laws end it at three impulses."""
+    from rigidimpact.laws.contact import Contact
+    from rigidimpact.model.bodies import Body
+    from rigidimpact.solve.impact import Impact
+
+    R = sp.Rational
+    bar = Body(mass=1, inertia=R(1, 3), position=(R(3, 5), R(4, 5)), velocity=(R(1, 2), -1),
+               spin=0, name="bar")
+    return Impact(Body.fixed("floor"), bar, Contact(
+        normal=(0, 1), restitution=R(1, 2), law=law, tangential="coulomb",
+        friction=R(1, 2))).solve()
+
+
+@pytest.mark.parametrize("law", ["newton", "poisson", "energetic"])
+def test_each_law_is_checked_at_its_own_end_along_the_path(law):
+    solution = _bar_on_rough_floor(law)
+    assert solution.regime.startswith("slip-stick") and len(solution.path) == 3
+    # exact where the answer is rational; the energetic end has a square root, checked
+    # in 50-digit arithmetic
+    tolerance = 1e-40 if law == "energetic" else 0
+    assert solution.checks["contact.path"] <= tolerance
+    assert solution.checks["contact.restitution"] <= tolerance
+    # the same answer read under the other two laws breaks their ends (the three differ
+    # on a bent path: Newton's P_n = 183/200, Poisson's 33/40, the energetic law's a root)
+    for other in {"newton", "poisson", "energetic"} - {law}:
+        read = replace(solution, contacts=(replace(solution.contacts[0], law=other),))
+        assert read.checks["contact.restitution"] > 0, other
+
+
+def test_friction_is_checked_piece_by_piece_along_the_path():
+    solution = _bar_on_rough_floor("newton")
+    start, corner, end = solution.path
+    # slip runs until the corner: a straight path to the same end sticks from the start
+    # while the bar still slips
+    assert replace(solution, path=(start, end)).checks["contact.path"] > 0
+    # friction turned along the slip on the first piece
+    turned = replace(solution, path=(start, (corner[0], -corner[1]), end))
+    assert turned.checks["contact.path"] > 0
+    # a path that does not end at the impulse given
+    assert replace(solution, path=(start, corner)).checks["contact.path"] > 0

@@ -18,6 +18,7 @@ Equation(label='tangential momentum of ball is unchanged', paper='', lhs=0, rhs=
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, ClassVar
 
@@ -418,8 +419,72 @@ class NewtonRestitution(ContactLaw):
         ``second.start`` (Routh's method, :mod:`rigidimpact.laws.routh`)."""
         return routh.newton_end(first, second, v_n, self.e)
 
+    def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
+                     back: Callable[[Any], sp.Expr]) -> Any:
+        """How far an impact's end is from this law's, from its path alone (the
+        certificate's check, :mod:`rigidimpact.solve.certificate`).
+
+        `path` gives the normal impulse and the normal velocity at each corner of the
+        impulse path, ``((0, v-), ..., (P_n, v+))``, straight between corners, in the
+        caller's arithmetic; `num` puts a SymPy number into it and `back` takes one out.
+        Newton's kinematic law: the velocity after against :meth:`leaving`'s, whatever
+        the path (so a law that overrides only :meth:`leaving` is checked by it).
+
+        Examples
+        --------
+        >>> law = NewtonRestitution(sp.Rational(1, 2))
+        >>> law.end_residual(((0, -2), (3, 1)), sp.sympify, sp.sympify)
+        0
+        """
+        closing = min(path[0][1], num(0))
+        return abs(path[-1][1] - num(self.leaving(back(closing))))
+
     def __repr__(self) -> str:
         return f"NewtonRestitution({self.e})"
+
+
+def compression_end(path: Sequence[tuple[Any, Any]]) -> Any:
+    """The normal impulse at which the normal velocity reaches zero along a path of
+    corners ``(p_n, v_n)``, straight between them (the whole impulse if it never does).
+
+    Examples
+    --------
+    >>> compression_end(sp.sympify(((0, -2), (1, -1), (3, 1))))
+    2
+    """
+    for (p0, v0), (p1, v1) in zip(path, path[1:], strict=False):
+        if v1 >= 0 > v0:
+            return p0 + (p1 - p0) * (-v0) / (v1 - v0)
+        if v0 >= 0:
+            return p0
+    return path[-1][0]
+
+
+def works(path: Sequence[tuple[Any, Any]]) -> tuple[Any, Any]:
+    """The normal impulse's work in compression (negative) and in restitution along a
+    path of corners ``(p_n, v_n)``, straight between them: the areas under v_n on either
+    side of :func:`compression_end`.
+
+    Examples
+    --------
+    >>> works(sp.sympify(((0, -2), (2, 0), (3, 2))))
+    (-2, 1)
+    """
+    p_c = compression_end(path)
+    compression = restitution = path[0][0] * 0
+    for (p0, v0), (p1, v1) in zip(path, path[1:], strict=False):
+        if p1 == p0:
+            continue
+        for a, b, into in ((p0, min(p1, p_c), "c"), (max(p0, p_c), p1, "r")):
+            if b <= a:
+                continue
+            slope = (v1 - v0) / (p1 - p0)
+            area = (v0 + slope * (a - p0) + v0 + slope * (b - p0)) * (b - a) / 2
+            if into == "c":
+                compression += area
+            else:
+                restitution += area
+    return compression, restitution
 
 
 class Smooth(ContactLaw):
@@ -496,6 +561,20 @@ class PoissonRestitution(NewtonRestitution):
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
 
+    def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
+                     back: Callable[[Any], sp.Expr]) -> Any:
+        """The whole normal impulse against ``(1 + e)`` times the impulse at which the
+        normal velocity reached zero along the path (see
+        :meth:`NewtonRestitution.end_residual`).
+
+        Examples
+        --------
+        >>> law = PoissonRestitution(sp.Rational(1, 2))
+        >>> law.end_residual(((0, -2), (2, 0), (3, 2)), sp.sympify, sp.sympify)
+        0
+        """
+        return abs(path[-1][0] - (1 + num(self.e)) * compression_end(path))
+
     def from_compression(self, compression: sp.Expr) -> sp.Expr:
         """The whole normal impulse from the impulse of compression: ``(1 + e) P_c``.
         Contacts acting together under this law (``together = "impulse"``) solve for
@@ -547,6 +626,23 @@ class EnergeticRestitution(NewtonRestitution):
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.energetic_end(first, second, v_n, self.e, stop_in_restitution)
+
+    def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
+                     back: Callable[[Any], sp.Expr]) -> Any:
+        """The normal impulse's work in restitution against ``-e^2`` times its work in
+        compression along the path (the area under the normal velocity on either side
+        of its zero), over the closing speed so that it reads as an impulse (see
+        :meth:`NewtonRestitution.end_residual`).
+
+        Examples
+        --------
+        >>> law = EnergeticRestitution(sp.Rational(1, 2))
+        >>> law.end_residual(((0, -2), (2, 0), (3, 1)), sp.sympify, sp.sympify)
+        0
+        """
+        compression, restitution = works(path)
+        e = num(self.e)
+        return abs(restitution + e * e * compression) / abs(min(path[0][1], num(0)))
 
     def equations(self, before, after):
         (equation,) = super().equations(before, after)

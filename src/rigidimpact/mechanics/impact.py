@@ -943,7 +943,7 @@ def _kinematics(system: Any) -> tuple[tuple[Any, Any], ...]:
     pairs: a body's angular velocity may be written in q' where its points' are in u."""
     for source in (system, getattr(system, "eom_method", None)):
         try:
-            return tuple(source.kindiffdict().items())
+            return tuple(source.kindiffdict().items())  # type: ignore[union-attr]
         except (AttributeError, ValueError, TypeError):
             continue
     return ()

@@ -23,6 +23,10 @@ negative):
   ``CONTACT.restitution`` (an acting contact leaves at ``-e`` times its closing speed),
   ``CONTACT.released`` (a released one at least that fast) and
   ``CONTACT.complementarity`` (``P_n`` times the difference);
+- one contact's own impact, along its impulse path (:func:`path_residuals`):
+  ``CONTACT.path`` (each straight piece slides on Coulomb's cone against a slip of one
+  sign, or sticks) and ``CONTACT.restitution`` (the restitution law's own end: Newton's
+  velocity, Poisson's impulse ratio, the energetic work ratio);
 - ``energy``: kinetic energy created, ``max(0, K+ - K-)``.
 
 The arithmetic is chosen from the numbers: exact (SymPy's rationals, or the expressions
@@ -57,8 +61,8 @@ from sympy.polys.domains import QQ
 
 from rigidimpact.errors import InputError
 
-__all__ = ["residuals", "friction_residuals", "assess", "as_sympy", "PHYSICAL_LIMITS",
-           "FLOAT_TOLERANCE"]
+__all__ = ["residuals", "friction_residuals", "path_residuals", "assess", "as_sympy",
+           "PHYSICAL_LIMITS", "FLOAT_TOLERANCE"]
 
 DIGITS = 50
 # a floating-point answer (a large problem's, or a compliant integration's) is trusted
@@ -93,14 +97,19 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
               impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
               acted: Sequence[str], locked: Sequence[str] = (), joints: Sequence[Any] = (),
               joint_impulses: Mapping[str, Any] | None = None,
-              conditions: Sequence[Any] = ()) -> dict[str, Any]:
+              conditions: Sequence[Any] = (),
+              path: Sequence[tuple[Any, Any]] = ()) -> dict[str, Any]:
     """Each condition's residual (see the module's notes) as a number (exact, or an
     mpmath number) or, with symbols left, a SymPy expression. `locked` names the
     contacts whose impact ended locked at rest (Routh's method where the touching points
     have one degree of freedom and the restitution impulse would drive them together):
     their law is a normal velocity of zero after, not restitution's. `joints` and their
     `joint_impulses` (x, y, given to the second body) enter the momentum balances, and
-    each joint's two points must move together after (``JOINT.holds``)."""
+    each joint's two points must move together after (``JOINT.holds``). `path`, for one
+    contact's own impact, is its impulse path (the corners ``(P_n, P_t)`` from (0, 0) to
+    the end, straight between them; empty for a straight path): each straight piece is
+    checked against friction's law and the end against the restitution law's
+    (``CONTACT.path`` and ``CONTACT.restitution``, see :func:`path_residuals`)."""
     joint_impulses = joint_impulses or {}
     bodies = {b.name: b for b in before}
     later = {b.name: b for b in after}
@@ -119,6 +128,8 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
                  c.restitution]
         if c.laws[1].cone() is not None:
             data.append(c.laws[1].cone())
+    for corner in path:
+        data += list(corner)
     how = _arithmetic(data)
     if how == "symbolic":
         return _at_points(before, after, contacts, impulses, tangential, rule, locked,
@@ -157,6 +168,13 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     with mpmath.workdps(digits):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
                            root, how, locked, joints, joint_impulses)
+        straight = len(contacts) == 1 and (not contacts[0].laws[1].grips or
+                                           contacts[0].laws[1].name == "stick")
+        if len(contacts) == 1 and not joints and not locked and (path or straight):
+            (c,) = contacts
+            end = (impulses[c.name], tangential.get(c.name, 0))
+            found.update(path_residuals(bodies, c, path or ((0, 0), end), num, root,
+                                        how == "exact", end))
     found["_floats"] = floats
     return found
 
@@ -412,6 +430,90 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
         turned = slip_after[0] * slip_before[0] > 0
         return {f"{name}.slides": abs(slip_after[0]) if turned else zero}
     return {}
+
+
+def path_residuals(bodies: Mapping[str, Any], contact: Any,
+                   path: Sequence[tuple[Any, Any]], num: Any, root: Any,
+                   exact: bool, end: tuple[Any, Any]) -> dict[str, Any]:
+    """One contact's own impact along its impulse path, from the bodies before and the
+    path alone (the bodies' own response to each corner's impulse: a free body's
+    ``m dv = P``, ``I dw = r x P``; a pivoted one's turn about its pivot).
+
+    - ``CONTACT.path``: each straight piece of a Coulomb contact's path either slides
+      (on the cone's edge, ``|dP_t| = mu dP_n``, against a slip of one sign along the
+      piece) or sticks (inside the cone, no slip at either end); the normal impulse
+      never decreases, and the path ends at the impulse given;
+    - ``CONTACT.restitution``: the end by the restitution law's own
+      :meth:`~rigidimpact.laws.law.NewtonRestitution.end_residual` (Newton's velocity
+      after, Poisson's impulse ratio, the energetic law's work ratio) on the normal
+      velocity along the path.
+    """
+    zero = num(0)
+    first, second = contact.bodies if contact.bodies else tuple(bodies)[:2]
+    n = [num(x) for x in contact.normal]
+    length = root(n[0] * n[0] + n[1] * n[1])
+    n = [n[0] / length, n[1] / length]
+    t = _perp(n)
+    point = [num(x) for x in contact.point]
+
+    def slide(name: str, sign: int, push: list[Any]) -> tuple[Any, Any]:
+        """The body's point velocity at the contact after `push` (given to `second`)."""
+        body = bodies[name]
+        if body.support == "fixed":
+            return zero, zero
+        m, inertia = num(body.mass), num(body.inertia)
+        v = [num(x) for x in body.velocity]
+        w = num(body.spin)
+        centre = [num(x) for x in body.position]
+        if body.support == "pivot":
+            pivot = [num(x) for x in body.pivot]
+            arm, c = ([point[k] - pivot[k] for k in range(2)],
+                      [centre[k] - pivot[k] for k in range(2)])
+            w += sign * _cross(arm, push) / (inertia + m * (c[0] * c[0] + c[1] * c[1]))
+            turn = _perp(arm)
+            return w * turn[0], w * turn[1]
+        r = [point[k] - centre[k] for k in range(2)]
+        if inertia != 0:
+            w += sign * _cross(r, push) / inertia
+        turn = _perp(r)
+        return (v[0] + sign * push[0] / m + w * turn[0],
+                v[1] + sign * push[1] / m + w * turn[1])
+
+    def relative(p_n: Any, p_t: Any) -> tuple[Any, Any]:
+        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
+        a, b = slide(first, -1, push), slide(second, 1, push)
+        d = (b[0] - a[0], b[1] - a[1])
+        return d[0] * n[0] + d[1] * n[1], d[0] * t[0] + d[1] * t[1]
+
+    corners = [(num(a), num(b)) for a, b in path]
+    states = [relative(*corner) for corner in corners]
+    restitution, friction = contact.laws
+    out: dict[str, Any] = {}
+    worst = max(abs(corners[-1][0] - num(end[0])), abs(corners[-1][1] - num(end[1])),
+                abs(corners[0][0]), abs(corners[0][1]))
+    mu = friction.cone()
+    coulomb = mu is not None and getattr(friction, "beta", None) is None
+    for (p0, t0), (p1, t1), (_, s0), (_, s1) in zip(corners, corners[1:], states,
+                                                    states[1:], strict=False):
+        dn, dt = p1 - p0, t1 - t0
+        if len(corners) > 2:  # the normal impulse never falls (a straight path's sign
+            worst = max(worst, -dn)  # is CONTACT.pushes, a limit of the model)
+        if not coulomb or dn <= 0:
+            continue
+        edge = abs(dt) - num(mu) * dn
+        on_edge = edge >= 0 if exact else edge >= -num(1e-9) * (abs(dt) + dn)
+        if on_edge:  # slides: one sign of slip along the piece, friction against it
+            mid = (s0 + s1) / 2
+            crossed = min(abs(s0), abs(s1)) if s0 * s1 < 0 else zero
+            against = abs(mid) if dt * mid > 0 else zero
+            worst = max(worst, crossed, against)
+        else:  # inside the cone: sticks, no slip at either end
+            worst = max(worst, abs(s0), abs(s1))
+    out[f"{contact.name}.path"] = worst
+    if hasattr(restitution, "end_residual") and states[0][0] < 0:
+        out[f"{contact.name}.restitution"] = restitution.end_residual(
+            [(p, v) for (p, _), (v, _) in zip(corners, states, strict=True)], num, as_sympy)
+    return out
 
 
 def _root(x: Any, exact: bool) -> Any:

@@ -148,7 +148,7 @@ class Solution:
             locked |= set(self.acted)
         return residuals(self.before, self.after, self.contacts, self.impulses,
                          self.tangential, self.rule, self.acted, tuple(locked),
-                         self.joints, self.joint_impulses, self.conditions)
+                         self.joints, self.joint_impulses, self.conditions, self.path)
 
     @property
     def checks(self) -> dict[str, Any]:
