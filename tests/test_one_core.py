@@ -196,22 +196,13 @@ THRESHOLD = sp.Rational(1, 2)
 
 class Threshold(NewtonRestitution):
     """Newton's e above a closing speed of 1/2, plastic below it: a threshold that
-    granular codes use to stop slow contacts chattering. One class: how it prints and
-    imposes itself for one contact (`equations`) and what it asks of a contact acting
-    among several (`leaving`)."""
+    granular codes use to stop slow contacts chattering. One class with one method: what
+    it asks of a closing contact (`leaving`); every path and dimension asks that."""
 
     name = "threshold"
 
-    def _e(self, closing):
-        return self.e if -closing > THRESHOLD else sp.Integer(0)
-
-    def equations(self, before, after):
-        closing = before[1].contact_velocity[0] - before[0].contact_velocity[0]
-        return (law_module.restitution(before[0], after[0], before[1], after[1],
-                                       self._e(closing)),)
-
     def leaving(self, closing):
-        return -self._e(closing) * closing
+        return -(self.e if -closing > THRESHOLD else 0) * closing
 
 
 def _balls(speeds, law):
@@ -253,6 +244,41 @@ def test_a_new_restitution_law_is_one_class(monkeypatch):
     # the compliant rule has no form for it, and says so
     with pytest.raises(InputError, match="threshold law has no spring-dashpot form"):
         _balls((1, 0), "threshold").compliant()
+
+
+def test_a_new_law_gives_the_same_answer_in_the_plane_and_in_space(monkeypatch):
+    # a solid ball (m = 1, radius 1) lands slipping at (1, 0) on a floor with friction
+    # 1/5, at a closing speed of 1 (above the threshold: e = 1/2) or 1/4 (plastic). By
+    # hand: P_n = (1 + e) v; the ball (W_tt = 7/2) sticks if mu (7/2) P_n >= 1:
+    # fast: P_n = 3/2, 21/20 >= 1, so it rolls off at 5/7; slow: P_n = 1/4, it slides
+    # throughout, P_t = -P_n/5, and leaves at 19/20
+    from dataclasses import replace
+
+    from rigidimpact.model.space import Body3
+    from rigidimpact.solve.space import SpaceCollision
+
+    monkeypatch.setitem(law_module.RESTITUTION_LAWS, "threshold", Threshold)
+    fifth = sp.Rational(1, 5)
+    for speed, up, along in ((1, HALF, sp.Rational(5, 7)),
+                             (sp.Rational(1, 4), 0, sp.Rational(19, 20))):
+        ball = Body3.sphere(1, 1, (0, 0, 1), (1, 0, -speed), (0, 0, 0), name="ball")
+        floor = Contact(normal=(0, 0, 1), restitution=HALF, law="threshold",
+                        tangential="coulomb", friction=fifth, bodies=("floor", "ball"),
+                        point=(0, 0, 0))
+        bodies = (Body3.fixed("floor"), ball)
+        exact = SpaceCollision(bodies, (floor,)).solve().results()  # closed form
+        assert (exact["ball.vz"], exact["ball.vx"]) == (up, along)
+        followed = SpaceCollision(bodies, (floor,), tolerance=1e-10).solve().results()
+        assert abs(followed["ball.vz"] - up) < 1e-8 and abs(followed["ball.vx"] - along) < 1e-8
+        smooth = SpaceCollision(bodies, (replace(floor, tangential="smooth",
+                                                 friction=None),)).solve().results()
+        assert (smooth["ball.vz"], smooth["ball.vx"]) == (up, 1)
+        # the plane: a disc of the same mass and moment 2/5, one contact
+        disc = Body.rigid(1, sp.Rational(2, 5), (0, 1), (1, -speed), name="ball")
+        planar = Impact(Body.fixed("floor"), disc, Contact(
+            normal=(0, 1), restitution=HALF, law="threshold", tangential="coulomb",
+            friction=fifth)).solve().results()
+        assert (planar["ball.vy"], planar["ball.vx"]) == (up, along)
 
 
 def test_a_mechanics_system_prints_the_restitution_its_law_solved(monkeypatch):

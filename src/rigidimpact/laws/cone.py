@@ -57,6 +57,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws import ends as ends_of
 
 __all__ = ["ConeImpact", "cone_impact", "walton_impact", "tangents", "isotropic", "LAWS",
            "TOLERANCE"]
@@ -122,16 +123,18 @@ def isotropic(W: sp.Matrix) -> bool:
     return all(sp.simplify(x) == 0 for x in gaps)
 
 
-def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: str, mu: Any,
+def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
                 tolerance: float | None = None) -> ConeImpact:
     """The impulse of one rough contact (Coulomb's circular cone, coefficient `mu`) under
-    the restitution `law` with coefficient `e`; see the module's text.
+    the restitution `law` with coefficient `e`; see the module's text. `law` is a
+    built-in law's name or a restitution law object (its :meth:`leaving` and
+    :meth:`end_event`, so a user's law is followed as it asks).
 
     In closed form where the tangential block of W is isotropic and uncoupled (and no
     `tolerance` is asked); otherwise integrated in the normal impulse with relative
     `tolerance` (default :data:`TOLERANCE`), in floating point.
     """
-    if law not in LAWS:
+    if isinstance(law, str) and law not in LAWS:
         raise InputError("contact.law", f"must be one of {', '.join(LAWS)}, not {law!r}")
     W = sp.Matrix(W)
     v0 = sp.Matrix(list(v))
@@ -140,7 +143,10 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: str, mu: Any,
     if v0[0].is_number and not v0[0] < 0:
         raise InputError("bodies", "the touching points are not approaching")
     if tolerance is None and isotropic(W):
-        return _closed_form(W, v0, sp.sympify(e), sp.sympify(mu))
+        # the normal is uncoupled: its velocity is linear in the normal impulse whatever
+        # the slip does, so every law ends where the velocity reaches the law's target
+        target = -sp.sympify(e) * v0[0] if isinstance(law, str) else law.leaving(v0[0])
+        return _closed_form(W, v0, target, sp.sympify(mu))
     numbers = [*W, *v0, e, mu]
     if not all(sp.sympify(x).is_number for x in numbers):
         raise InputError("values", "the slip direction of this contact may turn during the "
@@ -204,9 +210,9 @@ def walton_impact(W: sp.Matrix, v: Sequence[Any], e: Any, beta: Any,
     return ConeImpact(impulse, after, course, exact=True)
 
 
-def _closed_form(W: sp.Matrix, v0: sp.Matrix, e: sp.Expr, mu: sp.Expr) -> ConeImpact:
+def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> ConeImpact:
     w_n, w_t = W[0, 0], W[1, 1]
-    p_final = (1 + e) * (-v0[0]) / w_n  # the three laws agree: the normal is uncoupled
+    p_final = (target - v0[0]) / w_n  # the three laws agree: the normal is uncoupled
     slip = sp.Matrix(v0[1:])
     speed = sp.sqrt(sp.expand(slip.dot(slip)))
     course: str
@@ -228,7 +234,7 @@ def _closed_form(W: sp.Matrix, v0: sp.Matrix, e: sp.Expr, mu: sp.Expr) -> ConeIm
     return ConeImpact(impulse, after, course, exact=True)
 
 
-def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: str, mu: float,
+def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: Any, mu: float,
                 tolerance: float) -> ConeImpact:
     """Follow the path in p with scipy's solve_ivp (DOP853), phase by phase."""
     from scipy.integrate import solve_ivp
@@ -276,16 +282,12 @@ def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: str, mu: float,
             return np.concatenate([rate, r, [y[0]]])
         return rates
 
-    # the end of the impact: for Newton's and the energetic law it depends on the state
+    # the end of the impact: the law's own (laws.ends, one implementation a law)
+    end = ends_of.by_name(law, e, float(v0[0])) if isinstance(law, str) else \
+        law.end_event(float(v0[0]))
+
     def ends(p: float, y: np.ndarray, p_c: float | None, work_c: float | None) -> float:
-        if law == "newton":
-            return y[0] + e * v0[0]
-        if p_c is None:
-            return -1.0
-        if law == "poisson":
-            return p - (1 + e) * p_c
-        assert work_c is not None
-        return (y[5] - work_c) + e * e * work_c  # restitution's work against e^2 times
+        return end(p, float(y[0]), p_c, work_c, float(y[5]))
 
     y = np.concatenate([v0, [0.0, 0.0, 0.0]])  # v (3), P_t (2), the normal work
     p, p_c, work_c = 0.0, None, None

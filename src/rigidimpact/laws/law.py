@@ -25,7 +25,7 @@ from typing import Any, ClassVar
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws import routh
+from rigidimpact.laws import ends, routh
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross
 from rigidimpact.symbolic.notation import escape_text, to_latex
@@ -281,7 +281,14 @@ class ContactLaw:
     ``conditions(before, kicked, impulse)`` are the residuals the impulse must zero,
     where `kicked` are the bodies after receiving the impulse, so the solver imposes the
     printed law itself. A new law is one subclass here and its entry in
-    :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`.
+    :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`. A restitution law has one face
+    in contact space, which every path asks in the plane and in space: the normal
+    velocity it asks after a straight impulse path (:meth:`NewtonRestitution.leaving`,
+    from which its printed equation is built), the end of a bent path in closed form
+    (``end_of_bent_path``, Routh's method) and in floating point (``end_event``, the
+    3-D integrators, one implementation a law in :mod:`rigidimpact.laws.ends`), and
+    the check of that end from the path alone (``end_residual``). A kinematic law
+    (Newton's kind) overrides :meth:`~NewtonRestitution.leaving` alone.
     """
 
     name = ""
@@ -394,14 +401,37 @@ class NewtonRestitution(ContactLaw):
     together: ClassVar[str | None] = "velocity"
 
     def equations(self, before, after):
-        return (restitution(before[0], after[0], before[1], after[1], self.e),)
+        """The printed restitution equation of one contact, from :meth:`leaving` (the
+        law's one face): the normal velocity after equals what the law asks of the
+        closing velocity before."""
+        (equation,) = (restitution(before[0], after[0], before[1], after[1], self.e),)
+        closing = before[1].contact_velocity[0] - before[0].contact_velocity[0]
+        return (replace(equation, rhs=self.leaving(closing)),)
 
     def leaving(self, closing: sp.Expr) -> sp.Expr:
         """The normal velocity after (second minus first) this law asks of a contact
-        closing at `closing` (negative) on a straight impulse path: ``-e closing``. The
-        rules for several contacts and the linear solves ask this, so a law that reads
-        differently there overrides it with :meth:`equations`."""
+        closing at `closing` (negative) on a straight impulse path: ``-e closing``.
+        Every path asks this, in the plane and in space: the one-contact core's printed
+        equation (:meth:`equations`), the rules for several contacts, the linear solves,
+        and (as the end of a bent path, :meth:`end_event`) the path integrators; a new
+        kinematic law overrides it alone."""
         return -self.e * closing
+
+    def end_event(self, closing: float) -> ends.End:
+        """The end of an impact followed along its path in floating point (the 3-D
+        cone, contacts driven together): a function of ``(p, v_n, p_c, work_c, work)``
+        (the normal impulse, the normal velocity, the impulse and the normal work at the
+        end of compression, None before it, and the normal work so far) that crosses
+        zero upward where the impact ends. Newton's: the normal velocity reaches
+        :meth:`leaving`'s.
+
+        Examples
+        --------
+        >>> end = NewtonRestitution(sp.Rational(1, 2)).end_event(-2.0)
+        >>> end(1.0, 0.5, 1.0, -1.0, -0.5), end(1.5, 1.0, 1.0, -1.0, -0.25)
+        (-0.5, 0.0)
+        """
+        return ends.kinematic(float(self.leaving(sp.Float(closing, 30))))
 
     def from_compression(self, compression: sp.Expr) -> sp.Expr:
         """The whole normal impulse from the impulse of compression, for a law whose
@@ -417,7 +447,7 @@ class NewtonRestitution(ContactLaw):
                          stop_in_restitution: bool) -> sp.Expr:
         """The normal impulse at the end of an impact whose slip stopped at
         ``second.start`` (Routh's method, :mod:`rigidimpact.laws.routh`)."""
-        return routh.newton_end(first, second, v_n, self.e)
+        return routh.newton_end(first, second, v_n, self.leaving(v_n))
 
     def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
                      back: Callable[[Any], sp.Expr]) -> Any:
@@ -561,6 +591,11 @@ class PoissonRestitution(NewtonRestitution):
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
 
+    def end_event(self, closing: float) -> ends.End:
+        """The normal impulse reaches ``(1 + e)`` times its compression impulse (see
+        :meth:`NewtonRestitution.end_event`)."""
+        return ends.poisson(float(self.e))
+
     def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
                      back: Callable[[Any], sp.Expr]) -> Any:
         """The whole normal impulse against ``(1 + e)`` times the impulse at which the
@@ -626,6 +661,11 @@ class EnergeticRestitution(NewtonRestitution):
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.energetic_end(first, second, v_n, self.e, stop_in_restitution)
+
+    def end_event(self, closing: float) -> ends.End:
+        """The normal work in restitution reaches ``-e^2`` times the work in
+        compression (see :meth:`NewtonRestitution.end_event`)."""
+        return ends.energetic(float(self.e))
 
     def end_residual(self, path: Sequence[tuple[Any, Any]], num: Callable[[Any], Any],
                      back: Callable[[Any], sp.Expr]) -> Any:

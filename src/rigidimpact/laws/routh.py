@@ -134,16 +134,19 @@ def regimes(W: sp.MatrixBase, v_before: sp.MatrixBase, mu: sp.Expr,
     """
     W = sp.Matrix(W).applyfunc(sp.cancel)
     v_n, v_t = (sp.cancel(c) for c in v_before)
-    mu, e = sp.sympify(mu), sp.sympify(law.e)
+    mu = sp.sympify(mu)
+    # the normal velocity the law asks after a straight path (its one face): -e v_n for
+    # Newton's, and for Poisson's and the energetic law, which agree with it there
+    target = sp.cancel(law.leaving(v_n))
     if singular(W):
-        return _one_freedom(W, v_n, v_t, mu, e, law)
+        return _one_freedom(W, v_n, v_t, mu, target, law)
     if v_t.is_zero:
-        return _from_rest(W, v_n, mu, e, law)
+        return _from_rest(W, v_n, mu, target, law)
     signs = [1] if v_t.is_positive else [-1] if v_t.is_negative else [1, -1]
     found: list[Regime | None] = []
     for s in signs:
         side = () if len(signs) == 1 else (sp.Gt(s * v_t, 0),)
-        found += _slipping(W, v_n, v_t, mu, e, law, s, side)
+        found += _slipping(W, v_n, v_t, mu, target, law, s, side)
     decided = [r for r in found if r is not None and r.holds() is not False]
     if not decided:
         raise InputError("contact", "no course of the impact fits these values: the "
@@ -163,7 +166,7 @@ def singular(W: sp.Matrix) -> bool:
     return False
 
 
-def _one_freedom(W, v_n, v_t, mu, e, law) -> tuple[Regime, ...]:
+def _one_freedom(W, v_n, v_t, mu, target, law) -> tuple[Regime, ...]:
     """Friction where the touching points have one degree of freedom (W singular: a body
     that can only turn, against a fixed one). Their velocity keeps one direction, so the
     normal velocity and the slip vanish together: slip runs throughout compression, then
@@ -200,7 +203,7 @@ def _one_freedom(W, v_n, v_t, mu, e, law) -> tuple[Regime, ...]:
         p_c = sp.cancel(-v_n / compression.rate[0])  # the normal velocity and slip stop
         restitution = _Piece(p_c, mu * s, _rates(W, mu * s))
         separates = sp.Gt(restitution.rate[0], 0)
-        reversal = _finish((compression, restitution), v_n, e, law, REVERSAL,
+        reversal = _finish((compression, restitution), v_n, target, law, REVERSAL,
                            (*side, separates))
         locked = tuple(c for c in map(_simplified, (*side, sp.Not(separates)))
                        if c is not sp.true)
@@ -215,21 +218,21 @@ def _rates(W: sp.Matrix, slope: sp.Expr) -> sp.Matrix:
     return (W * sp.Matrix([1, slope])).applyfunc(sp.cancel)
 
 
-def _from_rest(W, v_n, mu, e, law) -> tuple[Regime, ...]:
+def _from_rest(W, v_n, mu, target, law) -> tuple[Regime, ...]:
     """No slip before: the points stick throughout if friction can hold them, otherwise
     they start to slip the way the impulse drives them."""
     stick_slope = sp.cancel(-W[1, 0] / W[1, 1])
     holds = sp.Le(sp.Abs(W[1, 0]), mu * W[1, 1])
-    found = [_finish((_Piece(sp.Integer(0), stick_slope, _rates(W, stick_slope)),), v_n, e,
-                     law, "stick", (holds,))]
+    found = [_finish((_Piece(sp.Integer(0), stick_slope, _rates(W, stick_slope)),), v_n,
+                     target, law, "stick", (holds,))]
     for s in (1, -1):  # it slips toward sign(W_tn)
         slope = -mu * s
-        found.append(_finish((_Piece(sp.Integer(0), slope, _rates(W, slope)),), v_n, e, law,
-                             SLIP, (sp.Not(holds), sp.Gt(s * W[1, 0], 0))))
+        found.append(_finish((_Piece(sp.Integer(0), slope, _rates(W, slope)),), v_n, target,
+                             law, SLIP, (sp.Not(holds), sp.Gt(s * W[1, 0], 0))))
     return tuple(r for r in found if r is not None and r.holds() is not False)
 
 
-def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime | None]:
+def _slipping(W, v_n, v_t, mu, target, law, s, side) -> list[Regime | None]:
     """The courses that start slipping in direction s.
 
     Where slip stops is told by the normal velocity then, ``v_n(p*)``: below zero, in
@@ -243,11 +246,11 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime | None]:
     first = _Piece(sp.Integer(0), slope, rate)
     stops = sp.Lt(s * rate[1], 0)  # the tangential velocity runs down to zero
     if stops is sp.false:  # it never does (no friction, nothing coupling it): one piece
-        return [_finish((first,), v_n, e, law, SLIP, (*side, sp.Gt(rate[0], 0)))]
+        return [_finish((first,), v_n, target, law, SLIP, (*side, sp.Gt(rate[0], 0)))]
     p_star = sp.cancel(-v_t / rate[1])
     at_stop = sp.cancel(v_n + rate[0] * p_star)
-    ended = sp.Ge(at_stop, -e * v_n)  # a straight impact would have ended by then
-    found: list[Regime | None] = [_finish((first,), v_n, e, law, SLIP,
+    ended = sp.Ge(at_stop, target)  # a straight impact would have ended by then
+    found: list[Regime | None] = [_finish((first,), v_n, target, law, SLIP,
                      (*side, sp.Gt(rate[0], 0), sp.Or(sp.Not(stops), ended)))]
     stick_slope = sp.cancel(-W[1, 0] / W[1, 1])
     can_stick = sp.Le(sp.Abs(W[1, 0]), mu * W[1, 1])
@@ -258,16 +261,17 @@ def _slipping(W, v_n, v_t, mu, e, law, s, side) -> list[Regime | None]:
         common = (*side, stops, condition, *rising, sp.Not(ended))
         if not law.splits_on_compression:  # the end does not depend on where
             # compression ends (Newton's law)
-            found.append(_finish((first, second), v_n, e, law, name, common))
+            found.append(_finish((first, second), v_n, target, law, name, common))
             continue
-        found.append(_finish((first, second), v_n, e, law, f"{name}, in compression",
+        found.append(_finish((first, second), v_n, target, law, f"{name}, in compression",
                              (*common, sp.Lt(at_stop, 0))))
-        found.append(_finish((first, second), v_n, e, law, f"{name}, in restitution",
+        found.append(_finish((first, second), v_n, target, law, f"{name}, in restitution",
                              (*common, sp.Ge(at_stop, 0))))
     return found
 
 
-def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime | None:
+def _finish(pieces: tuple[_Piece, ...], v_n, target, law, name,
+            conditions) -> Regime | None:
     """Follow the path to the end the law sets, in the regime's own ordering of events:
     with two pieces, slip stops inside the impact (and, by the name, in compression or
     in restitution)."""
@@ -276,8 +280,7 @@ def _finish(pieces: tuple[_Piece, ...], v_n, e, law, name, conditions) -> Regime
         return None
     if len(pieces) == 1:
         piece = pieces[0]
-        p_c = -v_n / piece.rate[0]
-        p_f = (1 + e) * p_c  # one straight piece: the three laws agree
+        p_f = (target - v_n) / piece.rate[0]  # one straight piece: the three laws agree
         ends = [p_f]
     else:
         first, second = pieces
@@ -301,11 +304,11 @@ def _tidy_number(expr: sp.Expr) -> sp.Expr:
     return tidy(expr)
 
 
-def newton_end(first: _Piece, second: _Piece, v_n: sp.Expr, e: sp.Expr) -> sp.Expr:
-    """Newton's law on a bent path: where the normal velocity reaches -e times its value
-    before."""
+def newton_end(first: _Piece, second: _Piece, v_n: sp.Expr, target: sp.Expr) -> sp.Expr:
+    """A kinematic law on a bent path (Newton's, or a user's): where the normal velocity
+    reaches the law's `target` (Newton's ``-e v_n``)."""
     at_stop = v_n + first.rate[0] * second.start  # the normal velocity when slip stops
-    return second.start + (-e * v_n - at_stop) / second.rate[0]
+    return second.start + (target - at_stop) / second.rate[0]
 
 
 def poisson_end(first: _Piece, second: _Piece, v_n: sp.Expr, e: sp.Expr,

@@ -60,6 +60,7 @@ from typing import Any
 import numpy as np
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws import ends as ends_of
 
 __all__ = ["DrivenImpact", "driven_impact", "TOLERANCE"]
 
@@ -85,7 +86,7 @@ class DrivenImpact:
 
 
 def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarray,
-                  e: float, law: str, mu: Sequence[float],
+                  e: float, law: Any, mu: Sequence[float],
                   tolerance: float | None = None) -> DrivenImpact:
     """Follow the impact in which contact 0 strikes and every other contact rests (see
     the module's text).
@@ -100,7 +101,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     tolerance : the integration's relative tolerance
     """
     tolerance = TOLERANCE if tolerance is None else tolerance
-    if law not in LAWS:
+    if isinstance(law, str) and law not in LAWS:
         raise InputError("contact.law", f"must be one of {', '.join(LAWS)}, not {law!r}")
     k = len(rows)
     if len(mu) != k:
@@ -109,6 +110,9 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     A = [M_inverse @ r.T for r in J]  # each contact's impulse (frame) to du
     u0 = np.asarray(u, float)
     v0 = [r @ u0 for r in J]
+    # the end of the impact: the striking contact's law's own (laws.ends)
+    end = ends_of.by_name(law, e, float(v0[0][0])) if isinstance(law, str) else \
+        law.end_event(float(v0[0][0]))
     if not v0[0][0] < 0:
         raise InputError("bodies", "the striking contact is not approaching")
     scale = max(float(np.abs(u0).max()), 1e-300)
@@ -296,15 +300,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
 
         def finish(pp: float, yy: np.ndarray, p_c: float | None = p_c,
                    work_c: float | None = work_c) -> float:
-            vn = J[0][0] @ yy[:n]
-            if law == "newton":
-                return float(vn + e * v0[0][0])
-            if p_c is None:
-                return -1.0
-            if law == "poisson":
-                return pp - (1 + e) * p_c
-            assert work_c is not None
-            return float((yy[-1] - work_c) + e * e * work_c)
+            return end(pp, float(J[0][0] @ yy[:n]), p_c, work_c, float(yy[-1]))
         events.append(finish)
         kinds.append(("finish", 0))
         if p_c is None:

@@ -274,10 +274,10 @@ class SystemImpact:
         if tangential.name == "stick":
             if c.laws.law != "newton":
                 raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
-            P = W.LUsolve(sp.Matrix([-(1 + e) * v[0], -v[1], -v[2]]))
+            P = W.LUsolve(sp.Matrix([restitution.leaving(v[0]) - v[0], -v[1], -v[2]]))
             course = "sticks"
         elif tangential.name == "coulomb":
-            out = cone_impact(W, v, e, c.laws.law, c.laws.friction)
+            out = cone_impact(W, v, e, restitution, c.laws.friction)
             P, course = out.impulse, out.course
         else:
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law with a "

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitution_of
@@ -475,7 +476,7 @@ def _max_step(parts: list[_Part], y: np.ndarray, fast: float, resolving: bool,
 def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     """Integrate the compliant model until the bodies have separated (or the set time)."""
     model = prepare(scene, plan, values)
-    parts, y0, normal, e = list(model.parts), model.y0, model.normal, model.e
+    parts, y0, normal = list(model.parts), model.y0, model.normal
     first, second = parts
     k_c, c_c, fast, slow = model.k_c, model.c_c, model.fast, model.slow
     integrator, contact_info = model.integrator, model.contact
@@ -515,15 +516,20 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     touches.direction = 1.0  # type: ignore[attr-defined]
     lets_go.direction = -1.0  # type: ignore[attr-defined]
 
+    law = scene.contact.laws[0]
+
     def impulse(y: np.ndarray) -> np.ndarray:
-        """Newton's e in an instant between the touching points (rigid contact)."""
+        """The contact's restitution law in an instant between the touching points (a
+        rigid contact, smooth: a straight impulse path, where the law asks a normal
+        velocity after; Newton's ``e`` times the closing speed)."""
         d, rate = penetration(y)
         if rate <= 0:
             return y
         point = _application_point(first, second, y)
         m1 = _effective_mass(first, y, normal, point)
         m2 = _effective_mass(second, y, normal, point)
-        j = (1 + e) * rate / (1 / m1 + 1 / m2)
+        leaving = as_float(law.leaving(sp.Float(-rate, 30)), values)
+        j = (leaving + rate) / (1 / m1 + 1 / m2)
         before = _energy(parts, y)[0]
         y = y.copy()
         for part, sign in ((first, -1.0), (second, 1.0)):

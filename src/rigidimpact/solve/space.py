@@ -202,11 +202,14 @@ class SpaceCollision:
         e, law = c.restitution, c.law
         notes: list[str] = []
         turned = 0.0
+        # the restitution law's one face: the normal velocity it asks after (a straight
+        # impulse path: smooth, or sticking from the start)
+        leaving = c.laws[0].leaving(v[0])
         if c.tangential == "smooth":
-            P = sp.Matrix([(1 + e) * (-v[0]) / W[0, 0], 0, 0])
+            P = sp.Matrix([(leaving - v[0]) / W[0, 0], 0, 0])
             course = "smooth"
         elif c.tangential == "stick":
-            P = W.LUsolve(sp.Matrix([-(1 + e) * v[0], -v[1], -v[2]]))
+            P = W.LUsolve(sp.Matrix([leaving - v[0], -v[1], -v[2]]))
             course = "sticks"
         elif c.tangential == "rough":
             if law != "newton":
@@ -223,7 +226,7 @@ class SpaceCollision:
                                                c.laws[0])
             P = sp.Matrix([p_n, p_t * line[0], p_t * line[1]])
         else:
-            out = cone_impact(W, v, e, law, c.friction, self.tolerance)
+            out = cone_impact(W, v, e, c.laws[0], c.friction, self.tolerance)
             P, course, turned = out.impulse, out.course, out.turned
             if not out.exact:
                 notes.append(f"the contact's path is integrated in the normal impulse to "
@@ -299,8 +302,10 @@ class SpaceCollision:
             beta = c.tangential_restitution
             out[f"{c.name}.rough"] = max(abs(num(v_after[i] + beta * v_before[i]))
                                          for i in (1, 2))
-        if c.law == "newton":
-            out[f"{c.name}.restitution"] = abs(num(v_after[0] + c.restitution * v_before[0]))
+        if not c.laws[0].splits_on_compression:  # a kinematic law (Newton's, a user's):
+            # its end is a velocity, whatever the path
+            out[f"{c.name}.restitution"] = abs(num(v_after[0])
+                                               - num(c.laws[0].leaving(v_before[0])))
         out["energy"] = max(0, -num(lost))
         sizes = [abs(num(x)) for x in (*self.u_before, *u_after, *P)]
         out["_scale"] = max(sizes)
@@ -450,7 +455,7 @@ class SpaceCollision:
         striking = approaching[0]
         Minv = np.array(self.M_inverse.evalf(30), dtype=float)
         out = driven_impact(Minv, [rows[c.name] for c in acting], u,
-                            float(striking.restitution), striking.law,
+                            float(striking.restitution), striking.laws[0],
                             [float(c.friction or 0) for c in acting], self.tolerance)
         u_after = sp.Matrix([sp.Float(x, 17) for x in out.u_after])
         P = {c.name: [sp.Float(x, 17) for x in out.impulses[i]]

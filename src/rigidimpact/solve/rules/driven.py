@@ -84,7 +84,7 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     rows = [np.vstack([J[i], J_t[i], np.zeros_like(J[i])]) for i in acting]
     friction = [float(problem.contacts[i].friction or 0) for i in acting]
     Minv = np.array(problem.M_inverse.evalf(30), dtype=float)
-    out = driven_impact(Minv, rows, u, float(striking.restitution), striking.law, friction,
+    out = driven_impact(Minv, rows, u, float(striking.restitution), striking.laws[0], friction,
                         tolerance)
     normal, along = sp.zeros(len(problem.contacts), 1), sp.zeros(len(problem.contacts), 1)
     for k, i in enumerate(acting):
