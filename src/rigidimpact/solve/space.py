@@ -512,10 +512,11 @@ class SpaceCollision:
         The pyramid is an accuracy choice: exact where the slip after is along an edge
         (a body sliding straight along t1 or t2), otherwise its friction is short of the
         cone's by up to 1 - cos(180/m degrees)."""
-        late = [c for c in acting if c.law != "newton"]
+        late = [c for c in acting if c.laws[0].together != "velocity"]
         if late:
             raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
-                             "take Newton's law (the simultaneous rule at the velocity level)")
+                             "take a law of the velocities after, such as Newton's (the "
+                             "simultaneous rule at the velocity level)")
         k = len(acting)
         angles = np.arange(m) * 2 * np.pi / m
         D = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # edges in (t1, t2)
@@ -537,7 +538,7 @@ class SpaceCollision:
         mu = [float(c.friction or 0) for c in acting]
         for i, c in enumerate(acting):
             M[i] = WB[3 * i]
-            q[i] = v[3 * i] * (1 + float(c.restitution)) if v[3 * i] < 0 else v[3 * i]
+            q[i] = v[3 * i] - _leaving(c, v[3 * i])
             for j in range(m):
                 r = k + i * m + j
                 M[r] = D[j] @ WB[3 * i + 1:3 * i + 3]
@@ -568,10 +569,11 @@ class SpaceCollision:
         (:func:`rigidimpact.solve.coulomb.coulomb_newton`) and checked by the laws'
         residuals. Exact to rounding where the method ends (to 1e-14 of the closing
         speed); it refuses in one line where it does not."""
-        late = [c for c in acting if c.law != "newton"]
+        late = [c for c in acting if c.laws[0].together != "velocity"]
         if late:
             raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
-                             "take Newton's law (the simultaneous rule at the velocity level)")
+                             "take a law of the velocities after, such as Newton's (the "
+                             "simultaneous rule at the velocity level)")
         k = len(acting)
         Minv = np.array(self.M_inverse.evalf(30), dtype=float)
         J = np.vstack([rows[c.name] for c in acting])  # 3k rows: n, t1, t2 per contact
@@ -579,8 +581,8 @@ class SpaceCollision:
         W = (J @ Minv @ J.T)[np.ix_(order, order)]
         v = (J @ u)[order]
         b = v.copy()
-        for i, c in enumerate(acting):  # Newton's law: leave at -e times the approach
-            b[i] = v[i] * (1 + float(c.restitution)) if v[i] < 0 else v[i]
+        for i, c in enumerate(acting):  # the law's normal velocity after (Newton's: -e
+            b[i] = v[i] - _leaving(c, v[i])  # times the approach)
         mu = np.array([float(c.friction or 0) for c in acting])
         try:
             lam, steps = coulomb_newton(W, b, mu)
@@ -633,7 +635,7 @@ class SpaceCollision:
         checks = self._driven_checks(acting, rows, P, u, u_after, before, lost, 1e-12)
         scale = max(1.0, float(np.abs(v).max()))
         for i, c in enumerate(acting):
-            leave = after[3 * i] + float(c.restitution) * min(v[3 * i], 0.0)
+            leave = after[3 * i] - _leaving(c, v[3 * i])
             checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if pushing[i] else
                                                        max(0.0, -leave), 17)
             checks[f"{c.name}.complementarity"] = sp.Float(
@@ -693,6 +695,12 @@ class SpaceCollision:
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
                               self.facets, self.rule, self.order)
+
+
+def _leaving(contact: Contact, closing: float) -> float:
+    """The normal velocity `contact`'s restitution law asks after a closing velocity (a
+    contact at rest or opening asks none: 0)."""
+    return float(contact.laws[0].leaving(sp.Float(min(closing, 0.0), 30)))
 
 
 def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
