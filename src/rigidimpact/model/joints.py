@@ -16,7 +16,7 @@ Examples
 >>> Joint("knee", ("upper", "lower"), (0, -1))
 Joint(name='knee', bodies=('upper', 'lower'), point=Matrix([
 [ 0],
-[-1]]))
+[-1]]), axis=None)
 """
 
 from __future__ import annotations
@@ -37,11 +37,18 @@ __all__ = ["Joint", "off_body"]
 class Joint:
     """A frictionless hinge pinning `bodies` (first, second) together at `point` (from
     the scene's origin O). Its impulse is the one it gives the second body (the first
-    receives its opposite)."""
+    receives its opposite).
+
+    In space (a `point` of three components) it is a ball joint: the two material
+    points move together (three bilateral rows); with an `axis` it is a hinge about
+    that axis, which also keeps the two bodies from turning relative to each other
+    about the two directions across it (two more rows, whose impulses are moments). A
+    joint to a fixed body pivots the other in space."""
 
     name: str
     bodies: tuple[str, str]
     point: Any
+    axis: Any = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
@@ -53,7 +60,24 @@ class Joint:
         if self.bodies[0] == self.bodies[1]:
             raise InputError(f"{self.name}.bodies", "a joint pins two different bodies")
         object.__setattr__(self, "bodies", tuple(self.bodies))
-        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point"))
+        spatial = isinstance(self.point, (list, tuple, sp.MatrixBase)) and \
+            len(list(self.point)) == 3
+        object.__setattr__(self, "point", as_vector(self.point, f"{self.name}.point",
+                                                    3 if spatial else 2))
+        if self.axis is not None:
+            if not spatial:
+                raise InputError(f"{self.name}.axis", "an axis is for a hinge in space (a "
+                                 "point with three components); in the plane every joint "
+                                 "turns about z")
+            axis = as_vector(self.axis, f"{self.name}.axis", 3)
+            if all(x.is_zero for x in axis):
+                raise InputError(f"{self.name}.axis", "must not be the zero vector")
+            object.__setattr__(self, "axis", axis)
+
+    @property
+    def spatial(self) -> bool:
+        """Whether the joint is in space (a ball joint or a hinge about an axis)."""
+        return len(self.point) == 3
 
     @property
     def first(self) -> str:
@@ -65,7 +89,9 @@ class Joint:
 
     def at(self, values: dict) -> Joint:
         """The joint with numbers put in for its symbols."""
-        return replace(self, point=sp.ImmutableMatrix(self.point).xreplace(values))
+        axis = None if self.axis is None else sp.ImmutableMatrix(self.axis).xreplace(values)
+        return replace(self, point=sp.ImmutableMatrix(self.point).xreplace(values),
+                       axis=axis)
 
 
 def off_body(body: Body, point: sp.MatrixBase) -> str | None:

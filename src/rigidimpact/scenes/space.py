@@ -26,6 +26,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
+from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.scenes.scene import (
     Scene,
@@ -71,6 +72,7 @@ class SpaceScene:
     facets: int | None = None
     rule: str | None = None  # [impact] rule: simultaneous | sequential | driven
     order: tuple[str, ...] | None = None
+    joints: tuple[Joint, ...] = ()  # [[joints]]: ball joints and hinges
 
     @property
     def contact(self) -> Contact:
@@ -83,7 +85,7 @@ class SpaceScene:
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
         problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets,
-                                 self.rule, self.order)
+                                 self.rule, self.order, self.joints)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -108,7 +110,10 @@ class SpaceScene:
                 else "the slip direction may turn, so the contact is followed numerically"),)
         collision = self.collision(values)
         setup = tuple(_described(b) for b in self.bodies) + tuple(
-            _contact_words(c) for c in self.contacts)
+            _contact_words(c) for c in self.contacts) + tuple(
+            f"joint {j.name}: {j.first} and {j.second} at {list(j.point)}, " + (
+                "a ball joint" if j.axis is None else f"a hinge about {list(j.axis)}")
+            for j in self.joints)
         setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
         equations = _equations(collision) if printed else ()
         return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
@@ -158,7 +163,7 @@ def _contact_words(c: Contact) -> str:
            "rough": f"Walton's rough law, beta = {c.tangential_restitution}, "
                     f"mu = {c.friction}"}[c.tangential]
     return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
-            f"{list(c.normal)}, {RESTITUTION_WORDS[c.law]} e = {c.restitution}, {law}; "
+            f"{list(c.normal)}, {RESTITUTION_WORDS.get(c.law, c.law)} e = {c.restitution}, {law}; "
             "tangents "
             "t1 (the x axis across n, or the y axis's), t2 = n x t1")
 
@@ -171,9 +176,11 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
     out = []
     impulses = {c.name: sp.Matrix(c.frame).T * sp.Matrix(_impulse(collision, c))
                 for c in collision.contacts}
-    for body in collision.free:
+    held = collision.G.T * sp.Matrix([x for j in collision.joints for x in _held(j)]) \
+        if collision.joints else sp.zeros(6 * len(collision.free), 1)
+    for k, body in enumerate(collision.free):
         after = sp.Matrix(_after(collision, body))
-        force, moment = sp.zeros(3, 1), sp.zeros(3, 1)
+        force, moment = held[6 * k:6 * k + 3, 0], held[6 * k + 3:6 * k + 6, 0]
         for c in collision.contacts:
             sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
             arm = sp.Matrix(c.point) - sp.Matrix(body.position)
@@ -188,12 +195,28 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
                                 after[3:, 0] - sp.Matrix(body.spin))),
                             sp.ImmutableMatrix(moment), law="momentum"))
     c = collision.contacts[0]
-    if len(collision.contacts) == 1 and c.law == "newton":
-        J = collision.rows(c)
-        after = sp.Matrix([x for b in collision.free for x in _after(collision, b)])
-        out.append(Equation(f"Newton's restitution at {c.name}", "", (J * after)[0],
-                            -c.restitution * (J * collision.u_before)[0], law="restitution"))
+    after = sp.Matrix([x for b in collision.free for x in _after(collision, b)])
+    if len(collision.contacts) == 1 and not c.laws[0].splits_on_compression:
+        J = collision.rows(c)  # a kinematic law: its normal velocity after, as it asks
+        out.append(Equation(f"{RESTITUTION_WORDS.get(c.law, c.law)} at {c.name}".replace(
+            ",", ""), "", (J * after)[0], c.laws[0].leaving((J * collision.u_before)[0]),
+            law="restitution"))
+    row = 0
+    for j in collision.joints:  # the joint holds after: its bilateral rows are zero
+        size = 3 if j.axis is None else 5
+        out.append(Equation(f"joint {j.name} holds (the two bodies' points move together"
+                            + (", and turn together across its axis)" if j.axis is not None
+                               else ")"), "",
+                            sp.ImmutableMatrix(collision.G[row:row + size, :] * after),
+                            sp.ImmutableMatrix(sp.zeros(size, 1)), law="joint"))
+        row += size
     return tuple(out)
+
+
+def _held(j: Joint) -> tuple[sp.Symbol, ...]:
+    """A joint's printed impulse on its second body (x, y, z; a hinge's two moments)."""
+    return tuple(sp.Symbol(f"{x}^{j.name}") for x in (
+        "Q_x", "Q_y", "Q_z", *(() if j.axis is None else ("M_1", "M_2"))))
 
 
 def _impulse(collision: SpaceCollision, c: Contact) -> tuple[sp.Symbol, ...]:
@@ -224,6 +247,10 @@ def unknowns_at(collision: SpaceCollision, solution: Solution) -> dict[sp.Symbol
         found = [r.get(f"{c.name}.{k}", sp.Integer(0)) for k in (
             "normal_impulse", "tangential_impulse_1", "tangential_impulse_2")]
         values |= dict(zip(_impulse(collision, c), found, strict=True))
+    for j in collision.joints:
+        names = ["impulse_x", "impulse_y", "impulse_z"] + (
+            [] if j.axis is None else ["moment_1", "moment_2"])
+        values |= dict(zip(_held(j), (r[f"{j.name}.{k}"] for k in names), strict=True))
     return values
 
 
@@ -348,7 +375,7 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate"}
+               "simulate", "joints"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -363,6 +390,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
+    joints = _read_joints(data, symbols)
     tolerance, facets, rule, order = None, None, None, None
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
@@ -395,11 +423,48 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                                                  c.tangential_restitution or 0,
                                                  *c.point, *c.normal)))
     simulate = _table(data, "simulate", "settings")
+    used |= frozenset().union(*(sp.sympify(x).free_symbols for j in joints
+                                 for x in (*j.point, *(j.axis if j.axis is not None else ()))))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets, rule, order)
-    # its bodies, contacts and rule agree
-    SpaceCollision(bodies, contacts, tolerance, facets, rule, order)
+                       simulate, facets, rule, order, joints)
+    # its bodies, contacts, joints and rule agree
+    SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints)
     return scene
+
+
+def _read_joints(data: Mapping[str, Any],
+                 symbols: Mapping[str, sp.Symbol]) -> tuple[Joint, ...]:
+    """The ``[[joints]]`` of a 3-D scene: each a `name`, the two `bodies` it joins, the
+    `point` [x, y, z] and, for a hinge, its `axis` [x, y, z] (without one, a ball
+    joint). A joint to a fixed body pivots the other."""
+    entries = data.get("joints", [])
+    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+        raise InputError("joints", "must be [[joints]] tables, each with name, bodies and "
+                         "point (and axis for a hinge)")
+    found: list[Joint] = []
+    for k, entry in enumerate(entries):
+        place = f"joints[{k}]"
+        for key in entry:
+            if key not in ("name", "bodies", "point", "axis"):
+                raise InputError(f"{place}.{key}", "not a field of a joint; allowed: "
+                                 "axis, bodies, name, point")
+        for key in ("name", "bodies", "point"):
+            if key not in entry:
+                raise InputError(f"{place}.{key}", "required for a joint")
+        pair = entry["bodies"]
+        if not (isinstance(pair, list) and len(pair) == 2 and
+                all(isinstance(b, str) for b in pair)):
+            raise InputError(f"{place}.bodies", "must name two bodies, such as "
+                             "[\"ground\", \"door\"]")
+        axis = entry.get("axis")
+        try:
+            found.append(Joint(entry["name"], tuple(pair),
+                               _vector3(entry["point"], f"{place}.point", symbols),
+                               None if axis is None else
+                               _vector3(axis, f"{place}.axis", symbols)))
+        except InputError as exc:
+            raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
+    return tuple(found)
 
 
 def load_space_scene(path: str | Path) -> SpaceScene:

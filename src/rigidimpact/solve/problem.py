@@ -99,6 +99,10 @@ class ImpactProblem:
                 raise InputError(f"{j.name}.name", "a joint's name must differ from every "
                                  "body's, contact's and other joint's")
             seen.add(j.name)
+            if j.spatial:
+                raise InputError(f"{j.name}.point", "a joint in the plane has a point "
+                                 "[x, y] (a ball joint or a hinge in space belongs in a 3-D "
+                                 "scene)")
             for side in j.bodies:
                 if side not in names:
                     raise InputError(f"{j.name}.bodies", f"no body named {side!r}")

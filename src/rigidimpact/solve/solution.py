@@ -122,7 +122,7 @@ class Solution:
     # joints (bodies pinned together): each one, and the impulse (x, y) it gave its
     # second body in the scene frame (the first received the opposite)
     joints: tuple[Any, ...] = field(default=(), repr=False)
-    joint_impulses: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
+    joint_impulses: Mapping[str, tuple[sp.Expr, ...]] = field(default_factory=dict,
                                                                   repr=False)
     # a 3-D contact: its tangential impulse's components along its tangents t1, t2
     tangent_impulses: Mapping[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict,
@@ -402,8 +402,11 @@ class Solution:
                 reaction = self.pivot_impulse(body)
                 results[f"{body.name}.pivot_impulse_x"] = reaction[0]
                 results[f"{body.name}.pivot_impulse_y"] = reaction[1]
-        for name, (x, y) in self.joint_impulses.items():
-            results[f"{name}.impulse_x"], results[f"{name}.impulse_y"] = x, y
+        for name, parts in self.joint_impulses.items():  # (x, y) in the plane; (x, y, z)
+            for axis, x in zip("xyz", parts[:3], strict=False):  # in space, then a hinge's
+                results[f"{name}.impulse_{axis}"] = x  # moments across its axis
+            for k, x in enumerate(parts[3:], start=1):
+                results[f"{name}.moment_{k}"] = x
         for name, (t1, t2) in self.tangent_impulses.items():
             results[f"{name}.tangential_impulse_1"] = t1
             results[f"{name}.tangential_impulse_2"] = t2

@@ -48,9 +48,10 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.cone import cone_impact, walton_impact
+from rigidimpact.laws.cone import cone_impact, tangents, walton_impact
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.together import driven_impact
+from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
@@ -87,6 +88,9 @@ class SpaceCollision:
     # one approaches and the simultaneous rule where several do; `order` for sequential
     rule: str | None = None
     order: tuple[str, ...] | None = None
+    # ball joints and hinges (:class:`~rigidimpact.model.joints.Joint` in space): their
+    # bilateral rows G are eliminated by the projected inverse mass, as in the plane
+    joints: tuple[Joint, ...] = ()
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -140,6 +144,82 @@ class SpaceCollision:
         free = [b for b in self.bodies if b.support != "fixed"]
         if not free:
             raise InputError("bodies", "at least one body must be free to move")
+        if self.joints:
+            self._check_joints(names, by_name)
+
+    def _check_joints(self, names: list[str], by_name: Mapping[str, Body3]) -> None:
+        """Each joint is in space, names two of the bodies (one at least free to move)
+        and a name of its own, lies within a sphere it joins, holds before the impact
+        (its two points, and a hinge's turn across its axis, move together), and the
+        joints together leave the bodies some freedom."""
+        taken = set(names) | {c.name for c in self.contacts}
+        for j in self.joints:
+            if not isinstance(j, Joint) or not j.spatial:
+                raise InputError("joints", "each must be a Joint with a point [x, y, z]")
+            if j.name in taken:
+                raise InputError(f"{j.name}.name", "a joint's name must differ from every "
+                                 "body's, contact's and other joint's")
+            taken.add(j.name)
+            for side in j.bodies:
+                if side not in by_name:
+                    raise InputError(f"{j.name}.bodies", f"no body named {side!r}")
+                body = by_name[side]
+                if body.radius is not None:
+                    arm = sp.Matrix(j.point) - sp.Matrix(body.position)
+                    reach = arm.dot(arm) - body.radius ** 2
+                    if reach.is_number and reach > 0:
+                        raise InputError(f"{j.name}.point", f"not on {side}: it is "
+                                         f"{sp.sqrt(arm.dot(arm))} from the centre, past the "
+                                         f"radius {body.radius}")
+            if all(by_name[side].support == "fixed" for side in j.bodies):
+                raise InputError(f"{j.name}.bodies", "a joint between two fixed bodies "
+                                 "holds nothing: at least one must move")
+        G = self.G
+        drift = G * self.u_before
+        row = 0
+        for j in self.joints:
+            size = 3 if j.axis is None else 5
+            gap = drift[row:row + size, 0]
+            row += size
+            if all(x.is_number for x in gap) and any(abs(sp.N(x, 30)) > 1e-20 * (
+                    1 + max(abs(sp.N(u, 30)) for u in self.u_before)) for x in gap):
+                what = "point" if j.axis is None else "point, then turn across the axis,"
+                raise InputError(j.name, f"its two bodies do not move together at "
+                                 f"{list(j.point)} before the impact (the second's {what} "
+                                 f"less the first's: {[_tidy(x) for x in gap]}): give "
+                                 "velocities and spins that keep the joint together")
+        block = G * self._free_M_inverse * G.T
+        if all(x.is_number for x in block) and block.rank() < block.rows:
+            raise InputError("joints", "the joints are not independent (a closed loop or a "
+                             "body held twice over): their impulses are not fixed")
+
+    @cached_property
+    def G(self) -> sp.Matrix:
+        """The joints' bilateral rows, ``G u = 0``: each joint's second body's point
+        less the first's along x, y and z, and a hinge's relative spin along the two
+        directions across its axis (:func:`rigidimpact.laws.cone.tangents`)."""
+        rows: list[sp.Matrix] = []
+        for j in self.joints:
+            for d in (sp.eye(3)[:, i] for i in range(3)):
+                rows.append(self._relative_row(j.bodies, j.point, d, turn=False))
+            if j.axis is not None:
+                _, t1, t2 = tangents(list(j.axis))
+                for d in (t1, t2):
+                    rows.append(self._relative_row(j.bodies, j.point, d, turn=True))
+        return sp.Matrix.vstack(*rows) if rows else sp.zeros(0, 6 * len(self.free))
+
+    def _relative_row(self, bodies: Sequence[str], point: Any, direction: sp.Matrix,
+                      turn: bool) -> sp.Matrix:
+        """The row taking u to the second body's point velocity (or, with `turn`, its
+        spin) less the first's, along `direction`."""
+        row = sp.zeros(1, 6 * len(self.free))
+        for k, body in enumerate(self.free):
+            sign = 1 if body.name == bodies[1] else -1 if body.name == bodies[0] else 0
+            if sign:
+                part = sp.Matrix([[0, 0, 0, *direction]]) if turn else \
+                    body.row(point, direction)
+                row[0, 6 * k:6 * k + 6] = sign * part
+        return row
 
     @cached_property
     def free(self) -> tuple[Body3, ...]:
@@ -155,8 +235,35 @@ class SpaceCollision:
         return sp.Matrix([x for b in self.free for x in b.speeds])
 
     @cached_property
-    def M_inverse(self) -> sp.Matrix:
+    def _free_M_inverse(self) -> sp.Matrix:
         return sp.diag(*[b.mass_inverse() for b in self.free])
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        """``M^-1`` of the free bodies, block diagonal; with joints, projected onto the
+        speeds that keep them: ``M^-1 - M^-1 G^T (G M^-1 G^T)^-1 G M^-1``."""
+        free = self._free_M_inverse
+        if not self.joints:
+            return free
+        G = self.G
+        across = free * G.T
+        return (free - across * (G * across).inv() * across.T).applyfunc(_tidy)
+
+    def joint_impulses(self, generalized: sp.Matrix) -> dict[str, tuple[sp.Expr, ...]]:
+        """Each joint's impulse on its second body, ``(x, y, z)`` and, for a hinge, its
+        moments along the two directions across its axis, from the contacts'
+        generalized impulse ``J^T P``: ``lambda = -(G M^-1 G^T)^-1 G M^-1 J^T P``."""
+        if not self.joints:
+            return {}
+        G, free = self.G, self._free_M_inverse
+        lam = -(G * free * G.T).LUsolve(G * free * generalized)
+        out, row = {}, 0
+        for j in self.joints:
+            size = 3 if j.axis is None else 5
+            out[j.name] = tuple(_tidy(x) if not x.has(sp.Float) else x
+                                for x in lam[row:row + size, 0])
+            row += size
+        return out
 
     def rows(self, contact: Contact) -> sp.Matrix:
         """The contact's rows (n, t1, t2): the second body's touching point's velocity
@@ -242,8 +349,9 @@ class SpaceCollision:
         lost = sp.simplify(before - sum((b.kinetic_energy for b in moved), sp.Integer(0)))
         tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
         regime = course
+        pinned = self.joint_impulses(J.T * P)
         checks = self._checks(c, J, P, u_after, before, lost, course,
-                              exact=self.tolerance is None and not notes)
+                              exact=self.tolerance is None and not notes, pinned=pinned)
         solution = Solution(
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
@@ -251,12 +359,13 @@ class SpaceCollision:
             courses=(f"{c.name}: {course}",) if regime else (),
             energies=(before, lost, sp.simplify(lost / before)), notes=tuple(notes),
             speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
-            tangent_impulses={c.name: (P[1], P[2])}, given_checks=checks)
+            tangent_impulses={c.name: (P[1], P[2])}, given_checks=checks,
+            joint_impulses=pinned)
         return solution if checks is None else certified(solution)
 
     def _checks(self, c: Contact, J: sp.Matrix, P: sp.Matrix, u_after: sp.Matrix,
-                before: sp.Expr, lost: sp.Expr, course: str,
-                exact: bool) -> dict[str, Any] | None:
+                before: sp.Expr, lost: sp.Expr, course: str, exact: bool,
+                pinned: Mapping[str, Sequence[Any]] | None = None) -> dict[str, Any] | None:
         """The residuals of the laws from the bodies' momenta, apart from the solver:
         each body's linear and angular momentum against the impulse it received, the
         push, the contact opening after, the cone (or no slip after for a sticking
@@ -271,13 +380,15 @@ class SpaceCollision:
 
         frame = sp.Matrix(c.frame)
         impulse = frame.T * P  # on the second body, world frame
-        out: dict[str, Any] = {}
+        out: dict[str, Any] = self._joint_checks(pinned or {}, u_after, num)
+        held = self._held(pinned or {})
         for k, body in enumerate(self.free):
             sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
             du = u_after[6 * k:6 * k + 6, 0] - self.u_before[6 * k:6 * k + 6, 0]
-            linear = body.mass * du[:3, 0] - sign * impulse
+            linear = body.mass * du[:3, 0] - sign * impulse - held[6 * k:6 * k + 3, 0]
             arm = sp.Matrix(c.point) - sp.Matrix(body.position)
-            angular = sp.Matrix(body.inertia) * du[3:, 0] - sign * arm.cross(impulse)
+            angular = sp.Matrix(body.inertia) * du[3:, 0] - sign * arm.cross(impulse) \
+                - held[6 * k + 3:6 * k + 6, 0]
             for axis, x in zip("xyz", linear, strict=True):
                 out[f"{body.name}.momentum_{axis}"] = abs(num(x))
             for axis, x in zip("xyz", angular, strict=True):
@@ -315,6 +426,39 @@ class SpaceCollision:
             FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
 
+    def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
+                P: Mapping[str, Sequence[Any]]) -> dict[str, tuple[sp.Expr, ...]]:
+        """The joints' impulses (:meth:`joint_impulses`) of contacts solved in floating
+        point, from their rows and impulses."""
+        if not self.joints:
+            return {}
+        generalized = sum((rows[c.name].T @ np.array([float(x) for x in P[c.name]])
+                           for c in acting), np.zeros(6 * len(self.free)))
+        return self.joint_impulses(sp.Matrix([sp.Float(x, 30) for x in generalized]))
+
+    def _held(self, pinned: Mapping[str, Sequence[Any]]) -> sp.Matrix:
+        """The joints' generalized impulse on the free bodies, ``G^T lambda``: each
+        body's linear impulse and its moment about the centre, six rows a body."""
+        if not self.joints:
+            return sp.zeros(6 * len(self.free), 1)
+        lam = sp.Matrix([x for j in self.joints for x in pinned[j.name]])
+        return self.G.T * lam
+
+    def _joint_checks(self, pinned: Mapping[str, Sequence[Any]], u_after: Any,
+                      num: Any) -> dict[str, Any]:
+        """``JOINT.holds``: after the impact each joint's two points (and a hinge's turn
+        across its axis) still move together."""
+        out: dict[str, Any] = {}
+        if not self.joints:
+            return out
+        gap = self.G * sp.Matrix(list(u_after))
+        row = 0
+        for j in self.joints:
+            size = 3 if j.axis is None else 5
+            out[f"{j.name}.holds"] = max(abs(num(x)) for x in gap[row:row + size, 0])
+            row += size
+        return out
+
     def _every_contact(self, solved: Solution) -> Solution:
         """The answer with every contact in the scene's order, a contact that took no part
         with zero impulses (``impulse`` is the first contact's, as in the plane)."""
@@ -346,7 +490,7 @@ class SpaceCollision:
 
     def _alone(self, contact: Contact) -> SpaceCollision:
         """The same bodies with only `contact`."""
-        return SpaceCollision(self.bodies, (contact,), self.tolerance)
+        return SpaceCollision(self.bodies, (contact,), self.tolerance, joints=self.joints)
 
     def simultaneous(self) -> Solution:
         """Several contacts acting together at the velocity level (Newton's law, Coulomb's
@@ -397,7 +541,8 @@ class SpaceCollision:
 
         def step(k: int, _now: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
             c = self.contacts[k]
-            hit = SpaceCollision(state["bodies"], (c,), self.tolerance).solve()
+            hit = SpaceCollision(state["bodies"], (c,), self.tolerance,
+                                 joints=self.joints).solve()
             assert hit.speeds_after is not None  # a 3-D answer: its generalized speeds
             after = iter(list(hit.speeds_after))
             state["bodies"] = tuple(b if b.support == "fixed" else b.moved(
@@ -484,7 +629,11 @@ class SpaceCollision:
         """The one Solution of several 3-D contacts solved in floating point, certified
         by its own residuals."""
         before, lost = energy
+        rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float) for c in acting} \
+            if self.joints else {}
         return certified(Solution(
+            joint_impulses={name: tuple(sp.Float(x, 17) for x in parts) for name, parts in
+                            self._pinned(acting, rows, P).items()},
             before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
             tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
                         for c in acting},
@@ -657,12 +806,16 @@ class SpaceCollision:
         """Residuals of the laws from the bodies' momenta and the contacts' impulses, at
         the integration's precision: momentum, no pull, the cone, the striking contact
         opening, each resting contact not penetrating, and the energy."""
-        out: dict[str, Any] = {}
+        pinned = self._pinned(acting, rows, P)
+        held = np.array(self._held(pinned).evalf(30), dtype=float).ravel()
+        out: dict[str, Any] = self._joint_checks(
+            pinned, [sp.Float(x, 30) for x in u_after], lambda x: float(sp.N(x, 30)))
         for k, body in enumerate(self.free):
             linear = np.array(body.mass * (u_after[6 * k:6 * k + 3] - u[6 * k:6 * k + 3]),
-                              dtype=float)
+                              dtype=float) - held[6 * k:6 * k + 3]
             angular = np.array(sp.Matrix(body.inertia).evalf(30), dtype=float) @ (
-                u_after[6 * k + 3:6 * k + 6] - u[6 * k + 3:6 * k + 6])
+                u_after[6 * k + 3:6 * k + 6] - u[6 * k + 3:6 * k + 6]) \
+                - held[6 * k + 3:6 * k + 6]
             for c in acting:
                 sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
                 if sign == 0:
@@ -694,7 +847,8 @@ class SpaceCollision:
         """The collision with numbers put in for its symbols."""
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
-                              self.facets, self.rule, self.order)
+                              self.facets, self.rule, self.order,
+                              tuple(j.at(dict(values)) for j in self.joints))
 
 
 def _leaving(contact: Contact, closing: float) -> float:
