@@ -318,3 +318,36 @@ def test_a_float_angle_is_solved_to_the_solves_digits():
     assert "50-digit floating point" in rounded.notes[0]
     for a, b in zip(exact.speeds_after, rounded.speeds_after, strict=True):
         assert abs(sp.N(a, 60) - b) < 1e-45
+
+
+def _bob():
+    """A particle of mass m on a massless rod of length l hinged at O, striking a wall
+    (normal x) with Newton's e: the closed form is u+ = -e u-."""
+    q, u = me.dynamicsymbols("q_b u_b")
+    mass, length = sp.symbols("m l", positive=True)
+    frame, arm = me.ReferenceFrame("F"), me.ReferenceFrame("Arm")
+    arm.orient_axis(frame, frame.z, q)
+    arm.set_ang_vel(frame, u * frame.z)
+    hinge = me.Point("H")
+    hinge.set_vel(frame, 0)
+    bob = hinge.locatenew("bob", -length * arm.y)
+    bob.v2pt_theory(hinge, frame, arm)
+    kane = me.KanesMethod(frame, [q], [u], [q.diff() - u])
+    kane.kanes_equations([me.Particle("P", bob, mass)], [])
+    return ri.mechanics.impact(kane, [ri.mechanics.contact(bob, frame.x, restitution=e)],
+                               frame=frame), u
+
+
+def test_a_closed_form_is_checked_at_random_points_by_the_systems_own_kinematics():
+    from dataclasses import replace
+
+    hit, u = _bob()
+    solution = hit.solve()
+    assert solution.speeds_after[0] == -e * u
+    assert solution.given_checks["_points"] == 3
+    assert set(solution.checks) >= {"momentum", "contact.restitution", "energy"}
+    assert max(solution.checks.values()) < 1e-40
+    # the closed form of a doubled Jacobian row (the same u+, half the impulse) is
+    # caught by the bob's own momentum
+    with pytest.raises(ri.InputError, match="fails its own check.*momentum"):
+        replace(hit, J=sp.ImmutableMatrix(2 * sp.Matrix(hit.J))).solve()

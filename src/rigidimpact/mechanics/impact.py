@@ -45,6 +45,7 @@ l*u(t)*A.x
 from __future__ import annotations
 
 import math
+import random
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -81,6 +82,8 @@ MAX_SYMBOLIC_TERMS = 10**7
 # wrong answer: the exact paths give zero, the floating ones about 1e-45
 CHECK_TOLERANCE = 1e-30
 SETTLING = 1e-12  # the sequential rule's passes end once no contact closes faster
+SYMBOLIC_POINTS = 3  # seeded random rational points a closed form is checked at
+SYMBOLIC_TRIES = 12  # points drawn to find them (a point with no impact is no check)
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
 
@@ -620,7 +623,7 @@ class SystemImpact:
         left (the closed forms are checked in the tests)."""
         numbers = [*u_after, *P, *self.u_before, *self.M, *self.J]
         if not all(sp.sympify(x).is_number for x in numbers):
-            return None
+            return self._at_points(u_after, P, rule)
         with mpmath.workdps(FLOAT_DIGITS):
             def num(x: Any) -> Any:
                 return mpmath.mpf(sp.N(x, FLOAT_DIGITS + 10)._to_mpmath(mpmath.mp.prec))
@@ -660,6 +663,62 @@ class SystemImpact:
             out["_kinetic"] = kinetic[0]
             out["_tolerance"] = CHECK_TOLERANCE
         return out
+
+    def _at_points(self, u_after: sp.Matrix, P: sp.Matrix, rule: str) -> dict[str, Any] | None:
+        """The residuals of a closed form (symbols left), at seeded random rational
+        points of its symbols and coordinates where the impact happens: each constant
+        within its assumptions (a restitution coefficient in [0, 1], a friction
+        coefficient in [0, 2]), each coordinate and speed in [-3/2, 3/2]; the worst of
+        each residual over :data:`SYMBOLIC_POINTS` points, relative to that point's
+        scale (the energy to its kinetic energy). The system's own kinematics check
+        each point (:meth:`_own`), apart from the M and J the closed form came from.
+        None where no point of the first :data:`SYMBOLIC_TRIES` is an impact."""
+        laws = sp.Tuple(*(x for c in self.contacts for x in (
+            c.laws.restitution, c.laws.friction or 0, c.laws.tangential_restitution or 0)))
+        data = sp.Tuple(*self.M, *self.J, *self.u_before, *u_after, *P, laws)
+        constants = sorted(data.free_symbols - {me.dynamicsymbols._t}, key=str)
+        ranges = {c.laws.restitution: (0, 1) for c in self.contacts} | {
+            c.laws.friction: (0, 2) for c in self.contacts if c.laws.friction is not None}
+        functions = sorted({*self.q, *self.u} & data.atoms(sp.Function), key=str)
+        rng = random.Random(44)
+        worst: dict[str, Any] = {}
+        checked = 0
+        for _ in range(SYMBOLIC_TRIES):
+            if checked == SYMBOLIC_POINTS:
+                break
+            point: dict[Any, Any] = {}
+            for x in constants:
+                low, high = ranges.get(x, (0, 3) if x.is_positive or x.is_nonnegative
+                                       else (-3, 3))
+                value = sp.Rational(rng.randint(low * 311, high * 311), 311)
+                if x.is_positive and value <= 0:
+                    value = sp.Rational(rng.randint(1, 3 * 311), 311)
+                point[x] = value
+            for f in functions:
+                point[f] = sp.Rational(rng.randint(-466, 466), 311)
+            try:
+                here = self.at({k: v for k, v in point.items() if k not in self.u} |
+                               {u: point.get(u, b) for u, b in
+                                zip(self.u, self.u_before, strict=True)})
+                normals = here.J * here.u_before
+                if not any(normals[2 * i] < 0 for i in range(len(self.contacts))):
+                    continue  # no impact at this point
+                found = here._checks(u_after.xreplace(point), P.xreplace(point),
+                                     sp.Integer(0), sp.Integer(0), rule)
+            except (InputError, ZeroDivisionError, TypeError, ValueError):
+                continue
+            if found is None:
+                continue
+            checked += 1
+            for key, value in found.items():
+                if key.startswith("_"):
+                    continue
+                size = value / (found["_kinetic"] if key == "energy" else found["_scale"])
+                worst[key] = max(worst.get(key, 0), size)
+        if not checked:
+            return None
+        return {**worst, "_scale": 1, "_kinetic": 1, "_tolerance": CHECK_TOLERANCE,
+                "_points": checked}
 
     def _by_M_and_J(self, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple:
         """The balance, the contact velocities after and before and the kinetic energies
