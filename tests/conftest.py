@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import random
 
 import pytest
@@ -10,6 +11,10 @@ import sympy as sp
 from rigidimpact.model.bodies import Body
 
 SEED = 1729
+
+# every test derives what it checks: the cache of derive's answers is off (its own test
+# turns it on, in a folder of its own)
+os.environ["RIGIDIMPACT_CACHE"] = "off"
 
 
 def random_body(rng: random.Random, name: str, side: int) -> Body:

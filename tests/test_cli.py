@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -256,3 +257,33 @@ def test_an_animation_says_where_it_was_written(tmp_path, capsys):
     assert main(["simulate", str(_SHIPPED / "restrike.toml"), "--animate", str(movie)]) == 0
     assert movie.exists()
     assert f"animation written to {movie}" in capsys.readouterr().err
+
+
+def test_derive_keeps_its_answer_and_reads_it_back(tmp_path, monkeypatch, capsys):
+    # the second run prints what the first printed, its timing line saying it was read
+    # from the cache; an edited scene is derived again; a spoiled entry is passed over
+    monkeypatch.setenv("RIGIDIMPACT_CACHE", str(tmp_path / "cache"))
+    assert main(["derive", "barbell"]) == 0
+    first = capsys.readouterr().out
+    assert main(["derive", "barbell"]) == 0
+    again = capsys.readouterr().out
+    assert "read from the cache" in again and "read from the cache" not in first
+    timing = re.compile(r"^\(.* s.*\)$", re.MULTILINE)
+    assert timing.sub("", again) == timing.sub("", first)
+    (entry,) = (tmp_path / "cache").glob("*.json")
+    entry.write_text("{not json")
+    assert main(["derive", "barbell"]) == 0
+    assert "read from the cache" not in capsys.readouterr().out
+    scene = tmp_path / "drop.toml"
+    text = (DERIVATIONS / "two-ball-drop.toml").read_text()
+    scene.write_text(text)
+    assert main(["derive", str(scene)]) == 0
+    capsys.readouterr()
+    scene.write_text(text.replace("title = ", "title = 'Edited' #"))
+    assert main(["derive", str(scene)]) == 0
+    edited = capsys.readouterr().out
+    assert "Edited" in edited and "read from the cache" not in edited
+    # a failing run is not kept, and a folder that cannot be made is passed over
+    assert main(["derive", str(tmp_path / "missing.toml")]) == 2
+    monkeypatch.setenv("RIGIDIMPACT_CACHE", str(entry / "inside-a-file"))
+    assert main(["derive", "barbell"]) == 0

@@ -128,20 +128,21 @@ def _check_workers(args: argparse.Namespace) -> None:
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from rigidimpact.analyses.distributions import (
-        distributions_json,
-        distributions_text,
-        scene_distributions,
-    )
-    from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
-
     _check_workers(args)
     d = _derivation(args.target)
     table, scene = _random_of(args.target)
     if (args.workers is not None or args.scheduler) and not table:
         raise InputError("--workers", "only a scene with a [random] table runs on Dask")
-    found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
-                                progress=not args.json) if table else {}
+    found: dict = {}
+    if table:  # numpy, scipy and Dask only where something is drawn
+        from rigidimpact.analyses.distributions import (
+            distributions_json,
+            distributions_text,
+            scene_distributions,
+        )
+        found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
+                                    progress=not args.json)
+    from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
     for warning in d.warnings:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if args.json:
@@ -947,6 +948,34 @@ def _version() -> str:
         return "unknown"
 
 
+def _cached(args: argparse.Namespace, argv: list[str]) -> int:
+    """`derive`, answered from the cache of derivations already made where it holds this
+    one (:mod:`rigidimpact.outputs.cache`), else run and kept."""
+    import contextlib
+    import io
+
+    from rigidimpact.outputs import cache
+
+    name = cache.key(argv, args.target) if cache.folder() is not None else None
+    if name is None:
+        return args.run(args)
+    kept = cache.replay(name)
+    if kept is not None:
+        sys.stdout.write(kept[0])
+        sys.stderr.write(kept[1])
+        return 0
+    out, err = io.StringIO(), io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            status = args.run(args)
+    finally:  # what was printed is shown, whatever happened
+        sys.stdout.write(out.getvalue())
+        sys.stderr.write(err.getvalue())
+    if status == 0:
+        cache.store(name, out.getvalue(), err.getvalue())
+    return status
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status.
 
@@ -965,6 +994,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:
         return int(exc.code or 0)
     try:
+        if args.run is _cmd_derive and args.workers is None and not args.scheduler:
+            return _cached(args, list(sys.argv[1:] if argv is None else argv))
         return args.run(args)
     except InputError as exc:
         print(f"rigidimpact: error: {exc}", file=sys.stderr)
