@@ -25,7 +25,6 @@ import section1_barbell  # noqa: E402
 import section2_implications  # noqa: E402
 import section3_two_bodies  # noqa: E402
 import sympy as sp  # noqa: E402
-from matplotlib.animation import PillowWriter  # noqa: E402
 
 import rigidimpact as ri  # noqa: E402
 from rigidimpact.analyses import restrike  # noqa: E402
@@ -242,8 +241,8 @@ def main(argv: list[str] | None = None) -> int:
     # the re-strike as motion: the barbell comes round and strikes the ball again
     scene = ri.load_scene(HERE / "restrike.toml")
     track = ri.run(scene).trajectory
-    movie = plots.animation(np.asarray(track.t), track.points(), scene.title)
-    movie.save(str(figures / "restrike.gif"), writer=PillowWriter(fps=20))
+    plots.write_gif(np.asarray(track.t), track.points(), scene.title,
+                    figures / "restrike.gif", fps=20)
     print(f"animation -> {figures / 'restrike.gif'}")
     return 1 if failed else 0
 

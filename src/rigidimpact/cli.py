@@ -602,23 +602,26 @@ def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),
 def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
     """Animate a run to a GIF (Pillow) or MP4 (ffmpeg), written whole or not at all."""
     import numpy as np
-    from matplotlib.animation import FFMpegWriter, PillowWriter
+    from matplotlib.animation import FFMpegWriter
 
     from rigidimpact.outputs.atomic import write_file
     _files_only()
-    from rigidimpact.outputs.plots import animation
+    from rigidimpact.outputs.plots import animation, write_gif
 
     if _ends_at_impact(outcome):
         raise InputError("--animate", "this run ends at the impact (until = "
                          f"{outcome.plan.until!r}): nothing moves to animate; give "
                          "[simulate] until a time, or draw the impact with --plot")
     track = outcome.trajectory
+    if path.suffix.lower() != ".mp4":  # a GIF: the still parts drawn once
+        write_file(path, lambda temporary: write_gif(
+            np.asarray(track.t), track.points(), scene.title, temporary, fps=20),
+            "--animate")
+        return
     movie = animation(np.asarray(track.t), track.points(), scene.title)
-    mp4 = path.suffix.lower() == ".mp4"
-    writer = FFMpegWriter(fps=20) if mp4 else PillowWriter(fps=20)
 
     def save(temporary: Path) -> None:
-        movie.save(str(temporary), writer=writer)
+        movie.save(str(temporary), writer=FFMpegWriter(fps=20))
 
     try:
         write_file(path, save, "--animate")

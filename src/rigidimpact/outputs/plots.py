@@ -10,6 +10,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 
 # the backend is the caller's: matplotlib picks Agg itself where there is no screen, a
 # notebook keeps its inline one, and the command line asks for Agg before it draws
@@ -483,6 +484,52 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
     """
     from matplotlib.animation import FuncAnimation
 
+    fig, draw = _animated(times, points, title, frames)
+    return FuncAnimation(fig, draw, frames=frames, blit=False)
+
+
+def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path: str | Path,
+              frames: int = 60, fps: int = 20) -> None:
+    """:func:`animation`'s frames written as a GIF, the still parts (axes, ticks, grid,
+    legend) drawn once and only the moving ones each frame: the same pictures as
+    saving the animation with Pillow, in a fraction of the time.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from PIL import Image
+    >>> t = np.linspace(0, 1, 11)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_gif(t, {"ball": np.c_[t, 0 * t]}, "demo", f"{folder}/demo.gif", frames=4)
+    ...     with Image.open(f"{folder}/demo.gif") as film:
+    ...         film.n_frames
+    4
+    """
+    from PIL import Image
+
+    fig, draw = _animated(times, points, title, frames)
+    moving = draw(0)
+    for artist in moving:
+        artist.set_animated(True)
+    canvas = fig.canvas
+    canvas.draw()
+    still = canvas.copy_from_bbox(fig.bbox)
+    pictures = []
+    for i in range(frames):
+        canvas.restore_region(still)
+        for artist in draw(i):
+            fig.draw_artist(artist)
+        width, height = canvas.get_width_height()
+        pictures.append(Image.frombuffer("RGBA", (width, height),
+                                         bytes(canvas.buffer_rgba())).convert("RGB"))
+    plt.close(fig)
+    pictures[0].save(path, format="GIF", save_all=True, append_images=pictures[1:],
+                     loop=0, duration=round(1000 / fps))
+
+
+def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, frames: int):
+    """The animation's figure and its frame-drawing function (returning the artists it
+    moved)."""
     when = np.linspace(times[0], times[-1], frames)
     tracks = {name: np.c_[np.interp(when, times, xy[:, 0]), np.interp(when, times, xy[:, 1])]
               for name, xy in points.items()}
@@ -524,7 +571,7 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
         clock.set_text(f"{title}\nt = {when[i]:.4g} s after the impact")
         return [*trails.values(), *dots.values(), *rods.values(), clock]
 
-    return FuncAnimation(fig, draw, frames=frames, blit=False)
+    return fig, draw
 
 
 def experiment_comparison(model: dict[str, tuple[np.ndarray, np.ndarray]],
