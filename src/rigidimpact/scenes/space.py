@@ -41,6 +41,7 @@ from rigidimpact.scenes.scene import (
 from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
+from rigidimpact.symbolic.distributions import RandomInputs, random_table
 
 __all__ = ["SpaceScene", "parse_space_scene", "space_scene_from_data", "load_space_scene",
            "load_any", "is_spatial"]
@@ -73,6 +74,13 @@ class SpaceScene:
     rule: str | None = None  # [impact] rule: simultaneous | sequential | driven
     order: tuple[str, ...] | None = None
     joints: tuple[Joint, ...] = ()  # [[joints]]: ball joints and hinges
+    random: RandomInputs | None = None  # [random]: symbols with a distribution
+
+    @property
+    def roles(self) -> tuple:
+        """What bounds the data by role: in space each draw is checked by the solve
+        itself (see :func:`_check_random` for the support's ends)."""
+        return ()
 
     @property
     def contact(self) -> Contact:
@@ -375,7 +383,7 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate", "joints"}
+               "simulate", "joints", "random"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -385,6 +393,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("title", "must be text")
     symbols = _symbols_table(_table(data, "symbols", "name = { assumption = true }"))
     values = _values_table(_table(data, "values", "name = number"), symbols)
+    randoms = random_table(_table(data, "random", "name = { uniform = [a, b] }"), symbols)
     raw = data.get("bodies")
     if not isinstance(raw, list) or len(raw) < 2:
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
@@ -426,10 +435,34 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
     used |= frozenset().union(*(sp.sympify(x).free_symbols for j in joints
                                  for x in (*j.point, *(j.axis if j.axis is not None else ()))))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets, rule, order, joints)
+                       simulate, facets, rule, order, joints, randoms)
     # its bodies, contacts, joints and rule agree
     SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints)
+    if randoms is not None:
+        _check_random(scene)
     return scene
+
+
+def _check_random(scene: SpaceScene) -> None:
+    """Each random input is a symbol the scene uses, and at each finite end of its
+    support (the scene's other [values] held) the bodies still approach and every law
+    holds: a draw there is an impact, as in the plane."""
+    table = scene.random
+    assert table is not None
+    for symbol, law in table.inputs.items():
+        if symbol not in scene.used:
+            raise InputError(f"random.{symbol.name}", "the scene does not use this symbol")
+        missing = sorted(str(s) for s in scene.used - set(scene.values) - {symbol})
+        if missing:
+            continue  # the ends are checked at numbers only
+        for end in law.support:
+            if not end.is_finite or (law.kind == "lognormal" and end == 0):
+                continue  # an open end, never drawn
+            try:
+                scene.collision({**scene.values, symbol: end}).solve()
+            except InputError as exc:
+                raise InputError(f"random.{symbol.name}", f"at the end {end} of its "
+                                 f"support: {exc.message}") from None
 
 
 def _read_joints(data: Mapping[str, Any],
