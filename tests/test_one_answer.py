@@ -300,8 +300,12 @@ def test_the_rules_differ_and_each_is_asked_for_by_name():
 
 
 def test_a_3d_scene_refuses_a_rule_it_does_not_have(tmp_path, capsys):
-    text = ball_into_wall("compliant", True)
+    text = ball_into_wall("bouncy", True)
     refused(capsys, ["evaluate", scene_file(tmp_path, text)], "impact.rule")
+    # the compliant rule is built in 3-D: its springs act along the normals, so the
+    # rough wall and floor are refused in one line naming the contact's law
+    text = ball_into_wall("compliant", True)
+    refused(capsys, ["evaluate", scene_file(tmp_path, text)], "tangential")
 
 
 # ---- random inputs: every draw an impact, and an open end is no value ------------------

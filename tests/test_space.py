@@ -546,3 +546,28 @@ def test_several_striking_contacts_are_refused_where_not_solved():
         _cube((HALF, 0, -1), law="poisson").solve()
     with pytest.raises(InputError, match="even whole number"):
         _cube((HALF, 0, -1), facets=7)
+
+
+def test_the_compliant_rule_in_space_is_the_planar_one():
+    # three balls in a row along x (a cradle), every contact a spring-dashpot of the same
+    # stiffness, e = 1: the 3-D rule runs the planar rule's one implementation, so the
+    # cradle written in space gives the planar chain's speeds to the integration's digits
+    from rigidimpact.solve.collision import chain
+
+    balls = tuple(Body3.sphere(1, HALF, (k, 0, 0), (1 if k == 0 else 0, 0, 0),
+                               name=f"ball{k}") for k in range(3))
+    contacts = tuple(Contact(normal=(1, 0, 0), restitution=1, name=f"c{k}",
+                             bodies=(f"ball{k}", f"ball{k + 1}"), point=(k + HALF, 0, 0))
+                     for k in range(2))
+    space = SpaceCollision(balls, contacts, rule="compliant").solve()
+    flat = chain(3).compliant().results()
+    r = space.results()
+    assert space.rule == "compliant" and not space.warnings
+    for k in range(3):
+        assert abs(float(r[f"ball{k}.vx"]) - float(flat[f"ball{k}.vx"])) < 1e-9
+    # momentum to the integration's digits, and the energy kept (e = 1)
+    assert abs(sum(float(r[f"ball{k}.vx"]) for k in range(3)) - 1) < 1e-9
+    assert abs(float(space.energy_lost)) < 1e-6
+    stiffer = SpaceCollision(balls, contacts, rule="compliant",
+                             compliance=((1e6, 1e8), False)).solve().results()
+    assert stiffer["ball2.vx"] != r["ball2.vx"]  # the stiffnesses' ratio decides

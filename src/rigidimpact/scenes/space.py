@@ -30,6 +30,7 @@ from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.scenes.scene import (
     Scene,
+    _compliance,
     _symbols_table,
     _table,
     _values_table,
@@ -75,6 +76,7 @@ class SpaceScene:
     order: tuple[str, ...] | None = None
     joints: tuple[Joint, ...] = ()  # [[joints]]: ball joints and hinges
     random: RandomInputs | None = None  # [random]: symbols with a distribution
+    compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)  # [impact] stiffness
 
     @property
     def roles(self) -> tuple:
@@ -93,7 +95,7 @@ class SpaceScene:
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
         problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets,
-                                 self.rule, self.order, self.joints)
+                                 self.rule, self.order, self.joints, self.compliance)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -413,6 +415,8 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                 raise InputError("impact.order", "a list of the contacts' names")
             order = tuple(value)
             continue
+        if key in ("stiffness", "model"):
+            continue  # the compliant rule's springs, read below
         if key == "facets":
             if isinstance(value, bool) or not isinstance(value, int):
                 raise InputError("impact.facets", f"a whole number, not {value!r}")
@@ -420,7 +424,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
             continue
         if key != "tolerance":
             raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes rule, order, "
-                             "tolerance and facets")
+                             "tolerance, facets, stiffness and model")
         if isinstance(value, bool) or not isinstance(value, (int, float)) or \
                 not 1e-14 <= value <= 1e-2:
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
@@ -434,10 +438,11 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
     simulate = _table(data, "simulate", "settings")
     used |= frozenset().union(*(sp.sympify(x).free_symbols for j in joints
                                  for x in (*j.point, *(j.axis if j.axis is not None else ()))))
+    compliance = _compliance(impact, len(contacts))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets, rule, order, joints, randoms)
+                       simulate, facets, rule, order, joints, randoms, compliance)
     # its bodies, contacts, joints and rule agree
-    SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints)
+    SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints, compliance)
     if randoms is not None:
         _check_random(scene)
     return scene

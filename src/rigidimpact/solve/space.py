@@ -65,7 +65,7 @@ CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this preci
 MAX_FACETS = 256  # the most edges of a pyramid standing for the cone at several strikes
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
 # the rules several 3-D contacts take (the compliant rule is not built in 3-D)
-RULES_3D = ("simultaneous", "sequential", "driven")
+RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
 TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
 
@@ -91,6 +91,8 @@ class SpaceCollision:
     # ball joints and hinges (:class:`~rigidimpact.model.joints.Joint` in space): their
     # bilateral rows G are eliminated by the projected inverse mass, as in the plane
     joints: tuple[Joint, ...] = ()
+    # the compliant rule's stiffness (one, or one per contact) and whether Hertz's
+    compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -106,8 +108,7 @@ class SpaceCollision:
             raise InputError("contacts", "at least one contact is needed")
         if self.rule is not None and self.rule not in RULES_3D:
             raise InputError("impact.rule", f"in 3-D: one of {', '.join(RULES_3D)}, not "
-                             f"{self.rule!r}" + ("; the compliant rule is not built in 3-D "
-                                                 "yet" if self.rule == "compliant" else ""))
+                             f"{self.rule!r}")
         if self.order is not None and (self.rule != "sequential" or sorted(
                 self.order) != sorted(c.name for c in self.contacts)):
             raise InputError("impact.order", "with rule = \"sequential\": every contact's "
@@ -293,6 +294,10 @@ class SpaceCollision:
         if len(self.contacts) > 1:
             if self.rule == "sequential":
                 solved = self.sequential(self.order or tuple(c.name for c in self.contacts))
+            elif self.rule == "compliant":
+                stiffness, hertz = self.compliance
+                solved = self.compliant(stiffness if len(stiffness) > 1 else stiffness[0],
+                                        hertz)
             elif self.rule == "simultaneous":
                 solved = self.simultaneous()
             else:
@@ -576,6 +581,17 @@ class SpaceCollision:
                                  (before, lost), checks)
         return replace(solution, rule="sequential", order=tuple(order), passes=passes)
 
+    def compliant(self, stiffness: Sequence[float] | float = 1e6,
+                  hertz: bool = False) -> Solution:
+        """Every contact a push-only spring-dashpot (or an elastic Hertz spring), with
+        one stiffness per contact, integrated until all let go: the planar rule's one
+        implementation (:func:`rigidimpact.solve.rules.compliant.compliant`) run on
+        this problem's speeds, M^-1 and normal rows; smooth contacts, at numbers."""
+        from rigidimpact.solve.rules.compliant import compliant
+
+        rows, u, _, _ = self._numbers()
+        return compliant(_AsProblem(self, rows, u), stiffness, hertz)  # type: ignore[arg-type]
+
     def driven(self, strict: bool = False) -> Solution:
         """Several contacts: the one that approaches strikes, under its restitution law,
         and every contact touching with zero normal velocity rests, staying closed while
@@ -848,7 +864,78 @@ class SpaceCollision:
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
                               self.facets, self.rule, self.order,
-                              tuple(j.at(dict(values)) for j in self.joints))
+                              tuple(j.at(dict(values)) for j in self.joints), self.compliance)
+
+
+@dataclass(frozen=True)
+class _AsProblem:
+    """A 3-D collision as the planar rules read an impulse problem (the part of the
+    rule protocol the compliant rule reads): its speeds, its projected M^-1, each
+    contact's normal row; what the rule makes of it comes back as the 3-D Solution,
+    checked by the bodies' own momenta (:meth:`SpaceCollision._driven_checks`)."""
+
+    space: SpaceCollision
+    rows: Mapping[str, np.ndarray]
+    u: np.ndarray
+
+    @property
+    def contacts(self) -> tuple[Contact, ...]:
+        return self.space.contacts
+
+    def numbers_only(self, rule: str) -> None:
+        """Checked already: the 3-D rules run at numbers."""
+
+    def smooth_only(self, where: str) -> None:
+        rough = [c.name for c in self.contacts if c.laws[1].grips]
+        if rough:
+            raise InputError(f"{rough[0]}.tangential", "the compliant rule's springs act "
+                             f"along the normals (smooth contacts), not {where} with "
+                             "friction: use the driven, simultaneous or sequential rule")
+
+    @property
+    def J(self) -> sp.SparseMatrix:
+        return sp.SparseMatrix([list(self.rows[c.name][0]) for c in self.contacts])
+
+    @property
+    def dense(self) -> bool:
+        return True
+
+    @property
+    def coordinates(self) -> tuple[sp.Symbol, ...]:
+        return self.space.speeds
+
+    @property
+    def M_inverse(self) -> sp.Matrix:
+        return self.space.M_inverse
+
+    @property
+    def u_before(self) -> sp.Matrix:
+        return self.space.u_before
+
+    @property
+    def scaled_velocity_before(self) -> sp.Matrix:
+        return sp.Matrix([float(self.rows[c.name][0] @ self.u) for c in self.contacts])
+
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                impulses: Mapping[str, sp.Expr], acted: Sequence[str],
+                **more: Any) -> Solution:
+        space = self.space
+        u_after = np.array([float(x) for x in u])
+        P = {c.name: [impulses[c.name], sp.Integer(0), sp.Integer(0)]
+             for c in self.contacts}
+        moved = [b.moved([sp.Float(x, 17) for x in u_after[6 * j:6 * j + 6]])
+                 for j, b in enumerate(space.free)]
+        before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
+        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+        checks = space._driven_checks(list(self.contacts), self.rows, P, self.u, u_after,
+                                      before, lost, 1e-10)
+        courses = tuple(f"{c.name}: {'acts' if c.name in acted else 'released'}"
+                        for c in self.contacts)
+        solution = space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
+                                  ["every contact a push-only spring-dashpot, integrated "
+                                   "(LSODA, rtol 1e-10) until all let go"], (before, lost),
+                                  checks)
+        return replace(solution, rule=rule, order=tuple(order))
 
 
 def _leaving(contact: Contact, closing: float) -> float:
