@@ -16,10 +16,15 @@ written) is passed over, never trusted and never an error.
 Examples
 --------
 >>> import os
+>>> kept = os.environ.get("RIGIDIMPACT_CACHE")
 >>> os.environ["RIGIDIMPACT_CACHE"] = "off"
 >>> folder() is None
 True
->>> del os.environ["RIGIDIMPACT_CACHE"]
+>>> os.environ["RIGIDIMPACT_CACHE"] = "/tmp/rigidimpact-cache"
+>>> folder().name
+'rigidimpact-cache'
+>>> _ = os.environ.pop("RIGIDIMPACT_CACHE") if kept is None else os.environ.update(
+...     RIGIDIMPACT_CACHE=kept)
 """
 
 from __future__ import annotations

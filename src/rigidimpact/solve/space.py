@@ -56,6 +56,7 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
+from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.sequential import SETTLED, carried, sequential_passes
 from rigidimpact.solve.solution import Solution, certified
 
@@ -587,8 +588,6 @@ class SpaceCollision:
         one stiffness per contact, integrated until all let go: the planar rule's one
         implementation (:func:`rigidimpact.solve.rules.compliant.compliant`) run on
         this problem's speeds, M^-1 and normal rows; smooth contacts, at numbers."""
-        from rigidimpact.solve.rules.compliant import compliant
-
         rows, u, _, _ = self._numbers()
         return compliant(_AsProblem(self, rows, u), stiffness, hertz)  # type: ignore[arg-type]
 

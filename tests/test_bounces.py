@@ -1,0 +1,91 @@
+"""A sphere among fixed planes: flight, the next contact, each impact, and the sliding
+to rolling where a bounce leaves it lying on the floor; against hand derivations."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from rigidimpact.errors import InputError
+from rigidimpact.laws.contact import Contact
+from rigidimpact.model.space import Body3
+from rigidimpact.simulate.bounces import bounces
+
+R = sp.Rational
+ROUGH = dict(restitution=1, tangential="rough", tangential_restitution=1)
+
+
+def _floor(**laws):
+    return Contact(normal=(0, 0, 1), bodies=("floor", "ball"), point=(0, 0, 0),
+                   name="floor", **laws)
+
+
+def test_garwins_superball_comes_back_from_under_the_table():
+    # no gravity (Garwin's fast throw): floor at z = 0, the table's underside at z = 3;
+    # the ball (R = 1) leaves the floor at (3/7, 0, 1) with spin 10/7 about y, meets
+    # the table at t = 1 at x = 3/7, and the floor at t = 2; after the third bounce it
+    # moves at (-333/343, 0, 1) (hand derivation, tests/test_sphere_motion.py)
+    ball = Body3.sphere(1, 1, (0, 0, 1), (1, 0, -1), name="ball")
+    table = Contact(normal=(0, 0, -1), bodies=("table", "ball"), point=(0, 0, 3),
+                    name="table", **ROUGH)
+    run = bounces(ball, (_floor(**ROUGH), table), gravity=(0, 0, 0), impacts=3)
+    assert [(e.t, e.plane) for e in run.events] == [(0, "floor"), (1, "table"), (2, "floor")]
+    assert run.events[0].velocity.T.tolist() == [[R(3, 7), 0, 1]]
+    assert run.events[0].spin[1] == R(10, 7)
+    assert run.events[1].position.T.tolist() == [[R(3, 7), 0, 2]]
+    assert run.velocity.T.tolist() == [[R(-333, 343), 0, 1]] and run.exact
+    assert run.stopped == "impacts"
+
+
+def test_a_ball_landing_without_bounce_slides_then_rolls_at_five_sevenths():
+    # dropped from 1 above the floor (R = 1, g = 49/5) moving at 3 along x, e = 0, mu =
+    # 1/10: it lands at sqrt(2/g), slides through the impact (mu (7/2) P_n < 3) and on
+    # the floor until it rolls; its angular momentum about the touching point is kept
+    # throughout (every impulse and friction force acts there), so it rolls at
+    # (5/7) 3 = 15/7. Hand numbers: P_n = sqrt(2 g), after the impact v_x = 3 - P_n/10
+    # and w_y = (5/2) P_n/10; it rolls after (v_x - w_y) / (mu g (1 + 5/2)) more
+    g = R(49, 5)
+    ball = Body3.sphere(1, 1, (0, 0, 2), (3, 0, 0), name="ball")
+    run = bounces(ball, (_floor(restitution=0, tangential="coulomb", friction=R(1, 10)),),
+                  gravity=(0, 0, -g), impacts=5)
+    (landing, rolls) = run.events
+    p_n = sp.sqrt(2 * g)
+    assert abs(landing.t - sp.sqrt(2 / g)) < 1e-35
+    assert abs(landing.velocity[0] - (3 - p_n / 10)) < 1e-35
+    assert abs(landing.spin[1] - R(5, 2) * p_n / 10) < 1e-35
+    slip = (3 - p_n / 10) - R(5, 2) * p_n / 10
+    assert abs(rolls.t - (sp.sqrt(2 / g) + slip / (g / 10 * R(7, 2)))) < 1e-35
+    assert abs(run.velocity[0] - R(15, 7)) < 1e-35 and run.stopped == "rolling"
+    assert not run.exact  # sqrt(2/g) is irrational: floating point from the landing on
+
+
+def test_the_events_do_not_depend_on_the_horizon():
+    # a ball bouncing with e = 1/2 on a rough floor: its impacts up to t = 1 are the same
+    # whether the run is asked to stop at 1 or at 2
+    ball = Body3.sphere(1, R(1, 10), (0, 0, 1), (1, 0, 0), (0, 5, 0), name="ball")
+    floor = _floor(restitution=R(1, 2), tangential="coulomb", friction=R(1, 5))
+    short = bounces(ball, (floor,), gravity=(0, 0, -10), horizon=1)
+    long = bounces(ball, (floor,), gravity=(0, 0, -10), horizon=2)
+    assert short.events and short.stopped == "horizon"
+    assert [(e.t, tuple(e.velocity)) for e in short.events] == \
+        [(e.t, tuple(e.velocity)) for e in long.events[:len(short.events)]]
+    assert all(e.t >= 1 for e in long.events[len(short.events):])
+    # each bounce leaves at half the landing speed (e = 1/2), the floor being smooth
+    # along the normal: the rebound heights fall by 1/4
+    ups = [e.velocity[2] for e in long.events
+           if e.kind == "impact" and "comes to lie" not in e.course]
+    assert len(ups) > 20 and long.events[-1].kind == "rolls"  # they pile up, then it rolls
+    assert all(abs(b / a - R(1, 2)) < 1e-30 for a, b in zip(ups, ups[1:], strict=False))
+
+
+def test_bad_input_is_refused_in_one_line():
+    ball = Body3.sphere(1, 1, (0, 0, 1), (1, 0, -1), name="ball")
+    with pytest.raises(InputError, match="give a number of impacts or a time"):
+        bounces(ball, (_floor(**ROUGH),))
+    with pytest.raises(InputError, match="simulate.impacts"):
+        bounces(ball, (_floor(**ROUGH),), impacts=0)
+    with pytest.raises(InputError, match="must name the sphere"):
+        bounces(ball, (Contact(normal=(0, 0, 1), bodies=("floor", "other"),
+                               point=(0, 0, 0), restitution=1),), impacts=1)
+    with pytest.raises(InputError, match="a positive time"):
+        bounces(ball, (_floor(**ROUGH),), horizon=-1)
