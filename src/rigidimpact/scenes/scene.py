@@ -771,20 +771,24 @@ def _names_first(tables: list[tuple[dict[str, Any], str]],
 
 
 def _joints(data: Mapping[str, Any], by_name: Mapping[str, Any],
-            symbols: Mapping[str, sp.Symbol]) -> tuple[Joint, ...]:
+            symbols: Mapping[str, sp.Symbol], vector: Any = None,
+            axis: bool = False) -> tuple[Joint, ...]:
     """The ``[[joints]]`` entries: each a `name`, the two `bodies` it pins together and
-    the `point` (from O) where it pins them."""
+    the `point` (from O) where it pins them, read by `vector` (the plane's [x, y] by
+    default); in space (`axis`) a hinge's optional ``axis`` too."""
+    read = _vector if vector is None else vector
+    fields = ("name", "bodies", "point") + (("axis",) if axis else ())
     entries = data.get("joints", [])
     if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
         raise InputError("joints", "must be [[joints]] tables, each with name, bodies and "
-                         "point")
+                         "point" + (" (and axis for a hinge)" if axis else ""))
     found: list[Joint] = []
     for k, entry in enumerate(entries):
         place = f"joints[{k}]"
         for key in entry:
-            if key not in ("name", "bodies", "point"):
+            if key not in fields:
                 raise InputError(f"{place}.{key}", "not a field of a joint; allowed: "
-                                 "bodies, name, point")
+                                 f"{', '.join(sorted(fields))}")
         for key in ("name", "bodies", "point"):
             if key not in entry:
                 raise InputError(f"{place}.{key}", "required for a joint")
@@ -800,9 +804,11 @@ def _joints(data: Mapping[str, Any], by_name: Mapping[str, Any],
         for side in pair:
             if side not in by_name:
                 raise InputError(f"{place}.bodies", f"no body named {side!r}")
-        point = _vector(entry["point"], f"{place}.point", symbols)
+        point = read(entry["point"], f"{place}.point", symbols)
+        turn = None if entry.get("axis") is None else \
+            read(entry["axis"], f"{place}.axis", symbols)
         try:
-            found.append(Joint(name, tuple(pair), point))
+            found.append(Joint(name, tuple(pair), point, turn))
         except InputError as exc:
             raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
     return tuple(found)

@@ -16,7 +16,7 @@ Text from the file is read by the project's bounded expression parser, never by 
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,6 +31,7 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.scenes.scene import (
     Scene,
     _compliance,
+    _joints,
     _symbols_table,
     _table,
     _values_table,
@@ -401,7 +402,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
         raise InputError("bodies", "a 3-D scene needs at least two [[bodies]]")
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
-    joints = _read_joints(data, symbols)
+    joints = _read_joints(data, symbols, [b.name for b in bodies])
     tolerance, facets, rule, order = None, None, None, None
     impact = _table(data, "impact", "settings")
     for key, value in impact.items():
@@ -470,39 +471,12 @@ def _check_random(scene: SpaceScene) -> None:
                                  f"support: {exc.message}") from None
 
 
-def _read_joints(data: Mapping[str, Any],
-                 symbols: Mapping[str, sp.Symbol]) -> tuple[Joint, ...]:
-    """The ``[[joints]]`` of a 3-D scene: each a `name`, the two `bodies` it joins, the
-    `point` [x, y, z] and, for a hinge, its `axis` [x, y, z] (without one, a ball
-    joint). A joint to a fixed body pivots the other."""
-    entries = data.get("joints", [])
-    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
-        raise InputError("joints", "must be [[joints]] tables, each with name, bodies and "
-                         "point (and axis for a hinge)")
-    found: list[Joint] = []
-    for k, entry in enumerate(entries):
-        place = f"joints[{k}]"
-        for key in entry:
-            if key not in ("name", "bodies", "point", "axis"):
-                raise InputError(f"{place}.{key}", "not a field of a joint; allowed: "
-                                 "axis, bodies, name, point")
-        for key in ("name", "bodies", "point"):
-            if key not in entry:
-                raise InputError(f"{place}.{key}", "required for a joint")
-        pair = entry["bodies"]
-        if not (isinstance(pair, list) and len(pair) == 2 and
-                all(isinstance(b, str) for b in pair)):
-            raise InputError(f"{place}.bodies", "must name two bodies, such as "
-                             "[\"ground\", \"door\"]")
-        axis = entry.get("axis")
-        try:
-            found.append(Joint(entry["name"], tuple(pair),
-                               _vector3(entry["point"], f"{place}.point", symbols),
-                               None if axis is None else
-                               _vector3(axis, f"{place}.axis", symbols)))
-        except InputError as exc:
-            raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
-    return tuple(found)
+def _read_joints(data: Mapping[str, Any], symbols: Mapping[str, sp.Symbol],
+                 names: Sequence[str]) -> tuple[Joint, ...]:
+    """The ``[[joints]]`` of a 3-D scene (the plane's reader, with points [x, y, z]):
+    each a `name`, the two `bodies` it joins, the `point` and, for a hinge, its `axis`
+    (without one, a ball joint). A joint to a fixed body pivots the other."""
+    return _joints(data, dict.fromkeys(names), symbols, _vector3, axis=True)
 
 
 def load_space_scene(path: str | Path) -> SpaceScene:
