@@ -290,7 +290,7 @@ class SystemImpact:
         M = sp.Matrix(self.M)
         before = (self.u_before.T * M * self.u_before)[0] / 2
         lost = _small(before - (after.T * M * after)[0] / 2)
-        checks = self._checks(after, P, before, lost)
+        checks = self._checks(after, P)
         if checks is not None and not all(x.is_Rational or not x.is_Float for x in P):
             checks["_tolerance"] = 1e-8
         solution = Solution(
@@ -589,7 +589,7 @@ class SystemImpact:
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
-        checks = self._checks(back(after), P, before, lost, rule)
+        checks = self._checks(back(after), P, rule)
         if checks is not None and rule == "compliant":  # integrated in floating point:
             checks.pop("_tolerance")  # the rule's own tolerance, not the exact paths'
         solution = Solution(
@@ -607,8 +607,8 @@ class SystemImpact:
         # its energy warning is its own (above): only a broken condition is acted on
         return solution if checks is None else certified(solution, limits=False)
 
-    def _checks(self, u_after: sp.Matrix, P: sp.Matrix, before: sp.Expr,
-                lost: sp.Expr, rule: str = "simultaneous") -> dict[str, Any] | None:
+    def _checks(self, u_after: sp.Matrix, P: sp.Matrix,
+                rule: str = "simultaneous") -> dict[str, Any] | None:
         """The residuals of the laws, apart from the path that solved them and from the
         M and J it solved with: the system's own bodies and points (:meth:`_own`) give
         the generalized momentum balance (``dT/du`` after less before, less each contact
@@ -703,8 +703,7 @@ class SystemImpact:
                 normals = here.J * here.u_before
                 if not any(normals[2 * i] < 0 for i in range(len(self.contacts))):
                     continue  # no impact at this point
-                found = here._checks(u_after.xreplace(point), P.xreplace(point),
-                                     sp.Integer(0), sp.Integer(0), rule)
+                found = here._checks(u_after.xreplace(point), P.xreplace(point), rule)
             except (InputError, ZeroDivisionError, TypeError, ValueError):
                 continue
             if found is None:
