@@ -5,6 +5,8 @@ derived by hand in the comments."""
 
 from __future__ import annotations
 
+import random
+
 import pytest
 import sympy as sp
 
@@ -13,9 +15,11 @@ from helpers import evaluated, refused, scene_file
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.walton import walton
 from rigidimpact.model.bodies import Body
 from rigidimpact.scenes.space import parse_space_scene
 from rigidimpact.solve.certificate import assess, residuals
+from rigidimpact.solve.space import _courses
 
 R = sp.Rational
 MU = R(1, 10)
@@ -552,3 +556,62 @@ def test_each_step_of_the_sequential_rule_is_checked_on_its_own(monkeypatch):
     monkeypatch.setattr(seq, "_smooth_step", broken)
     with pytest.raises(InputError, match=r"sequential rule's step 1 \(c0\) fails its own"):
         cradle.solve(ri.Sequential(("c0", "c1")))
+
+
+def _turned(W2: sp.Matrix, v2: sp.Matrix, c: sp.Rational, s: sp.Rational
+            ) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
+    """A planar contact written in space, its tangent turned by the rational rotation
+    (c, s) about the normal, and the other tangent's motion uncoupled."""
+    R = sp.Matrix([[1, 0, 0], [0, c, -s], [0, s, c]])
+    W3 = R * sp.diag(W2, sp.Rational(5, 2)) * R.T
+    return W3, R * sp.Matrix([v2[0], v2[1], 0]), R
+
+
+def test_waltons_one_implementation_gives_the_planar_answer_in_space_seeded():
+    """Walton's law has one implementation for one tangent or two: a seeded random family
+    of planar contacts (slip before of either sign or none, friction limited or not),
+    each written in space with its tangent turned by a rational rotation, gets the
+    planar impulse turned the same way, exactly."""
+    rng = random.Random(44)
+    seen = set()
+    for _ in range(60):
+        a, b = sp.Rational(rng.randint(1, 9), rng.randint(1, 4)), \
+            sp.Rational(rng.randint(-6, 6), rng.randint(1, 4))
+        W2 = sp.Matrix([[a + b ** 2, b], [b, 1 + sp.Rational(rng.randint(0, 8), 3)]])
+        if W2.det() <= 0:
+            continue
+        v2 = sp.Matrix([-sp.Rational(rng.randint(1, 9), 3), rng.choice((-1, 0, 1))
+                        * sp.Rational(rng.randint(1, 9), 4)])
+        beta = sp.Rational(rng.randint(-4, 4), 4)
+        mu = rng.choice((None, sp.Rational(rng.randint(0, 12), 10)))
+        e = sp.Rational(rng.randint(0, 4), 4)
+        m, k = rng.randint(1, 5), rng.randint(1, 5)
+        c, s = sp.Rational(m * m - k * k, m * m + k * k), sp.Rational(2 * m * k, m * m + k * k)
+        (plane,) = walton(W2, v2, beta, mu, -e * v2[0])
+        W3, v3, R = _turned(W2, v2, c, s)
+        (space,) = walton(W3, v3, beta, mu, -e * v3[0])
+        assert space.name == plane.name
+        assert sp.Matrix(space.impulse) == R * sp.Matrix([*plane.impulse, 0])
+        # mirrored (the tangent reversed), the planar answer is mirrored
+        (mirror,) = walton(sp.diag(1, -1) * W2 * sp.diag(1, -1), sp.diag(1, -1) * v2, beta,
+                           mu, -e * v2[0])
+        assert mirror.impulse == (plane.impulse[0], -plane.impulse[1])
+        seen.add((plane.name, v2[1] == 0))
+    # the family reaches both courses, with and without slip before
+    assert {("slip", True), ("slip", False), ("tangential restitution", True),
+            ("tangential restitution", False)} <= seen
+
+
+def test_waltons_law_with_symbols_is_one_piecewise_in_space_and_courses_in_the_plane():
+    """With mu a symbol, the plane's courses (each with its condition) and the space's
+    Piecewise are the same answer at every number tried."""
+    mu = sp.Symbol("mu", nonnegative=True)
+    W2 = sp.Matrix([[4, 3], [3, 7]])
+    v2 = sp.Matrix([-1, sp.Rational(1, 2)])
+    plane = walton(W2, v2, sp.Rational(1, 2), mu, sp.Rational(1, 2))
+    W3, v3, R = _turned(W2, v2, sp.Rational(3, 5), sp.Rational(4, 5))
+    P, course = _courses(walton(W3, v3, sp.Rational(1, 2), mu, sp.Rational(1, 2)))
+    assert "otherwise slides throughout" in course
+    for value in (0, sp.Rational(1, 10), sp.Rational(1, 3), 1, 5):
+        (taken,) = [r for r in plane if r.holds({mu: value})]
+        assert P.subs(mu, value) == R * sp.Matrix([*taken.impulse, 0]).subs(mu, value)

@@ -59,7 +59,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends as ends_of
 
-__all__ = ["ConeImpact", "cone_impact", "walton_impact", "tangents", "isotropic", "LAWS",
+__all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "LAWS",
            "TOLERANCE"]
 
 LAWS = ("newton", "poisson", "energetic")
@@ -155,59 +155,6 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
     return _integrated(np.array(W.evalf(30), dtype=float),
                        np.array(v0.evalf(30), dtype=float).ravel(), float(e), law,
                        float(mu), TOLERANCE if tolerance is None else float(tolerance))
-
-
-def walton_impact(W: sp.Matrix, v: Sequence[Any], e: Any, beta: Any,
-                  mu: Any = None) -> ConeImpact:
-    """Walton's rough law in 3-D: the touching points leave with ``-e`` times their
-    normal and ``-beta`` times their tangential velocity, if Coulomb's cone (mu; none
-    when mu is None) holds the impulse that needs; otherwise they slip throughout in the
-    direction of the slip before, with Newton's e along the normal (the algebraic law
-    does not follow a turning slip). With symbols, a Piecewise over the two courses.
-
-    Examples
-    --------
-    A solid sphere of mass 1 on a floor, slipping at (1, 0), e = 1, beta = 1: its
-    tangential velocity reverses, ``P_t = -(1 + beta) v_t / (7/2)``.
-
-    >>> out = walton_impact(sp.diag(1, sp.Rational(7, 2), sp.Rational(7, 2)), (-1, 1, 0),
-    ...                     1, 1)
-    >>> out.impulse.T, out.course
-    (Matrix([[2, -4/7, 0]]), 'tangential restitution')
-    """
-    W, v0 = sp.Matrix(W), sp.Matrix(list(v))
-    e, beta = sp.sympify(e), sp.sympify(beta)
-    if sp.simplify(W.det()) == 0:
-        raise InputError("contact.tangential_restitution", "the touching points cannot "
-                         "meet three velocity conditions here (W is singular)")
-    wanted = W.LUsolve(sp.Matrix([-(1 + e) * v0[0], -(1 + beta) * v0[1],
-                                  -(1 + beta) * v0[2]])).applyfunc(sp.radsimp)
-    if mu is None:
-        return ConeImpact(wanted, (v0 + W * wanted).applyfunc(sp.radsimp),
-                          "tangential restitution", exact=True)
-    mu = sp.sympify(mu)
-    within = sp.simplify(sp.Le(sp.sqrt(wanted[1] ** 2 + wanted[2] ** 2), mu * wanted[0]))
-    # the way the points slip: as before the impact, or with no slip before, the way the
-    # normal impulse drives them (W's coupling column), as in the plane
-    drive = sp.Matrix(v0[1:]) if sp.sqrt(v0[1] ** 2 + v0[2] ** 2) != 0 else W[1:, 0]
-    speed = sp.sqrt(drive[0] ** 2 + drive[1] ** 2)
-    slip = sp.Matrix([1, -mu * drive[0] / speed, -mu * drive[1] / speed]) if speed != 0 \
-        else sp.Matrix([1, 0, 0])
-    rate = (W * slip)[0]
-    sliding = (-(1 + e) * v0[0] / rate * slip).applyfunc(sp.radsimp)
-    if within == sp.true:
-        impulse, course = wanted, "tangential restitution"
-    elif within == sp.false:
-        if rate.is_number and not rate > 0:
-            raise InputError("contact", "no course of the impact fits these values: the "
-                             "contact jams (the normal velocity would fall while slipping)")
-        impulse, course = sliding, "slides throughout"
-    else:
-        impulse = sp.Matrix([sp.Piecewise((a, within), (b, True))
-                             for a, b in zip(wanted, sliding, strict=True)])
-        course = f"tangential restitution where {within}; otherwise slides throughout"
-    after = (v0 + W * impulse).applyfunc(lambda x: sp.piecewise_fold(sp.radsimp(x)))
-    return ConeImpact(impulse, after, course, exact=True)
 
 
 def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> ConeImpact:

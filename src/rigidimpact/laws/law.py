@@ -26,6 +26,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends, routh
+from rigidimpact.laws.walton import walton
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross
 from rigidimpact.symbolic.notation import escape_text, to_latex
@@ -772,7 +773,7 @@ class Rough(Coulomb):
 
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:
-        return routh.walton(W, v_before, self.beta, self.mu, restitution.e)
+        return walton(W, v_before, self.beta, self.mu, restitution.leaving(v_before[0]))
 
     def __repr__(self) -> str:
         return f"Rough({self.mu}, {self.beta})"

@@ -43,7 +43,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Regime", "regimes", "singular", "walton", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
+__all__ = ["Regime", "regimes", "singular", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
            "REVERSAL"]
 
 LAWS = ("newton", "poisson", "energetic")
@@ -344,54 +344,6 @@ def _simplified(condition: sp.Basic) -> sp.Basic:
     if isinstance(condition, (sp.Or, sp.And, sp.Not)):
         return type(condition)(*(_simplified(c) for c in condition.args))
     return condition
-
-
-def walton(W: sp.MatrixBase, v_before: sp.MatrixBase, beta: sp.Expr, mu: sp.Expr | None,
-           e: sp.Expr) -> tuple[Regime, ...]:
-    """Walton's algebraic law: the touching points leave with ``-e`` times their normal
-    and ``-beta`` times their tangential velocity, if Coulomb's friction (mu, or none
-    when mu is None) can supply the tangential impulse that needs; otherwise they slip
-    throughout, with Newton's e along the normal.
-
-    Examples
-    --------
-    >>> W = sp.Matrix([[1, 0], [0, sp.Rational(7, 2)]])  # a solid sphere of mass 1
-    >>> (r,) = walton(W, sp.Matrix([-1, 1]), 1, None, 1)
-    >>> r.name, r.impulse
-    ('tangential restitution', (2, -4/7))
-    """
-    W = sp.Matrix(W).applyfunc(sp.cancel)
-    v_n, v_t = (sp.cancel(c) for c in v_before)
-    beta, e = sp.sympify(beta), sp.sympify(e)
-    if sp.cancel(W.det()).is_zero:
-        raise InputError("contact.tangential_restitution", "the touching points have one "
-                         "degree of freedom here: they cannot meet two velocity conditions")
-    wanted = (W.inv() * sp.Matrix([-(1 + e) * v_n, -(1 + beta) * v_t])).applyfunc(tidy)
-    path = ((sp.Integer(0), sp.Integer(0)), (wanted[0], wanted[1]))
-    if mu is None:
-        return (Regime("tangential restitution", (), path[-1], path),)
-    mu = sp.sympify(mu)
-    within = _simplified(sp.Le(sp.Abs(wanted[1]), mu * wanted[0]))
-    found = [Regime("tangential restitution", (within,), path[-1], path)]
-    # the way the points slip: as before the impact, or with no slip before, the way the
-    # impulse drives them (toward sign(W_tn), as in Routh's course from rest), so that a
-    # mirrored problem gets the mirrored answer
-    drive = v_t if not v_t.is_zero else sp.cancel(W[1, 0])
-    signs = [1] if drive.is_positive else [-1] if drive.is_negative else [1, -1]
-    for s in signs:
-        rate = _rates(W, -mu * s)
-        p_n = tidy(-(1 + e) * v_n / rate[0])
-        side = () if len(signs) == 1 else (sp.Gt(s * drive, 0),)
-        conditions = tuple(c for c in map(_simplified, (*side, sp.Not(within),
-                                                         sp.Gt(rate[0], 0)))
-                           if c is not sp.true)
-        end = (p_n, tidy(-mu * s * p_n))
-        found.append(Regime(SLIP, conditions, end, ((sp.Integer(0), sp.Integer(0)), end)))
-    decided = tuple(r for r in found if r.holds() is not False)
-    if not decided:
-        raise InputError("contact", "no course of the impact fits these values: the "
-                         "contact jams (the normal velocity would fall while slipping)")
-    return decided
 
 
 @dataclass(frozen=True)

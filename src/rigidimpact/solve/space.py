@@ -25,6 +25,7 @@ A solid sphere landing on a floor with spin (the case of the 3-D issue: m = 1, r
 velocity (1, 1/2, -2), spin (3, -1, 2), Newton's e = 1/2, mu = 1/5):
 
 >>> from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.routh import SLIP, Regime
 >>> from rigidimpact.model.space import Body3
 >>> half, fifth = sp.Rational(1, 2), sp.Rational(1, 5)
 >>> ball = Body3.sphere(1, 1, (0, 0, 1), (1, half, -2), (3, -1, 2), name="ball")
@@ -48,8 +49,9 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.cone import cone_impact, tangents, walton_impact
+from rigidimpact.laws.cone import cone_impact, tangents
 from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.routh import SLIP, Regime
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
@@ -328,8 +330,8 @@ class SpaceCollision:
             if law != "newton":
                 raise InputError(f"{c.name}.law", "Walton's rough law takes Newton's "
                                  "restitution")
-            out = walton_impact(W, v, e, c.tangential_restitution, c.friction)
-            P, course = out.impulse, out.course
+            # Walton's law has one implementation for one tangent or two (laws/walton.py)
+            P, course = _courses(c.laws[1].regimes(W, v, c.laws[0]))
         elif self.tolerance is None and (line := _one_line(W, v)) is not None:
             # the slip keeps to one line through the whole impact: Coulomb's law with one
             # tangent, Routh's exact courses, as in the plane (the same one law)
@@ -941,6 +943,23 @@ def _leaving(contact: Contact, closing: float) -> float:
     """The normal velocity `contact`'s restitution law asks after a closing velocity (a
     contact at rest or opening asks none: 0)."""
     return float(contact.laws[0].leaving(sp.Float(min(closing, 0.0), 30)))
+
+
+def _courses(regimes: Sequence[Regime]) -> tuple[sp.Matrix, str]:
+    """The impulse of the course taken, or with symbols a Piecewise over the courses,
+    each under its conditions, and its name in the 3-D vocabulary."""
+    def named(r: Regime) -> str:
+        return "slides throughout" if r.name == SLIP else r.name
+    if len(regimes) == 1:
+        (r,) = regimes
+        return sp.Matrix(r.impulse), named(r)
+    pieces = [(r.impulse, sp.And(*r.conditions)) for r in regimes]
+    impulse = sp.Matrix([sp.Piecewise(*((p[i], when) for p, when in pieces[:-1]),
+                                      (pieces[-1][0][i], True))
+                         for i in range(len(pieces[0][0]))])
+    course = "; otherwise ".join(f"{named(r)} where {sp.And(*r.conditions)}"
+                                 for r in regimes[:-1]) + f"; otherwise {named(regimes[-1])}"
+    return impulse, course
 
 
 def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
