@@ -615,3 +615,67 @@ def test_waltons_law_with_symbols_is_one_piecewise_in_space_and_courses_in_the_p
     for value in (0, sp.Rational(1, 10), sp.Rational(1, 3), 1, 5):
         (taken,) = [r for r in plane if r.holds({mu: value})]
         assert P.subs(mu, value) == R * sp.Matrix([*taken.impulse, 0]).subs(mu, value)
+
+
+# ---- smooth contacts together: one rule, exact, in the plane and in space ----------------
+
+_UNITS = [(R(3, 5), R(4, 5)), (R(5, 13), R(12, 13)), (R(8, 17), R(15, 17)), (0, 1), (1, 0)]
+
+
+def _smooth_family(seed: int):
+    """A seeded planar collision of one or two free rigid bodies with the ground and each
+    other, one to four smooth contacts under one restitution law, and the same written
+    in space (z = 0, spin about z; every moment of inertia the planar one)."""
+    rng = random.Random(seed)
+    n_bodies = rng.choice((1, 2))
+    law = rng.choice(("newton", "poisson"))
+    e = R(rng.randint(0, 4), 4)
+    plane, space = [Body.fixed("ground")], [ri.Body3.fixed("ground")]
+    for k in range(n_bodies):
+        m, inertia = R(rng.randint(1, 6), rng.randint(1, 3)), R(rng.randint(1, 6), 5)
+        at = (R(3 * k), R(rng.randint(0, 3), 2))
+        v = (R(rng.randint(-4, 4), 3), R(rng.randint(-6, 1), 2))
+        w = R(rng.randint(-3, 3), 2)
+        plane.append(Body.rigid(m, inertia, at, v, w, name=f"b{k}"))
+        space.append(ri.Body3.rigid(m, (inertia, inertia, inertia), (*at, 0), (*v, 0),
+                                    (0, 0, w), name=f"b{k}"))
+    flat, deep = [], []
+    for i in range(rng.randint(1, 4)):
+        k = rng.randrange(n_bodies)
+        other = "ground" if n_bodies == 1 or rng.random() < 0.6 else f"b{1 - k}"
+        c, s = rng.choice(_UNITS)
+        sign = rng.choice((1, -1))
+        normal = (sign * c, sign * s)
+        point = (R(3 * k) + R(rng.randint(-3, 3), 2), R(rng.randint(-2, 3), 2))
+        common = dict(restitution=e, law=law, name=f"c{i}", bodies=(other, f"b{k}"))
+        flat.append(Contact(normal=normal, point=point, **common))
+        deep.append(Contact(normal=(*normal, 0), point=(*point, 0), **common))
+    return plane, flat, space, deep
+
+
+def test_smooth_contacts_together_give_one_exact_answer_in_the_plane_and_in_space():
+    """The simultaneous rule has one implementation: a seeded family of smooth planar
+    collisions written in space gets, exactly, the planar speeds and impulses, and each
+    3-D answer passes its own certificate exactly (50 digits) with no warning but the
+    planar one's."""
+    compared = 0
+    for seed in range(80):
+        plane, flat, space, deep = _smooth_family(seed)
+        try:
+            want = ri.Collision(tuple(plane), tuple(flat)).simultaneous()
+        except InputError:
+            with pytest.raises(InputError):
+                ri.SpaceCollision(tuple(space), tuple(deep), rule="simultaneous").solve()
+            continue
+        got = ri.SpaceCollision(tuple(space), tuple(deep), rule="simultaneous").solve()
+        a, b = want.results(), got.results()
+        for body in (x.name for x in plane[1:]):
+            assert (b[f"{body}.vx"], b[f"{body}.vy"], b[f"{body}.omega_z"]) == (
+                a[f"{body}.vx"], a[f"{body}.vy"], a[f"{body}.omega"]), seed
+            assert b[f"{body}.vz"] == b[f"{body}.omega_x"] == b[f"{body}.omega_y"] == 0
+        for c in flat:
+            assert b[f"{c.name}.normal_impulse"] == a[f"{c.name}.normal_impulse"], seed
+        assert got.energy_lost == want.energy_lost
+        assert bool(got.warnings) == bool(want.warnings), seed
+        compared += 1
+    assert compared >= 40

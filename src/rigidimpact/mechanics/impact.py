@@ -61,15 +61,14 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import cone_impact, tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
-from rigidimpact.model.impulse import Coordinate
 from rigidimpact.solve.collision import (
     MAX_ENUMERATED,
-    Collision,
     Rule,
     Simultaneous,
     certified,
 )
 from rigidimpact.solve.lcp import least_norm
+from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.solution import Solution
 
 FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
@@ -419,8 +418,7 @@ class SystemImpact:
         if len(self.contacts) > MAX_ENUMERATED:
             raise InputError("contacts", f"a mechanics system is solved with at most "
                              f"{MAX_ENUMERATED} contacts so far")
-        return rule.outcomes(_AsCollision((), tuple(c.laws for c in self.contacts),
-                                          system=self))
+        return rule.outcomes(_AsCollision.of(self))
 
     def _linear(self) -> Solution:
         """Every law a pair of linear conditions: one linear system in the speeds after
@@ -1042,64 +1040,24 @@ def _folded(M: sp.MatrixBase, u: tuple, dependent: tuple
 
 
 @dataclass(frozen=True)
-class _AsCollision(Collision):
-    """A mechanics system at numbers as the built-in rules see a collision: its
-    independent speeds are the generalized velocities, its M^-1 is dense, and its rows
-    are the contacts' (normal, tangent), so each rule runs its one implementation. What
-    the rules make of it goes back through :meth:`SystemImpact._map`: the system's
-    Solution, its equations and its own residuals."""
+class _AsCollision(RowsProblem):
+    """A mechanics system at numbers as the rules see any source: the one problem of
+    rows (its independent speeds, its dense M^-1, each contact's normal and tangent
+    rows), so each rule runs its one implementation. What the rules make of it goes
+    back through :meth:`SystemImpact._map`: the system's Solution, its equations and its
+    own residuals."""
 
     system: Any = None
 
-    def __post_init__(self) -> None:
-        pass  # the system checked its contacts and the approach
-
-    @property
-    def dense(self) -> bool:
-        return True
-
-    @cached_property
-    def symbols(self) -> frozenset[sp.Symbol]:
-        return frozenset()
-
-    @cached_property
-    def coordinates(self) -> tuple[Coordinate, ...]:
-        return tuple(Coordinate("system", str(u), 1, x)
-                     for u, x in zip(self.system.u, self.system.u_before, strict=True))
-
-    @cached_property
-    def u_before(self) -> sp.Matrix:
-        return sp.Matrix(self.system.u_before)
-
-    @cached_property
-    def row_scale(self) -> tuple[sp.Expr, ...]:
-        return (sp.Integer(1),) * len(self.contacts)
-
-    @cached_property
-    def J(self) -> sp.Matrix:
-        return sp.SparseMatrix(self.system.J[::2, :])
-
-    @cached_property
-    def J_t(self) -> sp.Matrix:
-        return sp.SparseMatrix(self.system.J[1::2, :])
-
-    @cached_property
-    def scaled_J(self) -> sp.Matrix:
-        return self.J
-
-    @cached_property
-    def scaled_J_t(self) -> sp.Matrix:
-        return self.J_t
-
-    @cached_property
-    def M_inverse(self) -> sp.Matrix:
-        return sp.Matrix(self.system.M).inv()
-
-    def _after(self, u: sp.Matrix) -> tuple:
-        return ()
-
-    def _pivot_reactions(self, outcome: Solution) -> dict:
-        return {}
+    @classmethod
+    def of(cls, system: Any) -> _AsCollision:
+        """The one assembly of a system into the problem of rows."""
+        return cls((), tuple(c.laws for c in system.contacts), system=system,
+                   speeds=tuple(str(u) for u in system.u),
+                   velocities=sp.ImmutableMatrix(system.u_before),
+                   inverse_mass=sp.ImmutableMatrix(sp.Matrix(system.M).inv()),
+                   normal_rows=sp.ImmutableMatrix(system.J[::2, :]),
+                   tangent_rows=sp.ImmutableMatrix(system.J[1::2, :]))
 
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,

@@ -685,3 +685,91 @@ def _full_rank(S: sp.Matrix) -> bool:
         return DomainMatrix.from_Matrix(S).convert_to(sp.QQ).rank() == S.rows
     return abs(sp.N(S.det(), 30)) >= 1e-20
 
+
+
+@dataclass(frozen=True)
+class RowsProblem(ImpactProblem):
+    """The one impulse problem given as rows: any source's generalized speeds, its
+    inverse mass and, per contact, its normal row (and its one tangent row, for the
+    planar friction the rules solve). A source of models (a 3-D collision, a
+    sympy.physics.mechanics system) is one assembly function into this and one
+    :meth:`outcome` back to its own :class:`Solution`, so every rule runs its one
+    implementation on it, at numbers.
+
+    Parameters
+    ----------
+    contacts : each contact's laws (its name, restitution and tangential law).
+    speeds : the generalized speeds' names.
+    velocities : u before, one entry a speed.
+    inverse_mass : M^-1 (projected where joints hold).
+    normal_rows : J, one row a contact.
+    tangent_rows : J_t, one row a contact, or None where every contact is smooth.
+    """
+
+    speeds: tuple[str, ...] = ()
+    velocities: sp.ImmutableMatrix | None = None
+    inverse_mass: sp.ImmutableMatrix | None = None
+    normal_rows: sp.ImmutableMatrix | None = None
+    tangent_rows: sp.ImmutableMatrix | None = None
+
+    def __post_init__(self) -> None:
+        pass  # the source checked its contacts and that one approaches
+
+    @property
+    def dense(self) -> bool:
+        return True
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        return frozenset(sp.Matrix(self.velocities).free_symbols
+                         | sp.Matrix(self.inverse_mass).free_symbols
+                         | sp.Matrix(self.normal_rows).free_symbols)
+
+    @cached_property
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        return tuple(Coordinate("system", name, 1, x)
+                     for name, x in zip(self.speeds, self.velocities, strict=True))
+
+    @cached_property
+    def u_before(self) -> sp.Matrix:
+        return sp.Matrix(self.velocities)
+
+    @cached_property
+    def row_scale(self) -> tuple[sp.Expr, ...]:
+        return (sp.Integer(1),) * len(self.contacts)
+
+    @cached_property
+    def J(self) -> sp.Matrix:
+        return sp.SparseMatrix(self.normal_rows)
+
+    @cached_property
+    def J_t(self) -> sp.Matrix:
+        if self.tangent_rows is None:
+            return sp.SparseMatrix.zeros(len(self.contacts), len(self.speeds))
+        return sp.SparseMatrix(self.tangent_rows)
+
+    @cached_property
+    def scaled_J(self) -> sp.Matrix:
+        return self.J
+
+    @cached_property
+    def scaled_J_t(self) -> sp.Matrix:
+        return self.J_t
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        return sp.Matrix(self.inverse_mass)
+
+    def _after(self, u: sp.Matrix) -> tuple:
+        return ()
+
+    def _pivot_reactions(self, outcome: Solution) -> dict:
+        return {}
+
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                **more: Any) -> Solution:
+        """The source's own Solution of what a rule made of the rows: each source
+        overrides this (its bodies after, its checks from its own kinematics)."""
+        raise NotImplementedError(f"{type(self).__name__} maps a rule's answer back to "
+                                  "its source's Solution")

@@ -9,9 +9,10 @@ contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone
 (:func:`rigidimpact.laws.cone.cone_impact` for Coulomb's circular cone), and
 ``u+ = u- + M^-1 J^T P``. Several contacts: where one strikes and the others rest, the
 impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
-where several strike, the simultaneous rule with Coulomb's circular cone
-(:meth:`SpaceCollision._circular`), or with the cone as a pyramid of a stated number of
-edges (:meth:`SpaceCollision._faceted`).
+where several strike, the simultaneous rule: with smooth contacts the plane's one
+implementation, exact, on the problem of rows (:class:`_SpaceProblem`); with Coulomb's
+circular cone :meth:`SpaceCollision._circular`, or with the cone as a pyramid of a
+stated number of edges :meth:`SpaceCollision._faceted`.
 
 What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
 named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
@@ -25,7 +26,6 @@ A solid sphere landing on a floor with spin (the case of the 3-D issue: m = 1, r
 velocity (1, 1/2, -2), spin (3, -1, 2), Newton's e = 1/2, mu = 1/5):
 
 >>> from rigidimpact.laws.contact import Contact
-from rigidimpact.laws.routh import SLIP, Regime
 >>> from rigidimpact.model.space import Body3
 >>> half, fifth = sp.Rational(1, 2), sp.Rational(1, 5)
 >>> ball = Body3.sphere(1, 1, (0, 0, 1), (1, half, -2), (3, -1, 2), name="ball")
@@ -39,7 +39,6 @@ from rigidimpact.laws.routh import SLIP, Regime
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -58,8 +57,10 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
+from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.sequential import SETTLED, carried, sequential_passes
+from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
@@ -523,6 +524,9 @@ class SpaceCollision:
             raise InputError(f"{formless[0].name}.tangential", f"the {formless[0].tangential} "
                              "law has no form for contacts acting together: use the "
                              "sequential rule (each contact's own impact)")
+        if all(c.tangential == "smooth" for c in self.contacts):
+            # smooth contacts have no tangent rows: the plane's rule, exact, on the rows
+            return simultaneous(_SpaceProblem.of(self))
         if self.facets is None:
             return self._circular(approaching + resting, rows, u)
         return self._faceted(approaching + resting, rows, u, self.facets)
@@ -590,8 +594,8 @@ class SpaceCollision:
         one stiffness per contact, integrated until all let go: the planar rule's one
         implementation (:func:`rigidimpact.solve.rules.compliant.compliant`) run on
         this problem's speeds, M^-1 and normal rows; smooth contacts, at numbers."""
-        rows, u, _, _ = self._numbers()
-        return compliant(_AsProblem(self, rows, u), stiffness, hertz)  # type: ignore[arg-type]
+        self._numbers()
+        return compliant(_SpaceProblem.of(self), stiffness, hertz)
 
     def driven(self, strict: bool = False) -> Solution:
         """Several contacts: the one that approaches strikes, under its restitution law,
@@ -643,21 +647,32 @@ class SpaceCollision:
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
                  notes: Sequence[str], energy: tuple[Any, Any],
                  checks: Mapping[str, Any]) -> Solution:
-        """The one Solution of several 3-D contacts solved in floating point, certified
-        by its own residuals."""
+        """The one Solution of several 3-D contacts solved together (exactly, or in
+        floating point), certified by its own residuals."""
         before, lost = energy
-        rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float) for c in acting} \
-            if self.joints else {}
+        exact = not any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
+                        for x in (*u_after, *(x for p in P.values() for x in p)))
+        if exact:
+            speeds_after = sp.ImmutableMatrix(list(u_after))
+            pinned = self.joint_impulses(sum(
+                (self.rows(c).T * sp.Matrix(list(P[c.name])) for c in acting),
+                sp.zeros(6 * len(self.free), 1))) if self.joints else {}
+            lost = sp.radsimp(lost)
+        else:
+            speeds_after = sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after])
+            rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float)
+                    for c in acting} if self.joints else {}
+            pinned = {name: tuple(sp.Float(x, 17) for x in parts) for name, parts in
+                      self._pinned(acting, rows, P).items()}
         return certified(Solution(
-            joint_impulses={name: tuple(sp.Float(x, 17) for x in parts) for name, parts in
-                            self._pinned(acting, rows, P).items()},
+            joint_impulses=pinned,
             before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
             tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
                         for c in acting},
             contacts=tuple(acting), acted=acted, regime="; ".join(courses),
-            courses=courses, energies=(before, lost, lost / before), notes=tuple(notes),
-            speeds_before=self.speeds,
-            speeds_after=sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after]),
+            courses=courses, energies=(before, lost, sp.radsimp(lost / before) if exact
+                                        else lost / before), notes=tuple(notes),
+            speeds_before=self.speeds, speeds_after=speeds_after,
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
             given_checks=checks))
 
@@ -817,48 +832,64 @@ class SpaceCollision:
                                            if pushing[i]),
                              P, u_after, courses, notes, (before, lost), checks)
 
-    def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
-                       P: Mapping[str, Sequence[Any]], u: np.ndarray, u_after: np.ndarray,
-                       before: sp.Expr, lost: sp.Expr, tolerance: float) -> dict[str, Any]:
-        """Residuals of the laws from the bodies' momenta and the contacts' impulses, at
-        the integration's precision: momentum, no pull, the cone, the striking contact
-        opening, each resting contact not penetrating, and the energy."""
-        pinned = self._pinned(acting, rows, P)
-        held = np.array(self._held(pinned).evalf(30), dtype=float).ravel()
-        out: dict[str, Any] = self._joint_checks(
-            pinned, [sp.Float(x, 30) for x in u_after], lambda x: float(sp.N(x, 30)))
+    def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, Any],
+                       P: Mapping[str, Sequence[Any]], u: Any, u_after: Any,
+                       before: sp.Expr, lost: sp.Expr, tolerance: float | None,
+                       newton: bool = False) -> dict[str, Any]:
+        """Residuals of the laws from the bodies' momenta and the contacts' impulses,
+        apart from the solver: momentum, no pull, the cone, each contact opening (or
+        not penetrating), the joints, the energy, and with `newton` (the simultaneous
+        rule under a kinematic law) each contact's restitution: an acting one leaves as
+        its law asks, a released one at least that fast. Computed at 50 digits; an
+        exact answer (`tolerance` None) is held to rounding, an integrated one to its
+        integrator's tolerance."""
+        def num(x: Any) -> sp.Float:
+            return sp.N(x, CHECK_DIGITS)
+
+        u0 = sp.Matrix([num(x) for x in u])
+        u1 = sp.Matrix([num(x) for x in u_after])
+        impulses = {c.name: sp.Matrix([num(x) for x in P[c.name]]) for c in acting}
+        J = {c.name: self.rows(c).applyfunc(num) for c in acting}
+        pinned = self.joint_impulses(sum((J[c.name].T * impulses[c.name] for c in acting),
+                                         sp.zeros(6 * len(self.free), 1))) \
+            if self.joints else {}
+        held = self._held(pinned)
+        out: dict[str, Any] = self._joint_checks(pinned, u1, num)
         for k, body in enumerate(self.free):
-            linear = np.array(body.mass * (u_after[6 * k:6 * k + 3] - u[6 * k:6 * k + 3]),
-                              dtype=float) - held[6 * k:6 * k + 3]
-            angular = np.array(sp.Matrix(body.inertia).evalf(30), dtype=float) @ (
-                u_after[6 * k + 3:6 * k + 6] - u[6 * k + 3:6 * k + 6]) \
-                - held[6 * k + 3:6 * k + 6]
+            du = u1[6 * k:6 * k + 6, 0] - u0[6 * k:6 * k + 6, 0]
+            linear = body.mass * du[:3, 0] - held[6 * k:6 * k + 3, 0]
+            angular = sp.Matrix(body.inertia) * du[3:, 0] - held[6 * k + 3:6 * k + 6, 0]
             for c in acting:
                 sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
-                if sign == 0:
-                    continue
-                frame = np.array(sp.Matrix(c.frame).evalf(30), dtype=float)
-                impulse = frame.T @ np.array(P[c.name], dtype=float)
-                arm = np.array((sp.Matrix(c.point) - sp.Matrix(body.position)).evalf(30),
-                               dtype=float).ravel()
-                linear -= sign * impulse
-                angular -= sign * np.cross(arm, impulse)
+                if sign:
+                    impulse = sp.Matrix(c.frame).T * impulses[c.name]
+                    arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+                    linear -= sign * impulse
+                    angular -= sign * arm.cross(impulse)
             for axis, x, y in zip("xyz", linear, angular, strict=True):
-                out[f"{body.name}.momentum_{axis}"] = abs(x)
-                out[f"{body.name}.angular_momentum_{axis}"] = abs(y)
+                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
+                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(y))
         for c in acting:
-            Pn, Pt1, Pt2 = (float(x) for x in P[c.name])
-            v_after = rows[c.name] @ u_after
-            out[f"{c.name}.pushes"] = max(0.0, -Pn)
-            out[f"{c.name}.opens"] = max(0.0, -v_after[0])
-            cone = float(c.friction or 0) * Pn
-            out[f"{c.name}.cone"] = max(0.0, math.hypot(Pt1, Pt2) - cone)
-        out["energy"] = max(0.0, -float(lost))
-        out["_scale"] = max(float(np.abs(u).max()), float(np.abs(u_after).max()),
-                            *(abs(float(x)) for p in P.values() for x in p))
-        out["_kinetic"] = float(before)
-        out["_tolerance"] = max(1e-8, 1000 * tolerance)
-        return {k: sp.Float(v, 17) for k, v in out.items()}
+            Pn, Pt1, Pt2 = impulses[c.name]
+            closing, leaving = (J[c.name] * u0)[0], (J[c.name] * u1)[0]
+            out[f"{c.name}.pushes"] = max(0, -Pn)
+            out[f"{c.name}.opens"] = max(0, -leaving)
+            out[f"{c.name}.cone"] = max(0, sp.sqrt(Pt1 ** 2 + Pt2 ** 2)
+                                        - num(c.friction or 0) * Pn)
+            if newton:
+                asked = num(c.laws[0].leaving(min(closing, 0)))
+                out[f"{c.name}.restitution"] = abs(leaving - asked) if Pn > 0 else \
+                    max(0, asked - leaving)
+        out["energy"] = max(0, -num(lost))
+        out["_scale"] = max(abs(x) for x in (*u0, *u1, *(x for p in impulses.values()
+                                                          for x in p)))
+        out["_kinetic"] = num(before)
+        floats = any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
+                     for x in (*u_after, *(x for p in P.values() for x in p)))
+        out["_tolerance"] = max(1e-8, 1000 * tolerance) if tolerance is not None else \
+            FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
+        return {k: v if k == "_tolerance" else sp.Float(v, 17) if tolerance is not None
+                else v for k, v in out.items()}
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols."""
@@ -869,22 +900,27 @@ class SpaceCollision:
 
 
 @dataclass(frozen=True)
-class _AsProblem:
-    """A 3-D collision as the planar rules read an impulse problem (the part of the
-    rule protocol the compliant rule reads): its speeds, its projected M^-1, each
-    contact's normal row; what the rule makes of it comes back as the 3-D Solution,
-    checked by the bodies' own momenta (:meth:`SpaceCollision._driven_checks`)."""
+class _SpaceProblem(RowsProblem):
+    """A 3-D collision as the one problem of rows every rule reads: its six speeds a
+    free body, its projected M^-1 and each contact's normal row (the smooth contacts
+    the planar rules solve in space). What a rule makes of it comes back as the 3-D
+    Solution, checked by the bodies' own momenta (:meth:`SpaceCollision._driven_checks`)."""
 
-    space: SpaceCollision
-    rows: Mapping[str, np.ndarray]
-    u: np.ndarray
+    space: Any = None
+    smooth_message: str = ""
 
-    @property
-    def contacts(self) -> tuple[Contact, ...]:
-        return self.space.contacts
+    @classmethod
+    def of(cls, space: SpaceCollision) -> _SpaceProblem:
+        """The one assembly of a 3-D collision into the problem of rows."""
+        return cls((), space.contacts, speeds=tuple(map(str, space.speeds)),
+                   velocities=sp.ImmutableMatrix(space.u_before),
+                   inverse_mass=sp.ImmutableMatrix(space.M_inverse),
+                   normal_rows=sp.ImmutableMatrix([list(space.rows(c)[0, :])
+                                                   for c in space.contacts]),
+                   space=space)
 
     def numbers_only(self, rule: str) -> None:
-        """Checked already: the 3-D rules run at numbers."""
+        """Checked already: several 3-D contacts are solved at numbers."""
 
     def smooth_only(self, where: str) -> None:
         rough = [c.name for c in self.contacts if c.laws[1].grips]
@@ -894,49 +930,36 @@ class _AsProblem:
                              "friction: use the driven, simultaneous or sequential rule")
 
     @property
-    def J(self) -> sp.SparseMatrix:
-        return sp.SparseMatrix([list(self.rows[c.name][0]) for c in self.contacts])
-
-    @property
-    def dense(self) -> bool:
-        return True
-
-    @property
-    def coordinates(self) -> tuple[sp.Symbol, ...]:
-        return self.space.speeds
-
-    @property
-    def M_inverse(self) -> sp.Matrix:
-        return self.space.M_inverse
-
-    @property
-    def u_before(self) -> sp.Matrix:
-        return self.space.u_before
-
-    @property
-    def scaled_velocity_before(self) -> sp.Matrix:
-        return sp.Matrix([float(self.rows[c.name][0] @ self.u) for c in self.contacts])
+    def frictional(self) -> bool:
+        return False  # the 3-D friction's two tangents are the cone's (SpaceCollision)
 
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
-                impulses: Mapping[str, sp.Expr], acted: Sequence[str],
+                impulses: Mapping[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                 **more: Any) -> Solution:
         space = self.space
-        u_after = np.array([float(x) for x in u])
+        exact = not any(sp.sympify(x).has(sp.Float) for x in u)
+        u_after = sp.Matrix(list(u)) if exact else sp.Matrix([sp.Float(x, 17) for x in u])
         P = {c.name: [impulses[c.name], sp.Integer(0), sp.Integer(0)]
              for c in self.contacts}
-        moved = [b.moved([sp.Float(x, 17) for x in u_after[6 * j:6 * j + 6]])
-                 for j, b in enumerate(space.free)]
+        moved = [b.moved(u_after[6 * j:6 * j + 6, 0]) for j, b in enumerate(space.free)]
         before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
         lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-        checks = space._driven_checks(list(self.contacts), self.rows, P, self.u, u_after,
-                                      before, lost, 1e-10)
+        newton = rule == "simultaneous" and not self.acts_by_impulse()
+        checks = space._driven_checks(list(self.contacts), {}, P, space.u_before, u_after,
+                                      before, lost, None if exact else 1e-10, newton=newton)
         courses = tuple(f"{c.name}: {'acts' if c.name in acted else 'released'}"
                         for c in self.contacts)
+        notes = list(more.get("notes", ()))
+        if rule == "compliant":
+            notes.append("every contact a push-only spring-dashpot, integrated (LSODA, "
+                         "rtol 1e-10) until all let go")
+        elif exact:
+            notes.append("every contact smooth: the simultaneous rule's one "
+                         "implementation (the plane's), exact")
         solution = space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
-                                  ["every contact a push-only spring-dashpot, integrated "
-                                   "(LSODA, rtol 1e-10) until all let go"], (before, lost),
-                                  checks)
-        return replace(solution, rule=rule, order=tuple(order))
+                                  notes, (before, lost), checks)
+        return replace(solution, rule=rule, order=tuple(order), passes=passes,
+                       method=more.get("method", ""))
 
 
 def _leaving(contact: Contact, closing: float) -> float:
