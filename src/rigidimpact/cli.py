@@ -547,14 +547,22 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
     """``simulate`` of a 3-D scene: the impact, or a sphere's tangentially compliant
-    bounce, until separation (no figure yet)."""
+    bounce, until separation; past it, a sphere's bounces among fixed planes, with its
+    path drawn from above and from the side (``--plot``) and animated (``--animate``)."""
     from rigidimpact.simulate.planner import make_plan
     from rigidimpact.simulate.space import run_space
     from rigidimpact.solve.derivation import read_values
 
-    if args.plot or args.animate:
-        raise InputError("--plot" if args.plot else "--animate", "a 3-D scene's simulate "
-                         "gives numbers only so far")
+    past = scene.simulate.get("until", "separation") != "separation" or \
+        "impacts" in scene.simulate
+    for option, path, suffixes in (("--plot", args.plot, (".png",)),
+                                   ("--animate", args.animate, (".gif",))):
+        if path and not past:
+            raise InputError(option, "this 3-D run ends at the impact (until = "
+                             "\"separation\"): nothing moves to draw; give [simulate] "
+                             "until a time or impacts a count")
+        if path:
+            _check_plot_path(Path(path), suffixes, option)
     settings, sources = _settings(scene.values, args.set or [])
     values = read_values(settings, dict(sources), scene.data_symbols, (), scene.name)
     if args.explain:
@@ -564,12 +572,22 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
     outcome = run_space(scene, values)
     for warning in outcome.details.get("warnings", ()):
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if args.plot:
+        _plot_space(scene, outcome, Path(args.plot))
+        print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
+    if args.animate:
+        _animate_space(scene, outcome, Path(args.animate))
+        print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
     if args.json:
         _print_json(outcome.as_json())
         return 0
     for event in outcome.events:
         print(f"t = {event['t'] + 0.0:.12g}: {event['kind']}"
+              + (f" on {event['plane']}" if "plane" in event else "")
+              + (f" ({event['course']})" if event.get("course") else "")
               + (f": {event['why']}" if "why" in event else ""))
+    for note in outcome.details.get("notes", ()):
+        print(f"note: {note}")
     for key, value in outcome.final.items():
         print(f"{key} = {value + 0.0 if isinstance(value, float) else value!r}")
     if "rigid" in outcome.details and scene.simulate.get("effects"):
@@ -577,6 +595,44 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
             f"{key} = {value:.10g}" for key, value in outcome.details["rigid"].items()))
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
     return 0
+
+
+def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
+    """A 3-D run's path from above and from the side, its impacts marked, to a PNG
+    written whole or not at all."""
+    import numpy as np
+    import sympy as sp
+
+    from rigidimpact.outputs.atomic import write_file
+    _files_only()
+    from rigidimpact.outputs.plots import space_views
+
+    track = outcome.trajectory
+    _, points = track.sampled()
+    marks = [(e.kind if e.kind == "impact" else "starts to roll",
+              np.array([float(x) for x in e.position])) for e in track.run.events]
+    planes = [(c.name, np.array([float(x) for x in c.point]),
+               np.array([float(x) for x in c.normal]))
+              for c in (*scene.contacts, *scene.planes)
+              if all(sp.sympify(x).is_number for x in (*c.point, *c.normal))]
+    figure = space_views(points, scene.title, marks, f"{track.ball.name}'s centre", planes)
+    try:
+        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    finally:
+        _close(figure)
+
+
+def _animate_space(scene: Any, outcome: Any, path: Path) -> None:
+    """A 3-D run seen from the side (x, z), animated to a GIF, whole or not at all."""
+    from rigidimpact.outputs.atomic import write_file
+    _files_only()
+    from rigidimpact.outputs.plots import write_gif
+
+    times, points = outcome.trajectory.sampled()
+    name = outcome.trajectory.ball.name
+    write_file(path, lambda temporary: write_gif(
+        times, {name: points[:, [0, 2]]}, f"{scene.title} (from the side)", temporary,
+        fps=20, axes="xz"), "--animate")
 
 
 def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),

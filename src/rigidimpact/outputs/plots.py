@@ -25,7 +25,7 @@ from rigidimpact.symbolic.notation import symbol
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
     "convergence", "naive_vs_stable", "routh_diagram", "animation", "experiment_comparison",
-           "impact_picture", "draw_bodies", "FIGSIZE", "DPI"]
+           "impact_picture", "draw_bodies", "space_views", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -458,6 +458,56 @@ def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
     return fig
 
 
+def space_views(points: np.ndarray, title: str, marks: Sequence[tuple[str, np.ndarray]] = (),
+                name: str = "centre",
+                planes: Sequence[tuple[str, np.ndarray, np.ndarray]] = ()) -> Figure:
+    """A 3-D path seen from above (x, y) and from the side (x, z), with marked points
+    (each impact, where the sphere starts to roll) on both, and each plane (name,
+    point, normal) drawn as a line in the view it is seen edge-on in.
+
+    Examples
+    --------
+    >>> t = np.linspace(0, 1, 5)
+    >>> fig = space_views(np.c_[t, 0 * t, 1 - t * t], "demo", [("impact", np.array([1, 0, 0]))])
+    >>> [ax.get_xlabel() + " " + ax.get_ylabel() for ax in fig.axes]
+    ['x (m) y (m)', 'x (m) z (m)']
+    """
+    fig, (top, side) = plt.subplots(1, 2, figsize=FIGSIZE, dpi=DPI)
+    for ax, (i, j), view in ((top, (0, 1), "from above"), (side, (0, 2), "from the side")):
+        ax.plot(points[:, i], points[:, j], "-", lw=1.8, label=name)
+        ax.plot(points[:1, i], points[:1, j], "k.", ms=6, label="start (t = 0)")
+        for k, (kind, where) in enumerate(marks):
+            first = all(m[0] != kind for m in marks[:k])
+            ax.plot([where[i]], [where[j]], "x" if kind == "impact" else "s", ms=7,
+                    color="C3" if kind == "impact" else "C2", label=kind if first else None)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("yz"[j - 1] + " (m)")
+        ax.set_title(view, fontsize="small")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(alpha=0.3)
+        edge_on = [(label, p, n) for label, p, n in planes if abs(n[3 - i - j]) < 1e-12]
+        if edge_on:
+            ax.autoscale_view()
+            (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+            pad = 0.25 * max(x1 - x0, y1 - y0)
+            x0, x1, y0, y1 = x0 - pad, x1 + pad, y0 - pad, y1 + pad
+            for label, p, n in edge_on:  # n_i x + n_j y = n . p in this view
+                level = float(np.dot(n, p))
+                if abs(n[j]) >= abs(n[i]):
+                    xs = np.array([x0, x1])
+                    ys = (level - n[i] * xs) / n[j]
+                else:
+                    ys = np.array([y0, y1])
+                    xs = (level - n[j] * ys) / n[i]
+                ax.plot(xs, ys, "-", color="0.45", lw=3, alpha=0.5)
+                ax.annotate(label, (float(np.mean(xs)), float(np.mean(ys))), fontsize="small",
+                            color="0.3", ha="center", va="bottom")
+    side.legend(fontsize="small")
+    fig.suptitle(title, fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
 def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
               frames: int = 60):
     """The motion after the impact as an animation of the tracked points, with trails.
@@ -489,7 +539,7 @@ def animation(times: np.ndarray, points: dict[str, np.ndarray], title: str,
 
 
 def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path: str | Path,
-              frames: int = 60, fps: int = 20) -> None:
+              frames: int = 60, fps: int = 20, axes: str = "xy") -> None:
     """:func:`animation`'s frames written as a GIF, the still parts (axes, ticks, grid,
     legend) drawn once and only the moving ones each frame: the same pictures as
     saving the animation with Pillow, in a fraction of the time.
@@ -507,7 +557,7 @@ def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path
     """
     from PIL import Image
 
-    fig, draw = _animated(times, points, title, frames)
+    fig, draw = _animated(times, points, title, frames, axes)
     moving = draw(0)
     for artist in moving:
         artist.set_animated(True)
@@ -527,9 +577,11 @@ def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path
                      loop=0, duration=round(1000 / fps))
 
 
-def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, frames: int):
+def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, frames: int,
+              axes: str = "xy"):
     """The animation's figure and its frame-drawing function (returning the artists it
-    moved)."""
+    moved); `axes` names the two coordinates drawn ("xz": a 3-D run seen from the
+    side)."""
     when = np.linspace(times[0], times[-1], frames)
     tracks = {name: np.c_[np.interp(when, times, xy[:, 0]), np.interp(when, times, xy[:, 1])]
               for name, xy in points.items()}
@@ -546,8 +598,9 @@ def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, fram
     ax.set_xlim(low[0] - pad, high[0] + pad)
     ax.set_ylim(low[1] - pad, high[1] + pad)
     ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("x - mean x of the points (m)" if follow else "x (m)")
-    ax.set_ylabel("y - mean y of the points (m)" if follow else "y (m)")
+    h, v = axes
+    ax.set_xlabel(f"{h} - mean {h} of the points (m)" if follow else f"{h} (m)")
+    ax.set_ylabel(f"{v} - mean {v} of the points (m)" if follow else f"{v} (m)")
     ax.grid(alpha=0.3)
     bodies: dict[str, list[str]] = {}
     for name in tracks:

@@ -9,6 +9,9 @@ bodies of shape ``sphere`` (``mass``, ``radius``, optional central ``inertia``),
 ``law`` and ``tangential`` (smooth, stick, coulomb with ``friction``, or rough with
 ``tangential_restitution`` and optionally ``friction``). ``[impact]``
 may set ``tolerance`` to follow the contact numerically even where a closed form exists.
+``[[planes]]`` (read by ``simulate`` past separation) are fixed planes a sphere may
+strike later, each written as a contact: its ``point`` on the plane, its ``normal``, its
+laws and the two ``bodies`` (a fixed one and the sphere).
 
 Text from the file is read by the project's bounded expression parser, never by eval.
 """
@@ -78,6 +81,7 @@ class SpaceScene:
     joints: tuple[Joint, ...] = ()  # [[joints]]: ball joints and hinges
     random: RandomInputs | None = None  # [random]: symbols with a distribution
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)  # [impact] stiffness
+    planes: tuple[Contact, ...] = ()  # [[planes]]: fixed planes struck later (simulate)
 
     @property
     def roles(self) -> tuple:
@@ -125,6 +129,8 @@ class SpaceScene:
             f"joint {j.name}: {j.first} and {j.second} at {list(j.point)}, " + (
                 "a ball joint" if j.axis is None else f"a hinge about {list(j.axis)}")
             for j in self.joints)
+        setup += tuple(f"plane {p.name} (struck later, by simulate): "
+                       + _contact_words(p).split(": ", 1)[1] for p in self.planes)
         setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
         equations = _equations(collision) if printed else ()
         return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
@@ -378,6 +384,36 @@ def _read_contacts(data: Mapping[str, Any],
     return contacts
 
 
+def _read_planes(data: Mapping[str, Any], symbols: Mapping[str, sp.Symbol],
+                 bodies: Sequence[Body3], contacts: Sequence[Contact]) -> tuple[Contact, ...]:
+    """``[[planes]]``: fixed planes a sphere may strike after the impact, each read as a
+    contact (its laws, its point on the plane, its normal), naming a fixed body and a
+    free one; their names are their own and the contacts'."""
+    entries = data.get("planes", [])
+    if not isinstance(entries, list) or not all(isinstance(t, dict) for t in entries):
+        raise InputError("planes", "[[planes]] must be tables, one a plane")
+    support = {b.name: b.support for b in bodies}
+    seen = {c.name for c in contacts}
+    planes = []
+    for k, t in enumerate(entries):
+        where = f"planes[{k}]"
+        if "name" not in t:
+            raise InputError(f"{where}.name", "required: a plane's name")
+        plane = _read_contact(t, symbols, where, named=True)
+        if plane.name in seen:
+            raise InputError(f"{where}.name", f"{plane.name!r} names another contact or "
+                             "plane")
+        seen.add(plane.name)
+        kinds = sorted(support.get(b, "missing") == "fixed" for b in plane.bodies or ())
+        if any(b not in support for b in plane.bodies or ()):
+            raise InputError(f"{where}.bodies", "must name two of the scene's bodies")
+        if kinds != [False, True]:
+            raise InputError(f"{where}.bodies", "a plane belongs to a fixed body: name it "
+                             "and the sphere that may strike it")
+        planes.append(plane)
+    return tuple(planes)
+
+
 def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
     """Read a 3-D scene from TOML text (see the module's text)."""
     return space_scene_from_data(read_toml(text), name)
@@ -386,7 +422,7 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate", "joints", "random"}
+               "simulate", "joints", "random", "planes"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -430,9 +466,10 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                 not 1e-14 <= value <= 1e-2:
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
         tolerance = float(value)
+    planes = _read_planes(data, symbols, bodies, contacts)
     used = frozenset().union(*(x.free_symbols for b in bodies for x in (
         b.mass, *b.inertia, *b.position, *b.velocity, *b.spin)
-        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts
+        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts + planes
                                        for x in (c.restitution, c.friction or 0,
                                                  c.tangential_restitution or 0,
                                                  *c.point, *c.normal)))
@@ -441,7 +478,7 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                                  for x in (*j.point, *(j.axis if j.axis is not None else ()))))
     compliance = _compliance(impact, len(contacts))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets, rule, order, joints, randoms, compliance)
+                       simulate, facets, rule, order, joints, randoms, compliance, planes)
     # its bodies, contacts, joints and rule agree
     SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints, compliance)
     if randoms is not None:

@@ -36,7 +36,7 @@ EFFECTS = {
                              "slides in an instant (Routh's method)",
 }
 SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g",
-            "integrator", "stiffness_ratio"}
+            "integrator", "stiffness_ratio", "impacts"}
 INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
 DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81,

@@ -104,6 +104,9 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
+    if "impacts" in scene.simulate:
+        raise InputError("simulate.impacts", "a count of impacts is read by a 3-D scene's "
+                         "bouncing sphere; a planar scene runs until a time")
     if scene.joints:  # a linkage: the impact, then its flight with the joints held
         return run_linkage(scene)
     if len(scene.contacts) > 1:
