@@ -59,7 +59,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends as ends_of
 
-__all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "LAWS",
+__all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "one_line", "LAWS",
            "TOLERANCE"]
 
 LAWS = ("newton", "poisson", "energetic")
@@ -155,6 +155,31 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
     return _integrated(np.array(W.evalf(30), dtype=float),
                        np.array(v0.evalf(30), dtype=float).ravel(), float(e), law,
                        float(mu), TOLERANCE if tolerance is None else float(tolerance))
+
+
+def one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
+    """The unit direction in the tangent plane to which the slip keeps throughout the
+    impact, where there is one at numbers: the slip before (or, with none, the way the
+    normal impulse drives it) along which the normal impulse's coupling lies and which
+    the tangential block W_tt keeps. None where the slip may turn (or with symbols)."""
+    if not all(sp.sympify(x).is_number for x in (*W, *v)):
+        return None
+    slip, coupling, block = sp.Matrix(v[1:, 0]), sp.Matrix(W[1:, 0]), sp.Matrix(W[1:, 1:])
+    size = max(abs(sp.N(x, 30)) for x in W)
+    if all(abs(sp.N(x, 30)) <= 1e-12 * size for x in coupling):
+        return None  # the normal uncoupled (a sphere; floats: to rounding): the closed form
+    direction = slip if any(x != 0 for x in slip) else coupling
+
+    def along(a: sp.Matrix, b: sp.Matrix) -> bool:
+        """a and b on one line: exactly, or in floats to rounding's size."""
+        cross = a[0] * b[1] - a[1] * b[0]
+        if not (a.has(sp.Float) or b.has(sp.Float)):
+            return sp.simplify(cross) == 0
+        return bool(abs(sp.N(cross, 30)) <= 1e-12 * sp.N(a.norm() * b.norm(), 30))
+
+    if not (along(direction, coupling) and along(direction, block * direction)):
+        return None
+    return (direction / sp.sqrt(direction.dot(direction))).applyfunc(sp.radsimp)
 
 
 def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> ConeImpact:

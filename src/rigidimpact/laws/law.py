@@ -25,13 +25,14 @@ from typing import Any, ClassVar
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws import ends, routh
+from rigidimpact.laws import cone, ends, routh
 from rigidimpact.laws.walton import walton
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross
 from rigidimpact.symbolic.notation import escape_text, to_latex
 
 __all__ = [
+    "ContactImpulse",
     "Equation",
     "normal_momentum",
     "tangential_momentum",
@@ -275,6 +276,41 @@ def impulse_momentum(before: Body, after: Body, impulse: sp.MatrixBase) -> Equat
 # ---- contact laws: each gives the equations a derivation prints and the conditions the
 # solver imposes on the impulse P = (P_n, P_t), built from those same equations
 
+@dataclass(frozen=True)
+class ContactImpulse:
+    """One contact's impact on its own, in its frame (normal, then one tangent in the
+    plane or two in space): what every tangential law gives every path.
+
+    impulse : the impulse on the second body, contact frame (a Piecewise over the
+        courses where symbols leave several possible).
+    course : its name (the law's, or the courses' with their conditions).
+    notes : what an integrated answer says of itself (its tolerance, its steps).
+    exact : whether it is a closed form (else integrated, to `tolerance`).
+    """
+
+    impulse: sp.Matrix
+    course: str
+    notes: tuple[str, ...] = ()
+    exact: bool = True
+    tolerance: float | None = None
+
+    @classmethod
+    def of_regimes(cls, regimes: Sequence[Any]) -> ContactImpulse:
+        """The course taken; with symbols, a Piecewise over the courses, each under its
+        conditions (the last where none of the others holds)."""
+        if len(regimes) == 1:
+            (r,) = regimes
+            return cls(sp.Matrix([sp.sympify(x) for x in r.impulse]), r.name)
+        size = len(regimes[0].impulse)
+        impulse = sp.Matrix([sp.Piecewise(*((sp.sympify(r.impulse[i]), sp.And(*r.conditions))
+                                            for r in regimes[:-1]),
+                                          (sp.sympify(regimes[-1].impulse[i]), True))
+                             for i in range(size)])
+        course = "; otherwise ".join(f"{r.name} where {sp.And(*r.conditions)}"
+                                     for r in regimes[:-1])
+        return cls(impulse, f"{course}; otherwise {regimes[-1].name}")
+
+
 class ContactLaw:
     """A law acting at the contact, as printed and as solved.
 
@@ -350,17 +386,40 @@ class ContactLaw:
             return sp.sympify(regime.impulse[0]), sp.sympify(regime.impulse[1]), regime.name
         return self._linear_alone(W, v_before, restitution)
 
+    def impulse(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution, tolerance: float | None = None
+                ) -> ContactImpulse:
+        """This contact's impact on its own, in its frame with one tangent (the plane)
+        or two (space): the one face of a tangential law that every path asks, in 2-D
+        and 3-D alike. With regimes and symbols, a Piecewise over the courses.
+
+        Examples
+        --------
+        A particle of mass 1 sliding onto a smooth floor at (-1, 2, 3): the tangents
+        keep their velocities and the normal one reverses (e = 1).
+
+        >>> Smooth().impulse(sp.eye(3), sp.Matrix([-1, 2, 3]), NewtonRestitution(1)).impulse.T
+        Matrix([[2, 0, 0]])
+        """
+        if self.solved_by_regimes:
+            return ContactImpulse.of_regimes(self.regimes(W, v_before, restitution))
+        return ContactImpulse(self._linear(W, v_before, restitution), self.name)
+
     def linear_conditions(self, v_before: sp.MatrixBase, v_after: sp.MatrixBase,
                           impulse: sp.MatrixBase, leaving: sp.Expr) -> list[sp.Expr]:
-        """The two residuals, linear in the velocities after and the impulse (contact
-        space), that a law imposed as linear conditions asks to vanish: the normal
-        velocity after the restitution law asks (`leaving`, its
+        """The residuals, linear in the velocities after and the impulse (contact
+        space, one tangent or two), that a law imposed as linear conditions asks to
+        vanish: the normal velocity after the restitution law asks (`leaving`, its
         :meth:`NewtonRestitution.leaving` of ``v_before[0]``) and the tangential
-        condition. Any solver of W P = v+ - v- may impose them."""
-        return [v_after[0] - leaving, impulse[1]]
+        conditions. Any solver of W P = v+ - v- may impose them."""
+        return [v_after[0] - leaving, *impulse[1:]]
 
     def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
-        P = sp.Matrix(sp.symbols("p_n p_t"))
+        solved = self._linear(W, v_before, restitution)
+        return solved[0], solved[1], self.name
+
+    def _linear(self, W, v_before, restitution) -> sp.Matrix:
+        P = sp.Matrix(sp.symbols(f"p0:{len(v_before)}"))
         after = sp.Matrix(v_before) + sp.Matrix(W) * P
         matrix, rhs = sp.linear_eq_to_matrix(
             self.linear_conditions(v_before, after, P, restitution.leaving(v_before[0])),
@@ -372,8 +431,7 @@ class ContactLaw:
                              "restitution law; tangential = \"coulomb\" follows them "
                              "(Routh's method)" if self.grips else "the contact laws do "
                              "not fix the impulse here")
-        solved = matrix.LUsolve(rhs)
-        return solved[0], solved[1], self.name
+        return matrix.LUsolve(rhs)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
@@ -566,7 +624,7 @@ class Stick(ContactLaw):
         return (no_slip(after[0], after[1]),)
 
     def linear_conditions(self, v_before, v_after, impulse, leaving) -> list[sp.Expr]:
-        return [v_after[0] - leaving, v_after[1]]  # the restitution law across, no slip
+        return [v_after[0] - leaving, *v_after[1:]]  # the restitution law across, no slip
 
 
 @dataclass(frozen=True, repr=False)
@@ -742,6 +800,32 @@ class Coulomb(ContactLaw):
         (Routh's method), each with its conditions; with numbers, the one taken."""
         return routh.regimes(W, v_before, self.mu, restitution)
 
+    def impulse(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution, tolerance: float | None = None
+                ) -> ContactImpulse:
+        """One tangent: Routh's courses. Two: where the slip keeps to one line through
+        the impact, Routh's courses on that line (the same law); else the circular cone
+        followed in the normal impulse (:func:`rigidimpact.laws.cone.cone_impact`: a
+        closed form where the slip cannot turn, integrated where it can)."""
+        if len(v_before) == 2:
+            return super().impulse(W, v_before, restitution)
+        W, v = sp.Matrix(W), sp.Matrix(list(v_before))
+        if tolerance is None and (line := cone.one_line(W, v)) is not None:
+            W_line = sp.Matrix([[W[0, 0], line.dot(W[1:, 0])],
+                                [line.dot(W[1:, 0]), line.dot(W[1:, 1:] * line)]])
+            flat = super().impulse(W_line, sp.Matrix([v[0], line.dot(v[1:, 0])]),
+                                   restitution)
+            p_n, p_t = flat.impulse
+            return ContactImpulse(sp.Matrix([p_n, p_t * line[0], p_t * line[1]]),
+                                  flat.course)
+        out = cone.cone_impact(W, v, restitution.e, restitution, self.mu, tolerance)
+        notes = () if out.exact else (
+            f"the contact's path is integrated in the normal impulse to a relative "
+            f"tolerance of {out.tolerance:g} ({out.steps} steps; the slip direction "
+            f"turned by {out.turned * 180 / 3.141592653589793:.4g} degrees); course: "
+            f"{out.course}",)
+        return ContactImpulse(out.impulse, out.course, notes, out.exact, out.tolerance)
+
     def __repr__(self) -> str:
         return f"Coulomb({self.mu})"
 
@@ -774,6 +858,17 @@ class Rough(Coulomb):
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:
         return walton(W, v_before, self.beta, self.mu, restitution.leaving(v_before[0]))
+
+    def impulse(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
+                restitution: NewtonRestitution, tolerance: float | None = None
+                ) -> ContactImpulse:
+        """Walton's courses (:mod:`rigidimpact.laws.walton`), one tangent or two; a 3-D
+        answer names slipping throughout as the cone does ("slides throughout")."""
+        regimes = self.regimes(W, v_before, restitution)
+        if len(v_before) == 3:
+            regimes = tuple(replace(r, name="slides throughout") if r.name == routh.SLIP
+                            else r for r in regimes)
+        return ContactImpulse.of_regimes(regimes)
 
     def __repr__(self) -> str:
         return f"Rough({self.mu}, {self.beta})"

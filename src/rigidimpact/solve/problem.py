@@ -639,6 +639,21 @@ class ImpactProblem:
             values.update({symbols[start]: x, symbols[start + 1]: y})
         return values
 
+    @property
+    def tangents(self) -> int:
+        """Tangent rows a contact: one in the plane (two in space, :class:`RowsProblem`)."""
+        return 1
+
+    def frame_rows(self, k: int) -> Any:
+        """Contact k's rows in its own frame as float64, (normal, t1, t2): the rows the
+        rules that follow an impulse path read, in the plane with t2 zero (nothing moves
+        across the plane, so nothing slips or rubs there)."""
+        import numpy as np
+
+        n = np.array(self.scaled_J.row(k).evalf(30), dtype=float).ravel()
+        t = np.array(self.scaled_J_t.row(k).evalf(30), dtype=float).ravel()
+        return np.vstack([n, t, np.zeros_like(n)])
+
     def _by_name(self, name: str) -> Contact:
         return next(t for t in self.contacts if t.name == name)
 
@@ -704,6 +719,7 @@ class RowsProblem(ImpactProblem):
     inverse_mass : M^-1 (projected where joints hold).
     normal_rows : J, one row a contact.
     tangent_rows : J_t, one row a contact, or None where every contact is smooth.
+    second_tangent_rows : in space, each contact's second tangent row (t2 = n x t1).
     """
 
     speeds: tuple[str, ...] = ()
@@ -711,6 +727,20 @@ class RowsProblem(ImpactProblem):
     inverse_mass: sp.ImmutableMatrix | None = None
     normal_rows: sp.ImmutableMatrix | None = None
     tangent_rows: sp.ImmutableMatrix | None = None
+    second_tangent_rows: sp.ImmutableMatrix | None = None  # in space: t2 = n x t1
+
+    @property
+    def tangents(self) -> int:
+        return 0 if self.tangent_rows is None else 1 if self.second_tangent_rows is None \
+            else 2
+
+    def frame_rows(self, k: int) -> Any:
+        if self.second_tangent_rows is None:
+            return super().frame_rows(k)
+        import numpy as np
+
+        return np.array(sp.Matrix([self.normal_rows.row(k), self.tangent_rows.row(k),
+                                   self.second_tangent_rows.row(k)]).evalf(30), dtype=float)
 
     def __post_init__(self) -> None:
         pass  # the source checked its contacts and that one approaches

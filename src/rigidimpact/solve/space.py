@@ -48,10 +48,8 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.cone import cone_impact, tangents
+from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.contact import Contact
-from rigidimpact.laws.routh import SLIP, Regime
-from rigidimpact.laws.together import driven_impact
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
@@ -59,6 +57,7 @@ from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
 from rigidimpact.solve.lcp import NoSolution, lemke_float
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.rules.compliant import compliant
+from rigidimpact.solve.rules.driven import driven
 from rigidimpact.solve.rules.sequential import SETTLED, carried, sequential_passes
 from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
@@ -315,41 +314,9 @@ class SpaceCollision:
             raise InputError("bodies", f"the touching points at {c.name} are not "
                              "approaching (their normal velocity is "
                              f"{v[0]}, along the normal from {c.first} into {c.second})")
-        e, law = c.restitution, c.law
-        notes: list[str] = []
-        turned = 0.0
-        # the restitution law's one face: the normal velocity it asks after (a straight
-        # impulse path: smooth, or sticking from the start)
-        leaving = c.laws[0].leaving(v[0])
-        if c.tangential == "smooth":
-            P = sp.Matrix([(leaving - v[0]) / W[0, 0], 0, 0])
-            course = "smooth"
-        elif c.tangential == "stick":
-            P = W.LUsolve(sp.Matrix([leaving - v[0], -v[1], -v[2]]))
-            course = "sticks"
-        elif c.tangential == "rough":
-            if law != "newton":
-                raise InputError(f"{c.name}.law", "Walton's rough law takes Newton's "
-                                 "restitution")
-            # Walton's law has one implementation for one tangent or two (laws/walton.py)
-            P, course = _courses(c.laws[1].regimes(W, v, c.laws[0]))
-        elif self.tolerance is None and (line := _one_line(W, v)) is not None:
-            # the slip keeps to one line through the whole impact: Coulomb's law with one
-            # tangent, Routh's exact courses, as in the plane (the same one law)
-            W_line = sp.Matrix([[W[0, 0], line.dot(W[1:, 0])],
-                                [line.dot(W[1:, 0]), line.dot(W[1:, 1:] * line)]])
-            p_n, p_t, course = c.laws[1].alone(W_line, sp.Matrix([v[0], line.dot(v[1:, 0])]),
-                                               c.laws[0])
-            P = sp.Matrix([p_n, p_t * line[0], p_t * line[1]])
-        else:
-            out = cone_impact(W, v, e, c.laws[0], c.friction, self.tolerance)
-            P, course, turned = out.impulse, out.course, out.turned
-            if not out.exact:
-                notes.append(f"the contact's path is integrated in the normal impulse to "
-                             f"a relative tolerance of {out.tolerance:g} ({out.steps} steps; "
-                             f"the slip direction turned by "
-                             f"{turned * 180 / 3.141592653589793:.4g} degrees); course: "
-                             f"{course}")
+        # each tangential law's one face, with two tangents as with one (laws/law.py)
+        out = c.laws[1].impulse(W, v, c.laws[0], self.tolerance)
+        P, course, notes = out.impulse, out.course, list(out.notes)
         P = P.applyfunc(sp.radsimp)
         u_after = (self.u_before + self.M_inverse * J.T * P).applyfunc(
             lambda x: sp.piecewise_fold(sp.radsimp(sp.expand(x))))
@@ -360,7 +327,7 @@ class SpaceCollision:
         regime = course
         pinned = self.joint_impulses(J.T * P)
         checks = self._checks(c, J, P, u_after, before, lost, course,
-                              exact=self.tolerance is None and not notes, pinned=pinned)
+                              exact=out.exact and self.tolerance is None, pinned=pinned)
         solution = Solution(
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
@@ -617,31 +584,10 @@ class SpaceCollision:
         if not approaching:
             raise InputError("contacts", "several 3-D contacts are solved where one or more "
                              "of them approach; here none approaches")
-        acting = approaching + resting
-        striking = approaching[0]
-        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
-        out = driven_impact(Minv, [rows[c.name] for c in acting], u,
-                            float(striking.restitution), striking.laws[0],
-                            [float(c.friction or 0) for c in acting], self.tolerance)
-        u_after = sp.Matrix([sp.Float(x, 17) for x in out.u_after])
-        P = {c.name: [sp.Float(x, 17) for x in out.impulses[i]]
-             for i, c in enumerate(acting)}
-        moved = [b.moved(u_after[6 * k:6 * k + 6, 0]) for k, b in enumerate(self.free)]
-        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
-        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-        courses = tuple(f"{c.name}: {course}" for c, course in
-                        zip(acting, out.courses, strict=True))
-        left = [c.name for c in self.contacts if c not in acting]
-        notes = [f"{striking.name} strikes and {', '.join(c.name for c in resting)} "
-                 f"rest{'s' if len(resting) == 1 else ''} (closed while pushing): the "
-                 f"impulses are integrated in {striking.name}'s normal impulse to a "
-                 f"relative tolerance of {out.tolerance:g} ({out.steps} steps)"]
-        if left:
-            notes.append(f"moving apart, not acting: {', '.join(left)}")
-        checks = self._driven_checks(acting, rows, P, u, out.u_after, before, lost,
-                                     out.tolerance)
-        return replace(self._numeric(acting, tuple(c.name for c in acting), P, u_after,
-                                     courses, notes, (before, lost), checks), rule="driven")
+        left = [c.name for c in self.contacts if c not in approaching + resting]
+        solved = driven(_SpaceProblem.of(self), self.tolerance)
+        return replace(solved, notes=solved.notes + (
+            (f"moving apart, not acting: {', '.join(left)}",) if left else ()))
 
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
@@ -912,11 +858,13 @@ class _SpaceProblem(RowsProblem):
     @classmethod
     def of(cls, space: SpaceCollision) -> _SpaceProblem:
         """The one assembly of a 3-D collision into the problem of rows."""
+        rows = [space.rows(c) for c in space.contacts]
         return cls((), space.contacts, speeds=tuple(map(str, space.speeds)),
                    velocities=sp.ImmutableMatrix(space.u_before),
                    inverse_mass=sp.ImmutableMatrix(space.M_inverse),
-                   normal_rows=sp.ImmutableMatrix([list(space.rows(c)[0, :])
-                                                   for c in space.contacts]),
+                   normal_rows=sp.ImmutableMatrix([list(J[0, :]) for J in rows]),
+                   tangent_rows=sp.ImmutableMatrix([list(J[1, :]) for J in rows]),
+                   second_tangent_rows=sp.ImmutableMatrix([list(J[2, :]) for J in rows]),
                    space=space)
 
     def numbers_only(self, rule: str) -> None:
@@ -939,7 +887,9 @@ class _SpaceProblem(RowsProblem):
         space = self.space
         exact = not any(sp.sympify(x).has(sp.Float) for x in u)
         u_after = sp.Matrix(list(u)) if exact else sp.Matrix([sp.Float(x, 17) for x in u])
-        P = {c.name: [impulses[c.name], sp.Integer(0), sp.Integer(0)]
+        zero = sp.Integer(0)
+        sideways = more.get("tangent_impulses") or {}
+        P = {c.name: [impulses[c.name], *sideways.get(c.name, (zero, zero))]
              for c in self.contacts}
         moved = [b.moved(u_after[6 * j:6 * j + 6, 0]) for j, b in enumerate(space.free)]
         before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
@@ -947,8 +897,8 @@ class _SpaceProblem(RowsProblem):
         newton = rule == "simultaneous" and not self.acts_by_impulse()
         checks = space._driven_checks(list(self.contacts), {}, P, space.u_before, u_after,
                                       before, lost, None if exact else 1e-10, newton=newton)
-        courses = tuple(f"{c.name}: {'acts' if c.name in acted else 'released'}"
-                        for c in self.contacts)
+        courses = tuple(more.get("courses") or (
+            f"{c.name}: {'acts' if c.name in acted else 'released'}" for c in self.contacts))
         notes = list(more.get("notes", ()))
         if rule == "compliant":
             notes.append("every contact a push-only spring-dashpot, integrated (LSODA, "
@@ -966,48 +916,6 @@ def _leaving(contact: Contact, closing: float) -> float:
     """The normal velocity `contact`'s restitution law asks after a closing velocity (a
     contact at rest or opening asks none: 0)."""
     return float(contact.laws[0].leaving(sp.Float(min(closing, 0.0), 30)))
-
-
-def _courses(regimes: Sequence[Regime]) -> tuple[sp.Matrix, str]:
-    """The impulse of the course taken, or with symbols a Piecewise over the courses,
-    each under its conditions, and its name in the 3-D vocabulary."""
-    def named(r: Regime) -> str:
-        return "slides throughout" if r.name == SLIP else r.name
-    if len(regimes) == 1:
-        (r,) = regimes
-        return sp.Matrix(r.impulse), named(r)
-    pieces = [(r.impulse, sp.And(*r.conditions)) for r in regimes]
-    impulse = sp.Matrix([sp.Piecewise(*((p[i], when) for p, when in pieces[:-1]),
-                                      (pieces[-1][0][i], True))
-                         for i in range(len(pieces[0][0]))])
-    course = "; otherwise ".join(f"{named(r)} where {sp.And(*r.conditions)}"
-                                 for r in regimes[:-1]) + f"; otherwise {named(regimes[-1])}"
-    return impulse, course
-
-
-def _one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
-    """The unit direction in the tangent plane to which the slip keeps throughout the
-    impact, where there is one at numbers: the slip before (or, with none, the way the
-    normal impulse drives it) along which the normal impulse's coupling lies and which
-    the tangential block W_tt keeps. None where the slip may turn (or with symbols)."""
-    if not all(sp.sympify(x).is_number for x in (*W, *v)):
-        return None
-    slip, coupling, block = sp.Matrix(v[1:, 0]), sp.Matrix(W[1:, 0]), sp.Matrix(W[1:, 1:])
-    size = max(abs(sp.N(x, 30)) for x in W)
-    if all(abs(sp.N(x, 30)) <= 1e-12 * size for x in coupling):
-        return None  # the normal uncoupled (a sphere; floats: to rounding): the closed form
-    direction = slip if any(x != 0 for x in slip) else coupling
-
-    def along(a: sp.Matrix, b: sp.Matrix) -> bool:
-        """a and b on one line: exactly, or in floats to rounding's size."""
-        cross = a[0] * b[1] - a[1] * b[0]
-        if not (a.has(sp.Float) or b.has(sp.Float)):
-            return sp.simplify(cross) == 0
-        return bool(abs(sp.N(cross, 30)) <= 1e-12 * sp.N(a.norm() * b.norm(), 30))
-
-    if not (along(direction, coupling) and along(direction, block * direction)):
-        return None
-    return (direction / sp.sqrt(direction.dot(direction))).applyfunc(sp.radsimp)
 
 
 def _touches_its_surface(body: Body3, contact: Contact) -> None:

@@ -5,9 +5,10 @@ contact's normal impulse, each resting contact sticking or slipping under Coulom
 as the impulse grows, by :func:`rigidimpact.laws.together.driven_impact`, in floating
 point; contacts moving apart take no part.
 
-It is the same model in the plane and in space: a planar problem is given to the
-integrator with each contact's second tangent row zero (the bodies cannot move across
-the plane, so nothing slips there and no friction acts there).
+It is one implementation in the plane and in space: each contact's rows in its own frame
+(:meth:`~rigidimpact.solve.problem.ImpactProblem.frame_rows`) go to the integrator, a
+planar contact's second tangent row zero (the bodies cannot move across the plane, so
+nothing slips there and no friction acts there), a 3-D contact's its own.
 
 Examples
 --------
@@ -69,7 +70,6 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     # the solvers' rows (each contact's scaled alike, which no law minds); the impulses
     # are put back on the unit normal by _named
     J = np.array(problem.scaled_J.evalf(30), dtype=float)
-    J_t = np.array(problem.scaled_J_t.evalf(30), dtype=float)
     u = np.array(problem.u_before.evalf(30), dtype=float).ravel()
     size = max(float(np.abs(u).max()), 1e-300)
     speeds = J @ u
@@ -81,24 +81,29 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
                          "simultaneous or sequential rule")
     acting = approaching + resting
     striking = problem.contacts[approaching[0]]
-    rows = [np.vstack([J[i], J_t[i], np.zeros_like(J[i])]) for i in acting]
+    rows = [problem.frame_rows(i) for i in acting]
     friction = [float(problem.contacts[i].friction or 0) for i in acting]
     Minv = np.array(problem.M_inverse.evalf(30), dtype=float)
     out = driven_impact(Minv, rows, u, float(striking.restitution), striking.laws[0], friction,
                         tolerance)
-    normal, along = sp.zeros(len(problem.contacts), 1), sp.zeros(len(problem.contacts), 1)
+    n = len(problem.contacts)
+    normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
     for k, i in enumerate(acting):
-        normal[i], along[i] = sp.Float(out.impulses[k][0], 17), sp.Float(out.impulses[k][1],
-                                                                           17)
+        normal[i], along[i], across[i] = (sp.Float(x, 17) for x in out.impulses[k])
     courses = tuple(f"{problem.contacts[i].name}: {course}"
                     for i, course in zip(acting, out.courses, strict=True))
-    notes = (f"{striking.name} strikes and the contacts touching at rest stay closed while "
-             f"they push: the impulses are integrated in {striking.name}'s normal impulse "
-             f"to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",)
+    rest = [problem.contacts[i].name for i in resting]
+    notes = (f"{striking.name} strikes" + (
+        f" and {', '.join(rest)} rest{'s' if len(rest) == 1 else ''} (closed while "
+        "pushing)" if rest else "") + f": the impulses are integrated in {striking.name}'s "
+        f"normal impulse to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",)
     return problem.outcome(
         "driven", (), sp.Matrix([sp.Float(x, 17) for x in out.u_after]),
         problem.named(normal), tuple(problem.contacts[i].name for i in acting
                                       if normal[i] > 0),
         tangential=problem.named(along), courses=courses, notes=notes,
-        method=f"integrated to {out.tolerance:g}")
+        method=f"integrated to {out.tolerance:g}",
+        **({"tangent_impulses": {c.name: (along[i], across[i]) for i, c in
+                                 enumerate(problem.contacts)}} if problem.tangents == 2
+           else {}))
 
