@@ -166,8 +166,9 @@ def one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
         return None
     slip, coupling, block = sp.Matrix(v[1:, 0]), sp.Matrix(W[1:, 0]), sp.Matrix(W[1:, 1:])
     size = max(abs(sp.N(x, 30)) for x in W)
-    if all(abs(sp.N(x, 30)) <= 1e-12 * size for x in coupling):
-        return None  # the normal uncoupled (a sphere; floats: to rounding): the closed form
+    uncoupled = all(abs(sp.N(x, 30)) <= 1e-12 * size for x in coupling)
+    if uncoupled and (isotropic(W) or all(x == 0 for x in slip)):
+        return None  # the normal uncoupled, a sphere's (or nothing slips): the closed form
     direction = slip if any(x != 0 for x in slip) else coupling
 
     def along(a: sp.Matrix, b: sp.Matrix) -> bool:
@@ -177,7 +178,7 @@ def one_line(W: sp.Matrix, v: sp.Matrix) -> sp.Matrix | None:
             return sp.simplify(cross) == 0
         return bool(abs(sp.N(cross, 30)) <= 1e-12 * sp.N(a.norm() * b.norm(), 30))
 
-    if not (along(direction, coupling) and along(direction, block * direction)):
+    if not ((uncoupled or along(direction, coupling)) and along(direction, block * direction)):
         return None
     return (direction / sp.sqrt(direction.dot(direction))).applyfunc(sp.radsimp)
 

@@ -644,6 +644,10 @@ class ImpactProblem:
         """Tangent rows a contact: one in the plane (two in space, :class:`RowsProblem`)."""
         return 1
 
+    def contact_rows(self, k: int) -> sp.Matrix:
+        """Contact k's rows in its own frame, exact: (normal, tangent) in the plane."""
+        return sp.Matrix.vstack(self.scaled_J[k, :], self.scaled_J_t[k, :])
+
     def frame_rows(self, k: int) -> Any:
         """Contact k's rows in its own frame as float64, (normal, t1, t2): the rows the
         rules that follow an impulse path read, in the plane with t2 zero (nothing moves
@@ -733,6 +737,12 @@ class RowsProblem(ImpactProblem):
     def tangents(self) -> int:
         return 0 if self.tangent_rows is None else 1 if self.second_tangent_rows is None \
             else 2
+
+    def contact_rows(self, k: int) -> sp.Matrix:
+        if self.second_tangent_rows is None:
+            return super().contact_rows(k)
+        return sp.Matrix([self.normal_rows.row(k), self.tangent_rows.row(k),
+                          self.second_tangent_rows.row(k)])
 
     def frame_rows(self, k: int) -> Any:
         if self.second_tangent_rows is None:

@@ -58,7 +58,7 @@ from rigidimpact.solve.lcp import NoSolution, lemke_float
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.driven import driven
-from rigidimpact.solve.rules.sequential import SETTLED, carried, sequential_passes
+from rigidimpact.solve.rules.sequential import sequential
 from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
 
@@ -501,59 +501,11 @@ class SpaceCollision:
     def sequential(self, order: Sequence[str]) -> Solution:
         """One contact at a time in `order`, each its own impact under its own laws (the
         one-contact answer, exact where it has a closed form), passes repeated until none
-        approaches; at numbers."""
-        rows, u0, _, _ = self._numbers()
-        by_name = {c.name: c for c in self.contacts}
-        index = {c.name: k for k, c in enumerate(self.contacts)}
-        state = {"bodies": self.bodies}
-        totals = {c.name: [sp.Integer(0)] * 3 for c in self.contacts}
-        courses: list[str] = []
-
-        def speeds() -> sp.Matrix:
-            return sp.Matrix([x for b in state["bodies"] if b.support != "fixed"
-                              for x in b.speeds])
-
-        normals = [self.rows(c)[0, :] for c in self.contacts]
-
-        def closing(k: int) -> sp.Expr:
-            return sp.N((normals[k] * speeds())[0], 30)
-
-        def step(k: int, _now: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
-            c = self.contacts[k]
-            hit = SpaceCollision(state["bodies"], (c,), self.tolerance,
-                                 joints=self.joints).solve()
-            assert hit.speeds_after is not None  # a 3-D answer: its generalized speeds
-            after = iter(list(hit.speeds_after))
-            state["bodies"] = tuple(b if b.support == "fixed" else b.moved(
-                [carried(next(after)) for _ in range(6)]) for b in state["bodies"])
-            P = (hit.impulses[c.name], *hit.tangent_impulses[c.name])
-            totals[c.name] = [a + b for a, b in zip(totals[c.name], P, strict=True)]
-            courses.append(f"{c.name}: {hit.regime}")
-            return P[0], hit.tangential[c.name], hit.regime
-
-        scale = max(abs(float((rows[c.name] @ u0)[0])) for c in self.contacts) or 1.0
-        # the rule ends, as in the plane, once every closing speed left is below 1e-40 of
-        # the largest before; a Coulomb contact's answer may be integrated (to 1e-10),
-        # and then below 1e-12 is taken for its rounding, not an approach
-        settled = sp.Float(1e-12) if any(c.tangential == "coulomb" for c in self.contacts) \
-            else SETTLED
-        passes, steps = sequential_passes([index[name] for name in order], closing, step,
-                                          sp.Float(scale), settled=settled)
-        u_after = np.array(speeds().evalf(30), dtype=float).ravel()
-        P = {name: [sp.Float(sp.N(x, 30), 17) for x in totals[name]] for name in totals}
-        acted = tuple(name for name in totals if totals[name][0] > 0)
-        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
-        moved = [b for b in state["bodies"] if b.support != "fixed"]
-        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-        acting = [by_name[name] for name in totals]
-        checks = self._driven_checks(acting, rows, P, u0, u_after, before, lost,
-                                     self.tolerance or 1e-10)
-        solution = self._numeric(acting, acted, P, u_after, tuple(courses),
-                                 [f"one contact at a time in the order {', '.join(order)}: "
-                                  f"{len(steps)} impacts in {passes} pass"
-                                  f"{'' if passes == 1 else 'es'}"],
-                                 (before, lost), checks)
-        return replace(solution, rule="sequential", order=tuple(order), passes=passes)
+        approaches: the plane's rule, one implementation
+        (:func:`rigidimpact.solve.rules.sequential.sequential`), on this collision's
+        problem of rows; at numbers."""
+        self._numbers()
+        return sequential(_SpaceProblem.of(self), order)
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6,
                   hertz: bool = False) -> Solution:
@@ -605,7 +557,8 @@ class SpaceCollision:
                 sp.zeros(6 * len(self.free), 1))) if self.joints else {}
             lost = sp.radsimp(lost)
         else:
-            speeds_after = sp.ImmutableMatrix([sp.Float(x, 17) for x in u_after])
+            speeds_after = sp.ImmutableMatrix([x if isinstance(x, sp.Float) else
+                                               sp.Float(x, 17) for x in u_after])
             rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float)
                     for c in acting} if self.joints else {}
             pinned = {name: tuple(sp.Float(x, 17) for x in parts) for name, parts in
@@ -877,16 +830,13 @@ class _SpaceProblem(RowsProblem):
                              f"along the normals (smooth contacts), not {where} with "
                              "friction: use the driven, simultaneous or sequential rule")
 
-    @property
-    def frictional(self) -> bool:
-        return False  # the 3-D friction's two tangents are the cone's (SpaceCollision)
-
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                 impulses: Mapping[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                 **more: Any) -> Solution:
         space = self.space
         exact = not any(sp.sympify(x).has(sp.Float) for x in u)
-        u_after = sp.Matrix(list(u)) if exact else sp.Matrix([sp.Float(x, 17) for x in u])
+        # floats as the rule gave them (a sequential run rounded to 60 digits keeps them)
+        u_after = sp.Matrix([sp.sympify(x) for x in u])
         zero = sp.Integer(0)
         sideways = more.get("tangent_impulses") or {}
         P = {c.name: [impulses[c.name], *sideways.get(c.name, (zero, zero))]

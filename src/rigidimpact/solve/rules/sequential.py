@@ -120,6 +120,8 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
     index = problem.order_index(order)
     u = list(problem.u_before)
     floating: list[str] = []
+    across = [sp.Integer(0)] * len(index)  # in space, each contact's second tangent
+    integrated: list[float] = []  # the tolerances of steps followed in floating point
 
     def step(k: int, closing: sp.Expr) -> tuple[sp.Expr, sp.Expr, str | None]:
         grips = problem.contacts[k].laws[1].grips
@@ -134,13 +136,16 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
             floating.append(problem.contacts[k].name)
         if floating:
             u[:] = [_rounded(x) for x in u]
-        if grips:  # its own impact (Routh's for Coulomb)
-            impulse, along, course, after = _routh_step(problem, k, sp.Matrix(u))
+        if grips:  # its own impact (Routh's for Coulomb; the cone in space)
+            P, course, after, tolerance = _own_step(problem, k, sp.Matrix(u))
             if floating:
-                impulse, along = _rounded(impulse), _rounded(along)
-                after = after.applyfunc(_rounded)
+                P, after = P.applyfunc(_rounded), after.applyfunc(_rounded)
+            if tolerance is not None:
+                integrated.append(tolerance)
             u[:] = list(after)
-            return impulse, along, course
+            if len(P) == 3:
+                across[k] += P[2]
+            return P[0], P[1], course
         return _smooth_step(problem, k, u, closing), sp.Integer(0), None
 
     taken_steps = itertools.count(1)
@@ -149,12 +154,19 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
         before = list(u)
         taken = step(k, closing)
         _check_step(problem, k, before, u, taken[0], closing, bool(floating),
-                    next(taken_steps))
+                    next(taken_steps), max(integrated, default=None))
         return taken
+
+    def settled() -> sp.Expr:
+        # once a step was followed in floating point (the cone in space) the closing
+        # speeds are known to its tolerance: the rule ends below 1e-12 of the largest
+        # before, not 1e-40
+        return sp.Float(1e-12) if integrated else SETTLED
 
     count, steps = sequential_passes([index[name] for name in order],
                                      lambda k: problem.closing(k, u), checked,
-                                     max(abs(v) for v in problem.scaled_velocity_before))
+                                     max(abs(v) for v in problem.scaled_velocity_before),
+                                     settled=settled)
     total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
     for k, impulse, along, _ in steps:
         total[k] += impulse
@@ -173,20 +185,27 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
                          count, tangential=problem.named(tangential.applyfunc(tidy))
                          if problem.frictional else {}, courses=courses, notes=notes,
                          method=f"rounded to {FLOAT_DIGITS} digits between steps"
-                         if floating else "")
+                         if floating else "",
+                         **({"tangent_impulses": {
+                             t.name: (tidy(tangential[i]), tidy(across[i]))
+                             for i, t in enumerate(problem.contacts)}}
+                            if problem.tangents == 2 else {}))
 
 
 def _check_step(problem: ImpactProblem, k: int, before: Sequence[sp.Expr],
                 after: Sequence[sp.Expr], impulse: sp.Expr, closing: sp.Expr,
-                rounded: bool, number: int) -> None:
+                rounded: bool, number: int, tolerance: float | None = None) -> None:
     """Each step of the sequential rule is an impact of its own, checked on its own from
     the velocities before and after it and its impulse: the contact does not pull,
     it does not close after, and (smooth) it leaves as its restitution law asks, with
     the momentum of every coordinate it moves changed by its impulse alone (M du =
     J_k^T P_k, from M itself, not the M^-1 the step moved them with). Exact, or to the
-    rounding of FLOAT_DIGITS-digit steps; a failure is refused in one line."""
-    slack = sp.Integer(0) if not rounded else \
-        sp.Float(10) ** (5 - FLOAT_DIGITS) * max(1, *(abs(x) for x in before))
+    rounding of FLOAT_DIGITS-digit steps, or to 1000 times the tolerance of a step
+    followed in floating point; a failure is refused in one line."""
+    size = max(1, *(abs(x) for x in before))
+    slack = sp.Integer(0) if not rounded else sp.Float(10) ** (5 - FLOAT_DIGITS) * size
+    if tolerance is not None:
+        slack = max(slack, sp.Float(1000 * tolerance) * size)
     contact = problem.contacts[k]
     failures = []
     if impulse < -slack:
@@ -212,12 +231,15 @@ def _check_step(problem: ImpactProblem, k: int, before: Sequence[sp.Expr],
                          "given; please report the scene")
 
 
-def _routh_step(problem: ImpactProblem, k: int,
-                u: sp.Matrix) -> tuple[sp.Expr, sp.Expr, str, sp.Matrix]:
-    """Contact k's impact alone under its own laws (Routh's method for Coulomb,
-    Walton's for rough): (P_n, P_t, course, the generalized velocities after)."""
+def _own_step(problem: ImpactProblem, k: int, u: sp.Matrix
+              ) -> tuple[sp.Matrix, str, sp.Matrix, float | None]:
+    """Contact k's impact alone under its own laws, in its frame with one tangent or two
+    (the tangential law's one face, :meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
+    Routh's method or the cone for Coulomb, Walton's for rough): the impulse, its
+    course, the generalized velocities after, and the tolerance where it was followed
+    in floating point."""
     restitution, tangential = problem.contacts[k].laws
-    rows = sp.Matrix.vstack(problem.scaled_J[k, :], problem.scaled_J_t[k, :])
+    rows = problem.contact_rows(k)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
         raise InputError(f"{problem.contacts[k].name}.tangential",
@@ -225,11 +247,10 @@ def _routh_step(problem: ImpactProblem, k: int,
                          "freedom here (their 2x2 W is singular), so they cannot both "
                          "stop slipping and leave by the restitution law; tangential = "
                          "\"coulomb\" follows them (Routh's method), or make it smooth")
-    normal, along, course = tangential.alone(W, (rows * u).applyfunc(tidy), restitution)
-    normal, along = tidy(normal), tidy(along)
-    u_after = (u + problem.M_inverse * (problem.scaled_J[k, :].T * normal
-                                     + problem.scaled_J_t[k, :].T * along)).applyfunc(tidy)
-    return normal, along, course, u_after
+    out = tangential.impulse(W, (rows * u).applyfunc(tidy), restitution)
+    P = out.impulse.applyfunc(tidy)
+    u_after = (u + problem.M_inverse * (rows.T * P)).applyfunc(tidy)
+    return P, out.course, u_after, None if out.exact else out.tolerance
 
 
 def sequential_pass(problem: ImpactProblem, order: Sequence[str]) -> Solution:
@@ -388,10 +409,12 @@ def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solut
 
 def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
                       step: Callable[[int, sp.Expr], tuple[sp.Expr, sp.Expr, str | None]],
-                      scale: sp.Expr, settled: sp.Expr = SETTLED
+                      scale: sp.Expr,
+                      settled: sp.Expr | Callable[[], sp.Expr] = SETTLED
                       ) -> tuple[int, list[tuple[int, sp.Expr, sp.Expr, str | None]]]:
     """The sequential rule's passes, for any model: contact by contact in `order`, each
-    contact still closing (``closing(k) < 0``, beyond `settled` times `scale`) takes its
+    contact still closing (``closing(k) < 0``, beyond `settled` times `scale`; `settled`
+    may be a function, asked at each contact) takes its
     own impact (``step(k, closing)``: its normal and tangential impulse and its course,
     the model's velocities moved by the step), repeated until a pass in which none acts.
     Returns the passes in which some contact acted and every step taken.
@@ -424,7 +447,7 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
         count, acted = count + 1, False
         for k in order:
             now = closing(k)
-            if now >= 0 or -now <= settled * scale:
+            if now >= 0 or -now <= (settled() if callable(settled) else settled) * scale:
                 continue
             if len(steps) == most:
                 raise endless()

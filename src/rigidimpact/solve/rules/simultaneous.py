@@ -43,7 +43,7 @@ from rigidimpact.solve.lcp import (
 )
 from rigidimpact.solve.problem import MAX_ENUMERATED, ImpactProblem
 from rigidimpact.solve.rules.base import Rule
-from rigidimpact.solve.rules.sequential import _routh_step
+from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -552,7 +552,8 @@ def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Soluti
     """Only contact k acts: its frictional impact alone by Routh's method (the answer
     for one contact under every rule), if that leaves every other contact opening
     at least as fast as its law asks; otherwise one line saying so."""
-    normal, along, course, u = _routh_step(problem, k, problem.u_before)
+    P, course, u, _ = _own_step(problem, k, problem.u_before)
+    normal, along = P[0], P[1]
     after = problem.closings(u)
     blocked = [t.name for i, t in enumerate(problem.contacts)
                if i != k and after[i] < target[i]]
