@@ -14,7 +14,7 @@ NOTEBOOKS = Path(__file__).resolve().parent.parent / "notebooks"
 STORY = ["01-ball-meets-barbell", "02-energy-lost", "03-restrike", "04-clay-ball",
          "05-two-bodies", "06-discs", "07-spring-rod", "08-accuracy-and-time",
          "09-hard-cases", "10-supports", "11-friction", "12-several-contacts",
-         "15-three-dimensions", "16-random-restitution"]
+         "15-three-dimensions", "16-random-restitution", "17-after-the-impact-in-3d"]
 
 
 @pytest.mark.parametrize("name", STORY)

@@ -434,7 +434,12 @@ def test_several_3d_contacts_are_refused_in_one_line_where_not_solved():
     floor = Contact(normal=(0, 0, 1), restitution=HALF, name="floor",
                     bodies=("floor", "ball"), point=(0, 0, 0))
     bodies = (Body3.fixed("w"), Body3.fixed("floor"), ball)
-    both = SpaceCollision(bodies, (wall, floor)).solve()  # both strike: the circular cone
+    both = SpaceCollision(bodies, (wall, floor)).solve()  # both strike, smooth: exact
+    assert "exact" in both.notes[-1]
+    r = both.results()  # the normals are orthogonal through the centre: each its own
+    assert (r["ball.vx"], r["ball.vz"]) == (-HALF, HALF)
+    rough = tuple(replace(c, tangential="coulomb", friction=FIFTH) for c in (wall, floor))
+    both = SpaceCollision(bodies, rough).solve()  # with friction: the circular cone
     assert "circular cone" in both.notes[0]
     both = SpaceCollision(bodies, (wall, floor), facets=8).solve()  # or a pyramid
     assert "pyramid of 8 edges" in both.notes[0]

@@ -20,6 +20,7 @@ from typing import Any
 from rigidimpact.errors import InputError
 from rigidimpact.model.shapes import is_segment
 from rigidimpact.scenes.scene import Scene
+from rigidimpact.scenes.space import SpaceScene
 from rigidimpact.simulate.compliant import prepare, run_compliant
 from rigidimpact.simulate.flight import Flyer, first_contact, reach_interval
 from rigidimpact.simulate.linkage import run_linkage
@@ -27,6 +28,7 @@ from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.several import run_several
+from rigidimpact.simulate.space import run_space
 from rigidimpact.simulate.tangential import run_tangential
 from rigidimpact.solve.collision import rule_laws
 from rigidimpact.solve.derivation import model_name, physics_warnings
@@ -95,7 +97,7 @@ def _restrike(ball: Flyer, other: Flyer, horizon: float) -> tuple[list[dict], fl
     return [{"kind": "out-of-reach", "t": leaves}], leaves
 
 
-def run(scene: Scene) -> Outcome:
+def run(scene: Scene | SpaceScene) -> Outcome:
     """Simulate a scene as its plan says.
 
     Raises
@@ -104,6 +106,8 @@ def run(scene: Scene) -> Outcome:
         A bad ``[simulate]`` table, a missing value, or a question the runners cannot
         answer (a re-strike search needs one particle).
     """
+    if isinstance(scene, SpaceScene):  # a 3-D scene: its impact, or a sphere's bounces
+        return run_space(scene)
     if "impacts" in scene.simulate:
         raise InputError("simulate.impacts", "a count of impacts is read by a 3-D scene's "
                          "bouncing sphere; a planar scene runs until a time")

@@ -9,10 +9,10 @@ contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone
 (:func:`rigidimpact.laws.cone.cone_impact` for Coulomb's circular cone), and
 ``u+ = u- + M^-1 J^T P``. Several contacts: where one strikes and the others rest, the
 impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
-where several strike, the simultaneous rule: with smooth contacts the plane's one
-implementation, exact, on the problem of rows (:class:`_SpaceProblem`); with Coulomb's
-circular cone :meth:`SpaceCollision._circular`, or with the cone as a pyramid of a
-stated number of edges :meth:`SpaceCollision._faceted`.
+where several strike, the simultaneous rule: the plane's one implementation on the
+problem of rows (:class:`_SpaceProblem`), exact for smooth contacts and with Coulomb's
+circular cone in floating point; or with the cone as a pyramid of a stated number of
+edges, :meth:`SpaceCollision._faceted`.
 
 What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
 named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
@@ -53,8 +53,7 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
-from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual
-from rigidimpact.solve.lcp import NoSolution, lemke_float
+from rigidimpact.solve.lcp import lemke_float
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.driven import driven
@@ -470,7 +469,7 @@ class SpaceCollision:
 
     def simultaneous(self) -> Solution:
         """Several contacts acting together at the velocity level (Newton's law, Coulomb's
-        circular cone: :meth:`_circular`, or the pyramid of ``facets`` edges). Where one
+        circular cone by the plane's rule, or the pyramid of ``facets`` edges). Where one
         contact closes and its own impact (under its own laws) leaves every other
         contact opening, that is the answer, as for one contact under every rule."""
         rows, u, approaching, resting = self._numbers()
@@ -491,11 +490,10 @@ class SpaceCollision:
             raise InputError(f"{formless[0].name}.tangential", f"the {formless[0].tangential} "
                              "law has no form for contacts acting together: use the "
                              "sequential rule (each contact's own impact)")
-        if all(c.tangential == "smooth" for c in self.contacts):
-            # smooth contacts have no tangent rows: the plane's rule, exact, on the rows
-            return simultaneous(_SpaceProblem.of(self))
         if self.facets is None:
-            return self._circular(approaching + resting, rows, u)
+            # the plane's rule, one implementation, on the problem of rows: exact for
+            # smooth contacts, Coulomb's circular cone in floating point
+            return simultaneous(_SpaceProblem.of(self))
         return self._faceted(approaching + resting, rows, u, self.facets)
 
     def sequential(self, order: Sequence[str]) -> Solution:
@@ -529,10 +527,8 @@ class SpaceCollision:
             raise InputError("impact.rule", "the driven rule takes one striking contact and "
                              f"others resting; here {len(approaching)} approach: use the "
                              "simultaneous or sequential rule")
-        if len(approaching) > 1:  # the circular cone, or a pyramid of stated edges
-            if self.facets is None:
-                return self._circular(approaching + resting, rows, u)
-            return self._faceted(approaching + resting, rows, u, self.facets)
+        if len(approaching) > 1:  # the simultaneous rule
+            return self.simultaneous()
         if not approaching:
             raise InputError("contacts", "several 3-D contacts are solved where one or more "
                              "of them approach; here none approaches")
@@ -639,47 +635,6 @@ class SpaceCollision:
                 "contacts than freedoms others may exist")
         return self._together(acting, rows, J, Minv, u, B @ z, note)
 
-    def _circular(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
-                  u: np.ndarray) -> Solution:
-        """Several contacts striking at once with Coulomb's circular cone itself: the
-        simultaneous rule at the velocity level with Newton's law, each contact's
-        friction on the disc ``|P_t| <= mu P_n`` in its tangent plane, sticking inside it
-        or on its rim straight against the slip after, solved by the damped semismooth
-        Newton method on Alart and Curnier's function
-        (:func:`rigidimpact.solve.coulomb.coulomb_newton`) and checked by the laws'
-        residuals. Exact to rounding where the method ends (to 1e-14 of the closing
-        speed); it refuses in one line where it does not."""
-        late = [c for c in acting if c.laws[0].together != "velocity"]
-        if late:
-            raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
-                             "take a law of the velocities after, such as Newton's (the "
-                             "simultaneous rule at the velocity level)")
-        k = len(acting)
-        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
-        J = np.vstack([rows[c.name] for c in acting])  # 3k rows: n, t1, t2 per contact
-        order = [3 * i for i in range(k)] + [3 * i + j for i in range(k) for j in (1, 2)]
-        W = (J @ Minv @ J.T)[np.ix_(order, order)]
-        v = (J @ u)[order]
-        b = v.copy()
-        for i, c in enumerate(acting):  # the law's normal velocity after (Newton's: -e
-            b[i] = v[i] - _leaving(c, v[i])  # times the approach)
-        mu = np.array([float(c.friction or 0) for c in acting])
-        try:
-            lam, steps = coulomb_newton(W, b, mu)
-        except NoSolution as exc:
-            raise InputError("impact.rule", f"{k} contacts striking at once: {exc}, so no "
-                             "answer is given; give `[impact] facets` for the cone as a "
-                             "pyramid") from None
-        impulse = np.zeros(3 * k)
-        impulse[order] = lam
-        note = (f"{k} contacts act together (the simultaneous rule, Newton's law at the "
-                "velocity level) with Coulomb's circular cone, solved in floating point by "
-                f"a damped semismooth Newton method ({steps} steps), residual "
-                f"{coulomb_residual(W, b, mu, lam):.1e} of the largest closing speed; it "
-                "gives one answer, and with friction or more contacts than freedoms "
-                "others may exist")
-        return self._together(acting, rows, J, Minv, u, impulse, note)
-
     def _together(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
                   J: np.ndarray, Minv: np.ndarray, u: np.ndarray, impulse: np.ndarray,
                   note: str) -> Solution:
@@ -775,10 +730,18 @@ class SpaceCollision:
             out[f"{c.name}.opens"] = max(0, -leaving)
             out[f"{c.name}.cone"] = max(0, sp.sqrt(Pt1 ** 2 + Pt2 ** 2)
                                         - num(c.friction or 0) * Pn)
-            if newton:
+            if newton:  # the simultaneous rule: each contact's laws at the velocity level
                 asked = num(c.laws[0].leaving(min(closing, 0)))
                 out[f"{c.name}.restitution"] = abs(leaving - asked) if Pn > 0 else \
                     max(0, asked - leaving)
+                size = max(1, *(abs(x) for x in (*u0, *u1)))
+                out[f"{c.name}.complementarity"] = abs(Pn * (leaving - asked)) / size
+                if c.friction is not None and Pn > 0:  # friction against the slip after
+                    v0, v1 = J[c.name] * u0, J[c.name] * u1
+                    out.update(friction_residuals(
+                        c.name, c.laws[1], num, Pn, [Pt1, Pt2], [v0[1], v0[2]],
+                        [v1[1], v1[2]], exact=False,
+                        speed=max(size, *(abs(x) for x in impulses[c.name]))))
         out["energy"] = max(0, -num(lost))
         out["_scale"] = max(abs(x) for x in (*u0, *u1, *(x for p in impulses.values()
                                                           for x in p)))

@@ -210,9 +210,16 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         raise InputError(f"{formless[0][0]}.tangential", f"the {formless[0][1]} law "
                          "has no form for contacts acting together: use the "
                          "sequential rule (each contact's own impact)")
-    v_t = _sparse_times(problem.scaled_J_t, problem.u_before)
     mu = [law.cone() for law in tangential]
     target = [problem.leaving(i, min(v_n[i], 0)) for i in range(n)]
+    if problem.tangents == 2:  # in space: Coulomb's circular cone, in floating point
+        across = sp.SparseMatrix([list(problem.contact_rows(i)[j, :]) for i in range(n)
+                                  for j in (1, 2)])
+        return _frictional_newton(problem, sp.SparseMatrix.vstack(
+                                      sp.SparseMatrix(problem.scaled_J), across),
+                                  v_n, _sparse_times(across, problem.u_before), mu, target,
+                                  tangential)
+    v_t = _sparse_times(problem.scaled_J_t, problem.u_before)
     states = [("off",) + law.velocity_states for law in tangential]
     count = math.prod(len(s) for s in states)
     if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
@@ -479,7 +486,7 @@ def _float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t:
         Minv = sps.diags([float(x) for x in problem.inverse_inertia]).tocsr()
     W = (J @ Minv @ J.T).tocsr()
     b = np.array([float(v_n[i] - target[i]) for i in range(n)]
-                 + [float(v_t[i]) for i in range(n)])
+                 + [float(x) for x in v_t])
     cone = np.array([np.inf if m is None and law.grips else
                      0.0 if m is None or not law.grips else float(m)
                      for m, law in zip(mu, tangential, strict=True)])
@@ -508,18 +515,20 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
                          "so no answer is given; try the sequential rule") from None
     u = u0 + Minv @ (J.T @ lam)
     error = coulomb_residual(W, b, cone, lam)
-    slip = (J @ u)[n:]
+    t = problem.tangents  # one tangent a contact in the plane, two in space
+    slip = (J @ u)[n:].reshape(n, t)
+    friction = lam[n:].reshape(n, t)
     big = max(1.0, float(np.abs(lam).max()))
     on = lam[:n] > 1e-12 * big
-    inside = np.abs(lam[n:]) < cone * lam[:n] - 1e-9 * big
+    inside = np.linalg.norm(friction, axis=1) < cone * lam[:n] - 1e-9 * big
     acting = [i for i in range(n) if on[i]]
     states = ["off" if not on[i] else "on" if not tangential[i].grips else
               "stick" if inside[i] or not np.isfinite(cone[i]) else
-              "slide+" if slip[i] > 0 else "slide-" for i in range(n)]
+              "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
 
     shared = ""
     if not problem.dense:  # the least-norm impulses with this motion, if others fit it
-        least = least_norm_rough(J, 1.0 / Minv.diagonal(), u - u0, lam, cone, slip)
+        least = least_norm_rough(J, 1.0 / Minv.diagonal(), u - u0, lam, cone, slip.ravel())
         if least is not None and np.abs(least - lam).max() > 1e-9 * big:
             lam, shared = least, (
                 "; other impulses give the same motion after (more contact conditions "
@@ -531,21 +540,26 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     def number(x: float) -> sp.Float:
         return sp.Float(float(x), 17)
 
+    friction = lam[n:].reshape(n, t)
     normal = sp.Matrix([number(x) if on[i] else sp.Integer(0)
                         for i, x in enumerate(lam[:n])])
-    along = sp.Matrix([number(x) if on[i] else sp.Integer(0)
-                       for i, x in enumerate(lam[n:])])
+    along = sp.Matrix([number(friction[i, 0]) if on[i] else sp.Integer(0)
+                       for i in range(n)])
+    sideways = {c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
+                for i, c in enumerate(problem.contacts)} if t == 2 else None
     note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
-            f"Newton method on Alart and Curnier's function ({2 * n} unknowns, {steps} "
-            f"steps), residual {error:.1e} of the largest closing speed; it gives one "
-            "answer, and with friction others may exist" + shared)
+            f"Newton method on Alart and Curnier's function ({(1 + t) * n} unknowns, "
+            f"{steps} steps{', the circular cone' if t == 2 else ''}), residual "
+            f"{error:.1e} of the largest closing speed; it gives one answer, and with "
+            "friction others may exist" + shared)
     return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
                             problem.named(normal), tuple(problem.contacts[i].name
                                                           for i in acting),
                             tangential=problem.named(along),
-                            courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                            courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
                                           zip(problem.contacts, states, strict=True)),
-                            notes=(note,), method="newton")
+                            notes=(note,), method="newton",
+                            **({"tangent_impulses": sideways} if sideways else {}))
 
 
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
