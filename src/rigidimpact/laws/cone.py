@@ -51,13 +51,15 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends as ends_of
+
+if TYPE_CHECKING:  # numpy is imported where a path is integrated
+    import numpy as np
 
 __all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "one_line", "LAWS",
            "TOLERANCE"]
@@ -152,6 +154,8 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
         raise InputError("values", "the slip direction of this contact may turn during the "
                          "impact (its tangential block of W is not isotropic, or it is "
                          "coupled to the normal): it is followed numerically, so give numbers")
+    import numpy as np  # only where the path is integrated: the command line starts light
+
     return _integrated(np.array(W.evalf(30), dtype=float),
                        np.array(v0.evalf(30), dtype=float).ravel(), float(e), law,
                        float(mu), TOLERANCE if tolerance is None else float(tolerance))
@@ -210,6 +214,7 @@ def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> C
 def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: Any, mu: float,
                 tolerance: float) -> ConeImpact:
     """Follow the path in p with scipy's solve_ivp (DOP853), phase by phase."""
+    import numpy as np
     from scipy.integrate import solve_ivp
 
     w_nn, w_tn, W_tt = W[0, 0], W[1:, 0], W[1:, 1:]
