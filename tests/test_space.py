@@ -239,7 +239,8 @@ def test_bad_3d_input_is_refused_in_one_line():
 
 # ---- the same bodies as sympy.physics.mechanics systems: the bridge's tangent plane ----
 
-def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton"):
+def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton",
+               tangential="coulomb", beta=None):
     """A free rigid body with six speeds (centre velocity, angular velocity in N) built
     with KanesMethod, striking the floor z = 0 at `point` (from its centre)."""
     N = me.ReferenceFrame("N")
@@ -260,7 +261,8 @@ def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton"):
     kane = me.KanesMethod(N, q, u, [a.diff() - b for a, b in zip(q, u, strict=True)])
     kane.kanes_equations([body], [])
     hit = ri.mechanics.impact(kane, [ri.mechanics.contact(
-        P, N.z, restitution=e, tangential="coulomb", friction=mu, law=law, name="floor")],
+        P, N.z, restitution=e, tangential=tangential, friction=mu, law=law, name="floor",
+        tangential_restitution=beta)],
         frame=N)
     return hit.at(dict(zip(q, [*centre, 0, 0, 0], strict=True))).at(
         dict(zip(u, [*velocity, *spin], strict=True))).solve()
@@ -280,6 +282,23 @@ def test_the_bridge_answers_the_spinning_sphere_it_used_to_refuse():
     for key, value in by_hand.items():
         assert sp.simplify(r[key] - value) == 0, key
     assert out.regime == "slides throughout"
+
+
+@pytest.mark.parametrize("mu", [None, FIFTH])
+def test_waltons_law_through_the_bridge_is_the_built_in_bodys(mu):
+    # the tangential law's one face with two tangents serves the mechanics bridge too:
+    # Walton's law (e = 1/2, beta = 1/2) at a spinning sphere's floor contact, limited
+    # by friction or not, gives the built-in 3-D sphere's answer exactly
+    bridge = _free_body(sp.eye(3) * sp.Rational(2, 5), (0, 0, 1), (1, HALF, -2), (3, -1, 2),
+                        (0, 0, -1), HALF, mu, tangential="rough", beta=HALF).results()
+    ball = Body3.sphere(1, 1, (0, 0, 1), (1, HALF, -2), (3, -1, 2), name="ball")
+    ours = SpaceCollision((Body3.fixed("floor"), ball), (Contact(
+        normal=(0, 0, 1), restitution=HALF, tangential="rough", friction=mu,
+        tangential_restitution=HALF, bodies=("floor", "ball"), point=(0, 0, 0)),)
+                          ).solve().results()
+    for theirs, mine in zip(["u_x", "u_y", "u_z", "w_x", "w_y", "w_z"],
+                            ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"], strict=True):
+        assert sp.simplify(bridge[theirs] - ours[f"ball.{mine}"]) == 0, theirs
 
 
 def test_a_turned_box_gives_the_same_answer_from_both_sources():

@@ -58,7 +58,7 @@ from sympy.polys.constructor import construct_domain
 from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.cone import cone_impact, tangents
+from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
 from rigidimpact.solve.collision import (
@@ -257,9 +257,10 @@ class SystemImpact:
         return [[_no_tan(sp.trigsimp(x)) for x in rows.row(i)] for i in range(3)]
 
     def _spatial(self) -> Solution:
-        """One contact with a tangent plane: Coulomb's circular cone (or stick) in
-        contact space (:func:`rigidimpact.laws.cone.cone_impact`), through the system's
-        M: ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2)."""
+        """One contact with a tangent plane: its tangential law's one face in contact
+        space with two tangents (:meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
+        stick, Coulomb's circular cone, Walton's law), through the system's M:
+        ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2)."""
         if len(self.contacts) != 1:
             raise InputError("contacts", "a contact with a tangent plane (3-D) and "
                              "friction is solved alone so far, not among several contacts")
@@ -271,20 +272,12 @@ class SystemImpact:
             sp.Matrix(self.M).LUsolve(J.T).applyfunc(sp.simplify)
         W = J * solved if numbers else (J * solved).applyfunc(sp.simplify)
         v = J * self.u_before
-        e = c.laws.restitution
-        course: str
-        if tangential.name == "stick":
-            if c.laws.law != "newton":
-                raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
-            P = W.LUsolve(sp.Matrix([restitution.leaving(v[0]) - v[0], -v[1], -v[2]]))
-            course = "sticks"
-        elif tangential.name == "coulomb":
-            out = cone_impact(W, v, e, restitution, c.laws.friction)
-            P, course = out.impulse, out.course
-        else:
-            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law with a "
-                             "tangent plane (3-D) is not solved yet: use coulomb, stick or "
-                             "smooth")
+        if tangential.name == "stick" and c.laws.law != "newton":
+            raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
+        # the tangential law's one face, with two tangents (laws/law.py): stick, the
+        # circular cone (or Routh's courses on the line a slip keeps), Walton's courses
+        out = tangential.impulse(W, v, restitution)
+        P, course = out.impulse, "sticks" if tangential.name == "stick" else out.course
         after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
         M = sp.Matrix(self.M)
         before = (self.u_before.T * M * self.u_before)[0] / 2
