@@ -89,3 +89,51 @@ def test_bad_input_is_refused_in_one_line():
                                point=(0, 0, 0), restitution=1),), impacts=1)
     with pytest.raises(InputError, match="a positive time"):
         bounces(ball, (_floor(**ROUGH),), horizon=-1)
+
+
+def test_a_ball_lying_on_the_floor_at_the_start_slides_and_rolls_and_stays_there():
+    # set down on the floor moving at 1 without spin (R = 1/10, mu = 1/5, g = 981/100):
+    # it slides until t = 1 / (mu g (1 + 5/2)) and rolls at 5/7; it never falls through
+    g = R(981, 100)
+    ball = Body3.sphere(1, R(1, 10), (0, 0, R(1, 10)), (1, 0, 0), name="ball")
+    run = bounces(ball, (_floor(restitution=R(1, 2), tangential="coulomb",
+                                friction=R(1, 5)),), gravity=(0, 0, -g), horizon=2)
+    (rolls,) = run.events
+    assert rolls.kind == "rolls" and rolls.t == 1 / (R(1, 5) * g * R(7, 2))
+    assert run.velocity.T.tolist() == [[R(5, 7), 0, 0]] and run.position[2] == R(1, 10)
+    assert run.exact and run.stopped == "horizon"
+
+
+def test_a_rolling_ball_strikes_a_cushion_with_the_floor_resting_by_hand():
+    # rolling at 1 (R = 1/10, spin 10 about y) into a smooth cushion at x = 1, e = 1/2:
+    # it strikes at t = 9/10, the floor resting (the cushion's impulse is level, so the
+    # floor takes none and gives no friction): v_x = -1/2, the spin kept. Then the floor
+    # brings it to roll; its angular momentum about the touching point is kept, so it
+    # rolls at (5/7)(v + (2/5) R w x n) = (5/7)(-1/2 + 2/5) = -1/14. The impact with the
+    # floor resting is integrated (the driven rule): from it on, the run is good to its
+    # stated tolerance
+    g = R(981, 100)
+    ball = Body3.sphere(1, R(1, 10), (0, 0, R(1, 10)), (1, 0, 0), (0, 10, 0), name="ball")
+    floor = _floor(restitution=R(1, 2), tangential="coulomb", friction=R(1, 5))
+    cushion = Contact(normal=(-1, 0, 0), bodies=("rail", "ball"), point=(1, 0, 0),
+                      name="cushion", restitution=R(1, 2))
+    run = bounces(ball, (floor, cushion), gravity=(0, 0, -g), horizon=3)
+    kinds = [(e.kind, e.plane) for e in run.events]
+    assert kinds == [("rolls", "floor"), ("impact", "cushion"), ("rolls", "floor")]
+    hit = run.events[1]
+    assert hit.t == R(9, 10) and "floor" in hit.course and run.tolerance == 1e-10
+    assert max(abs(x - y) for x, y in zip(hit.velocity, (-R(1, 2), 0, 0))) < 1e-9
+    assert max(abs(x - y) for x, y in zip(hit.spin, (0, 10, 0))) < 1e-9
+    assert max(abs(x - y) for x, y in zip(run.velocity, (-R(1, 14), 0, 0))) < 1e-9
+    assert abs(run.position[2] - R(1, 10)) < 1e-35 and run.velocity[2] == 0 and not run.exact
+    # the same run asked to stop earlier has the same first events (horizon-free)
+    early = bounces(ball, (floor, cushion), gravity=(0, 0, -g), horizon=1)
+    assert [(e.t, e.kind) for e in early.events] == [(e.t, e.kind) for e in run.events[:2]]
+
+
+def test_a_ball_lying_on_a_slope_is_refused_in_one_line():
+    slope = Contact(normal=(0, R(3, 5), R(4, 5)), bodies=("floor", "ball"), point=(0, 0, 0),
+                    name="slope", restitution=0, tangential="coulomb", friction=R(1, 2))
+    ball = Body3.sphere(1, 1, (0, R(3, 5), R(4, 5)), (0, 0, 0), name="ball")
+    with pytest.raises(InputError, match="slope"):
+        bounces(ball, (slope,), gravity=(0, 0, -10), horizon=1)

@@ -173,7 +173,12 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
         ("x", "y", "z", *SPEEDS), (*run.position, *run.velocity, *run.spin), strict=True)}
     details = {"exact": run.exact, "impacts": sum(e.kind == "impact" for e in run.events),
                "gravity": [0.0, 0.0, -float(g)], "stopped": run.stopped}
-    if not run.exact:
+    if run.tolerance is not None:
+        details["tolerance"] = run.tolerance
+        details["notes"] = [f"a plane was struck with the sphere lying on another (the "
+                            f"driven rule, integrated to a relative tolerance of "
+                            f"{run.tolerance:g}): from there on the run is good to that"]
+    elif not run.exact:
         details["notes"] = ["a time of the run is irrational: from there on it is "
                             "followed in 40-digit floating point"]
     return Outcome(plan, {**final, "t": float(run.t)}, events, time.perf_counter() - start,
