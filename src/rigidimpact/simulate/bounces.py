@@ -32,8 +32,7 @@ back, and after three bounces comes back at 333/343 of its speed.
 
 >>> import sympy as sp
 >>> from rigidimpact.laws.contact import Contact
->>> from rigidimpact.laws.cone import TOLERANCE
-from rigidimpact.model.space import Body3
+>>> from rigidimpact.model.space import Body3
 >>> ball = Body3.sphere(1, 1, (0, 0, 1), (1, 0, -1), name="ball")
 >>> rough = dict(restitution=1, tangential="rough", tangential_restitution=1)
 >>> floor = Contact(normal=(0, 0, 1), bodies=("floor", "ball"), point=(0, 0, 0),
