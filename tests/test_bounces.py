@@ -122,9 +122,9 @@ def test_a_rolling_ball_strikes_a_cushion_with_the_floor_resting_by_hand():
     assert kinds == [("rolls", "floor"), ("impact", "cushion"), ("rolls", "floor")]
     hit = run.events[1]
     assert hit.t == R(9, 10) and "floor" in hit.course and run.tolerance == 1e-10
-    assert max(abs(x - y) for x, y in zip(hit.velocity, (-R(1, 2), 0, 0))) < 1e-9
-    assert max(abs(x - y) for x, y in zip(hit.spin, (0, 10, 0))) < 1e-9
-    assert max(abs(x - y) for x, y in zip(run.velocity, (-R(1, 14), 0, 0))) < 1e-9
+    assert max(abs(x - y) for x, y in zip(hit.velocity, (-R(1, 2), 0, 0), strict=True)) < 1e-9
+    assert max(abs(x - y) for x, y in zip(hit.spin, (0, 10, 0), strict=True)) < 1e-9
+    assert max(abs(x - y) for x, y in zip(run.velocity, (-R(1, 14), 0, 0), strict=True)) < 1e-9
     assert abs(run.position[2] - R(1, 10)) < 1e-35 and run.velocity[2] == 0 and not run.exact
     # the same run asked to stop earlier has the same first events (horizon-free)
     early = bounces(ball, (floor, cushion), gravity=(0, 0, -g), horizon=1)

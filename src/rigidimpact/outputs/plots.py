@@ -598,7 +598,7 @@ def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, fram
     ax.set_xlim(low[0] - pad, high[0] + pad)
     ax.set_ylim(low[1] - pad, high[1] + pad)
     ax.set_aspect("equal", adjustable="box")
-    h, v = axes
+    h, v = axes[0], axes[1]
     ax.set_xlabel(f"{h} - mean {h} of the points (m)" if follow else f"{h} (m)")
     ax.set_ylabel(f"{v} - mean {v} of the points (m)" if follow else f"{v} (m)")
     ax.grid(alpha=0.3)

@@ -55,8 +55,8 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.cone import TOLERANCE
+from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import Body3
 from rigidimpact.simulate.sphere import flight, sliding
 from rigidimpact.solve.space import SpaceCollision

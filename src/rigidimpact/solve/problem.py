@@ -741,16 +741,14 @@ class RowsProblem(ImpactProblem):
     def contact_rows(self, k: int) -> sp.Matrix:
         if self.second_tangent_rows is None:
             return super().contact_rows(k)
-        return sp.Matrix([self.normal_rows.row(k), self.tangent_rows.row(k),
-                          self.second_tangent_rows.row(k)])
+        return sp.Matrix([self.J.row(k), self.J_t.row(k), self.second_tangent_rows.row(k)])
 
     def frame_rows(self, k: int) -> Any:
         if self.second_tangent_rows is None:
             return super().frame_rows(k)
         import numpy as np
 
-        return np.array(sp.Matrix([self.normal_rows.row(k), self.tangent_rows.row(k),
-                                   self.second_tangent_rows.row(k)]).evalf(30), dtype=float)
+        return np.array(self.contact_rows(k).evalf(30), dtype=float)
 
     def __post_init__(self) -> None:
         pass  # the source checked its contacts and that one approaches
@@ -768,7 +766,7 @@ class RowsProblem(ImpactProblem):
     @cached_property
     def coordinates(self) -> tuple[Coordinate, ...]:
         return tuple(Coordinate("system", name, 1, x)
-                     for name, x in zip(self.speeds, self.velocities, strict=True))
+                     for name, x in zip(self.speeds, self.u_before, strict=True))
 
     @cached_property
     def u_before(self) -> sp.Matrix:

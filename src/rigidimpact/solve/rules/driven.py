@@ -31,7 +31,7 @@ e = 1/2: the floor takes nothing, the disc leaves the wall at 1.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 import sympy as sp
@@ -93,6 +93,9 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     courses = tuple(f"{problem.contacts[i].name}: {course}"
                     for i, course in zip(acting, out.courses, strict=True))
     rest = [problem.contacts[i].name for i in resting]
+    more: dict[str, Any] = {"tangent_impulses": {
+        c.name: (along[i], across[i]) for i, c in enumerate(problem.contacts)}} \
+        if problem.tangents == 2 else {}
     notes = (f"{striking.name} strikes" + (
         f" and {', '.join(rest)} rest{'s' if len(rest) == 1 else ''} (closed while "
         "pushing)" if rest else "") + f": the impulses are integrated in {striking.name}'s "
@@ -102,8 +105,5 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
         problem.named(normal), tuple(problem.contacts[i].name for i in acting
                                       if normal[i] > 0),
         tangential=problem.named(along), courses=courses, notes=notes,
-        method=f"integrated to {out.tolerance:g}",
-        **({"tangent_impulses": {c.name: (along[i], across[i]) for i, c in
-                                 enumerate(problem.contacts)}} if problem.tangents == 2
-           else {}))
+        method=f"integrated to {out.tolerance:g}", **more)
 

@@ -547,6 +547,7 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
                        for i in range(n)])
     sideways = {c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
                 for i, c in enumerate(problem.contacts)} if t == 2 else None
+    more: dict[str, Any] = {"tangent_impulses": sideways} if sideways else {}
     note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
             f"Newton method on Alart and Curnier's function ({(1 + t) * n} unknowns, "
             f"{steps} steps{', the circular cone' if t == 2 else ''}), residual "
@@ -558,8 +559,7 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
                             tangential=problem.named(along),
                             courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
                                           zip(problem.contacts, states, strict=True)),
-                            notes=(note,), method="newton",
-                            **({"tangent_impulses": sideways} if sideways else {}))
+                            notes=(note,), method="newton", **more)
 
 
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
