@@ -516,14 +516,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         if not args.json and not args.plot:
             return 0
     outcome = run(scene)
-    for warning in outcome.details.get("warnings", ()):
-        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
-    if args.plot:
-        _plot_outcome(scene, outcome, Path(args.plot))
-        print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
-    if args.animate:
-        _animate_outcome(scene, outcome, Path(args.animate))
-        print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
+    _said_and_drawn(args, scene, outcome, _plot_outcome, _animate_outcome)
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -570,14 +563,7 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
         if not args.json:
             return 0
     outcome = run_space(scene, values)
-    for warning in outcome.details.get("warnings", ()):
-        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
-    if args.plot:
-        _plot_space(scene, outcome, Path(args.plot))
-        print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
-    if args.animate:
-        _animate_space(scene, outcome, Path(args.animate))
-        print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
+    _said_and_drawn(args, scene, outcome, _plot_space, _animate_space)
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -595,6 +581,19 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
             f"{key} = {value:.10g}" for key, value in outcome.details["rigid"].items()))
     print(f"cost: {outcome.wall_s:.3g} s wall, {outcome.ode_steps} ODE steps")
     return 0
+
+
+def _said_and_drawn(args: argparse.Namespace, scene: Any, outcome: Any, plot: Any,
+                    animate: Any) -> None:
+    """A run's warnings on stderr, and its figure and animation where asked."""
+    for warning in outcome.details.get("warnings", ()):
+        print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if args.plot:
+        plot(scene, outcome, Path(args.plot))
+        print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
+    if args.animate:
+        animate(scene, outcome, Path(args.animate))
+        print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
 
 
 def _plot_space(scene: Any, outcome: Any, path: Path) -> None:

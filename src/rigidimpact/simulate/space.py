@@ -88,11 +88,8 @@ def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str
     if contact.tangential != "coulomb" or contact.law != "newton":
         raise InputError("simulate.effects", "tangential-compliance needs Newton's e and "
                          "a Coulomb contact (tangential = \"coulomb\", friction = mu)")
-    free = [b for b in scene.bodies if b.support != "fixed"]
-    if len(free) != 1 or free[0].radius is None:
-        raise InputError("simulate.effects", "tangential-compliance needs one sphere and "
-                         "one fixed body")
-    ball = free[0].at(values)
+    ball = _the_sphere(scene, values, "simulate.effects", "tangential-compliance needs one "
+                       "sphere and one fixed body")
 
     def number(x: Any) -> float:
         return float(sp.N(sp.sympify(x).xreplace(values), 17))
@@ -130,6 +127,14 @@ def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str
             zip(SPEEDS, (*v_after, *w_after), strict=True)}
 
 
+def _the_sphere(scene: SpaceScene, values: dict, where: str, why: str) -> Any:
+    """The scene's one free body, a sphere, at `values`; else `why` in one line."""
+    free = [b for b in scene.bodies if b.support != "fixed"]
+    if len(free) != 1 or free[0].radius is None:
+        raise InputError(where, why)
+    return free[0].at(values)
+
+
 def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outcome:
     """A sphere among the scene's fixed planes (every contact a plane it may strike),
     until a time or a count of impacts."""
@@ -137,11 +142,8 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
         raise InputError("simulate.effects", "past separation a 3-D scene takes "
                          "effects = [\"gravity\"] or none (tangential-compliance is one "
                          "bounce, until = \"separation\")")
-    free = [b for b in scene.bodies if b.support != "fixed"]
-    if len(free) != 1 or free[0].radius is None:
-        raise InputError("bodies", "a 3-D scene is followed past its impact for one free "
-                         "sphere among fixed planes so far")
-    ball = free[0].at(values)
+    ball = _the_sphere(scene, values, "bodies", "a 3-D scene is followed past its impact "
+                       "for one free sphere among fixed planes so far")
     # the contacts at the impact are planes too (struck again later), then [[planes]]
     planes = tuple(c.at(values) for c in (*scene.contacts, *scene.planes))
     for c in planes:
