@@ -137,3 +137,22 @@ def test_a_ball_lying_on_a_slope_is_refused_in_one_line():
     ball = Body3.sphere(1, 1, (0, R(3, 5), R(4, 5)), (0, 0, 0), name="ball")
     with pytest.raises(InputError, match="slope"):
         bounces(ball, (slope,), gravity=(0, 0, -10), horizon=1)
+
+
+def test_a_sliding_ball_strikes_a_cushion_at_an_irrational_time():
+    # set down moving at 1 without spin, the cushion 1/20 beyond its surface: it strikes
+    # while still sliding, at the earlier root of t - (mu g / 2) t^2 = 1/20 (irrational),
+    # so the run goes on in floating point; the centre never passes the cushion's reach
+    g = R(981, 100)
+    ball = Body3.sphere(1, R(1, 10), (0, 0, R(1, 10)), (1, 0, 0), name="ball")
+    floor = _floor(restitution=R(1, 2), tangential="coulomb", friction=R(1, 5))
+    cushion = Contact(normal=(-1, 0, 0), bodies=("rail", "ball"), point=(R(3, 20), 0, 0),
+                      name="cushion", restitution=R(1, 2))
+    run = bounces(ball, (floor, cushion), gravity=(0, 0, -g), horizon=1)
+    hit = next(e for e in run.events if e.kind == "impact")
+    mu_g = R(1, 5) * g
+    when = (1 - sp.sqrt(1 - 2 * mu_g / 20)) / mu_g
+    assert hit.plane == "cushion" and abs(hit.t - when) < 1e-30 and not run.exact
+    assert abs(hit.position[0] - R(1, 20)) < 1e-30 and hit.velocity[0] < 0
+    assert all(e.position[0] <= R(1, 20) + 1e-30 for e in run.events)
+    assert run.position[0] < R(1, 20)

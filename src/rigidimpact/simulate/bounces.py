@@ -215,6 +215,7 @@ def bounces(ball: Body3, planes: Sequence[Contact], gravity: Sequence[Any] = (0,
             if not ahead:  # rolling (or sliding on a smooth plane) for ever
                 return finish("rolling", t, c, v, w)
             step = min(ahead)
+            strikes = nearest is not None and step == nearest[0]  # decided before rounding
             if exact and not step.is_Rational:
                 exact = False
             if not exact:
@@ -228,7 +229,8 @@ def bounces(ball: Body3, planes: Sequence[Contact], gravity: Sequence[Any] = (0,
             t = t + step
             if end is not None and t >= end:
                 return finish("horizon", end, c, v, w)
-            if nearest is not None and step == nearest[0]:
+            if strikes:
+                assert nearest is not None
                 # a plane met while lying on this one: the struck plane strikes and
                 # this one rests (closed while it pushes): the driven rule
                 struck = nearest[1]
