@@ -522,7 +522,7 @@ class SpaceCollision:
         :func:`rigidimpact.laws.together.driven_impact`, in floating point. Where several
         approach: refused when the rule was asked for (`strict`), else the simultaneous
         rule."""
-        rows, u, approaching, resting = self._numbers()
+        _, _, approaching, resting = self._numbers()
         if len(approaching) > 1 and strict:
             raise InputError("impact.rule", "the driven rule takes one striking contact and "
                              f"others resting; here {len(approaching)} approach: use the "
@@ -667,7 +667,7 @@ class SpaceCollision:
             notes.append("more acting contacts than the freedoms they hold (their normal "
                          "rows are dependent): the impulses shown are one of many that fit "
                          "the rule")
-        checks = self._driven_checks(acting, rows, P, u, u_after, before, lost, 1e-12)
+        checks = self._driven_checks(acting, P, u, u_after, before, lost, 1e-12)
         scale = max(1.0, float(np.abs(v).max()))
         for i, c in enumerate(acting):
             leave = after[3 * i] - _leaving(c, v[3 * i])
@@ -686,10 +686,9 @@ class SpaceCollision:
                                            if pushing[i]),
                              P, u_after, courses, notes, (before, lost), checks)
 
-    def _driven_checks(self, acting: Sequence[Contact], rows: Mapping[str, Any],
-                       P: Mapping[str, Sequence[Any]], u: Any, u_after: Any,
-                       before: sp.Expr, lost: sp.Expr, tolerance: float | None,
-                       newton: bool = False) -> dict[str, Any]:
+    def _driven_checks(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
+                       u: Any, u_after: Any, before: sp.Expr, lost: sp.Expr,
+                       tolerance: float | None, newton: bool = False) -> dict[str, Any]:
         """Residuals of the laws from the bodies' momenta and the contacts' impulses,
         apart from the solver: momentum, no pull, the cone, each contact opening (or
         not penetrating), the joints, the energy, and with `newton` (the simultaneous
@@ -808,7 +807,7 @@ class _SpaceProblem(RowsProblem):
         before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
         lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
         newton = rule == "simultaneous" and not self.acts_by_impulse()
-        checks = space._driven_checks(list(self.contacts), {}, P, space.u_before, u_after,
+        checks = space._driven_checks(list(self.contacts), P, space.u_before, u_after,
                                       before, lost, None if exact else 1e-10, newton=newton)
         courses = tuple(more.get("courses") or (
             f"{c.name}: {'acts' if c.name in acted else 'released'}" for c in self.contacts))
