@@ -568,8 +568,10 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
         _print_json(outcome.as_json())
         return 0
     for event in outcome.events:
-        print(f"t = {event['t'] + 0.0:.12g}: {event['kind']}"
-              + (f" on {event['plane']}" if "plane" in event else "")
+        print(f"t = {event['t'] + 0.0:.12g}: "
+              + (f"{event['ball']} " if "ball" in event else "") + event["kind"]
+              + (f" on {event['with']} ({event['plane']})" if "with" in event else
+                 f" on {event['plane']}" if "plane" in event else "")
               + (f" ({event['course']})" if event.get("course") else "")
               + (f": {event['why']}" if "why" in event else ""))
     for note in outcome.details.get("notes", ()):
@@ -607,14 +609,17 @@ def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
     from rigidimpact.outputs.plots import space_views
 
     track = outcome.trajectory
-    _, points = track.sampled()
+    _, points = track.every()
     marks = [(e.kind if e.kind == "impact" else "starts to roll",
               np.array([float(x) for x in e.position])) for e in track.run.events]
+    names = {b.name for b in track.balls}
     planes = [(c.name, np.array([float(x) for x in c.point]),
                np.array([float(x) for x in c.normal]))
               for c in (*scene.contacts, *scene.planes)
-              if all(sp.sympify(x).is_number for x in (*c.point, *c.normal))]
-    figure = space_views(points, scene.title, marks, f"{track.ball.name}'s centre", planes)
+              if not {c.first, c.second} <= names
+              and all(sp.sympify(x).is_number for x in (*c.point, *c.normal))]
+    figure = space_views({f"{name}'s centre": path for name, path in points.items()},
+                         scene.title, marks, planes=planes)
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
     finally:
@@ -627,11 +632,10 @@ def _animate_space(scene: Any, outcome: Any, path: Path) -> None:
     _files_only()
     from rigidimpact.outputs.plots import write_gif
 
-    times, points = outcome.trajectory.sampled()
-    name = outcome.trajectory.ball.name
+    times, points = outcome.trajectory.every()
     write_file(path, lambda temporary: write_gif(
-        times, {name: points[:, [0, 2]]}, f"{scene.title} (from the side)", temporary,
-        fps=20, axes="xz"), "--animate")
+        times, {name: path[:, [0, 2]] for name, path in points.items()},
+        f"{scene.title} (from the side)", temporary, fps=20, axes="xz"), "--animate")
 
 
 def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),

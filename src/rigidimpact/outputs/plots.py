@@ -9,7 +9,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 # the backend is the caller's: matplotlib picks Agg itself where there is no screen, a
@@ -458,12 +458,13 @@ def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
     return fig
 
 
-def space_views(points: np.ndarray, title: str, marks: Sequence[tuple[str, np.ndarray]] = (),
-                name: str = "centre",
+def space_views(points: np.ndarray | Mapping[str, np.ndarray], title: str,
+                marks: Sequence[tuple[str, np.ndarray]] = (), name: str = "centre",
                 planes: Sequence[tuple[str, np.ndarray, np.ndarray]] = ()) -> Figure:
-    """A 3-D path seen from above (x, y) and from the side (x, z), with marked points
-    (each impact, where the sphere starts to roll) on both, and each plane (name,
-    point, normal) drawn as a line in the view it is seen edge-on in.
+    """3-D paths (one, labelled `name`, or several by their labels) seen from above
+    (x, y) and from the side (x, z), with marked points (each impact, where a sphere
+    starts to roll) on both, and each plane (name, point, normal) drawn as a line in the
+    view it is seen edge-on in.
 
     Examples
     --------
@@ -472,10 +473,13 @@ def space_views(points: np.ndarray, title: str, marks: Sequence[tuple[str, np.nd
     >>> [ax.get_xlabel() + " " + ax.get_ylabel() for ax in fig.axes]
     ['x (m) y (m)', 'x (m) z (m)']
     """
+    paths = dict(points) if isinstance(points, Mapping) else {name: points}
     fig, (top, side) = plt.subplots(1, 2, figsize=FIGSIZE, dpi=DPI)
     for ax, (i, j), view in ((top, (0, 1), "from above"), (side, (0, 2), "from the side")):
-        ax.plot(points[:, i], points[:, j], "-", lw=1.8, label=name)
-        ax.plot(points[:1, i], points[:1, j], "k.", ms=6, label="start (t = 0)")
+        for k, (label, path) in enumerate(paths.items()):
+            ax.plot(path[:, i], path[:, j], "-", lw=1.8, label=label)
+            ax.plot(path[:1, i], path[:1, j], "k.", ms=6,
+                    label="start (t = 0)" if k == 0 else None)
         for k, (kind, where) in enumerate(marks):
             first = all(m[0] != kind for m in marks[:k])
             ax.plot([where[i]], [where[j]], "x" if kind == "impact" else "s", ms=7,

@@ -11,7 +11,10 @@ bodies of shape ``sphere`` (``mass``, ``radius``, optional central ``inertia``),
 may set ``tolerance`` to follow the contact numerically even where a closed form exists.
 ``[[planes]]`` (read by ``simulate`` past separation) are fixed planes a sphere may
 strike later, each written as a contact: its ``point`` on the plane, its ``normal``, its
-laws and the two ``bodies`` (a fixed one and the sphere).
+laws and the two ``bodies`` (a fixed one and a sphere); every sphere of the run may strike
+every plane. ``[[pairs]]`` give the laws by which two spheres meet later (a cue ball and
+an object ball): a ``name``, the two spheres as ``bodies`` and the laws, with no point
+or normal (both are found where they meet).
 
 Text from the file is read by the project's bounded expression parser, never by eval.
 """
@@ -82,6 +85,7 @@ class SpaceScene:
     random: RandomInputs | None = None  # [random]: symbols with a distribution
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)  # [impact] stiffness
     planes: tuple[Contact, ...] = ()  # [[planes]]: fixed planes struck later (simulate)
+    pairs: tuple[Contact, ...] = ()  # [[pairs]]: two spheres' laws when they meet later
 
     @property
     def roles(self) -> tuple:
@@ -131,6 +135,8 @@ class SpaceScene:
             for j in self.joints)
         setup += tuple(f"plane {p.name} (struck later, by simulate): "
                        + _contact_words(p).split(": ", 1)[1] for p in self.planes)
+        setup += tuple(f"pair {p.name}: {p.first} and {p.second} when they meet (by "
+                       f"simulate), {_law_words(p)}" for p in self.pairs)
         setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
         equations = _equations(collision) if printed else ()
         return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
@@ -174,13 +180,18 @@ def _described(b: Body3) -> str:
             f"{list(b.position)}, velocity {list(b.velocity)}, spin {list(b.spin)}")
 
 
-def _contact_words(c: Contact) -> str:
+def _law_words(c: Contact) -> str:
+    """A contact's laws in words: restitution, then the tangential law."""
     law = {"smooth": "smooth", "stick": "sticking (no slip after)",
            "coulomb": f"Coulomb friction, circular cone, mu = {c.friction}",
            "rough": f"Walton's rough law, beta = {c.tangential_restitution}, "
                     f"mu = {c.friction}"}[c.tangential]
+    return f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {c.restitution}, {law}"
+
+
+def _contact_words(c: Contact) -> str:
     return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
-            f"{list(c.normal)}, {RESTITUTION_WORDS.get(c.law, c.law)} e = {c.restitution}, {law}; "
+            f"{list(c.normal)}, {_law_words(c)}; "
             "tangents "
             "t1 (the x axis across n, or the y axis's), t2 = n x t1")
 
@@ -414,6 +425,40 @@ def _read_planes(data: Mapping[str, Any], symbols: Mapping[str, sp.Symbol],
     return tuple(planes)
 
 
+def _read_pairs(data: Mapping[str, Any], symbols: Mapping[str, sp.Symbol],
+                bodies: Sequence[Body3], taken: Sequence[Contact]) -> tuple[Contact, ...]:
+    """``[[pairs]]``: the laws of two spheres that meet later, each read as a contact
+    whose point and normal are found where the two meet."""
+    entries = data.get("pairs", [])
+    if not isinstance(entries, list) or not all(isinstance(t, dict) for t in entries):
+        raise InputError("pairs", "[[pairs]] must be tables, one a pair of spheres")
+    spheres = {b.name for b in bodies if b.radius is not None and b.support != "fixed"}
+    seen = {c.name for c in taken}
+    met: set[frozenset] = set()
+    pairs = []
+    for k, t in enumerate(entries):
+        where = f"pairs[{k}]"
+        if "name" not in t:
+            raise InputError(f"{where}.name", "required: a pair's name")
+        for key in ("point", "normal"):
+            if key in t:
+                raise InputError(f"{where}.{key}", "a pair's point and normal are found "
+                                 "where its spheres meet: leave it out")
+        pair = _read_contact({**t, "normal": ["1", "0", "0"]}, symbols, where, named=True)
+        if pair.name in seen:
+            raise InputError(f"{where}.name", f"{pair.name!r} names another contact, plane "
+                             "or pair")
+        seen.add(pair.name)
+        if not set(pair.bodies or ()) <= spheres or pair.first == pair.second:
+            raise InputError(f"{where}.bodies", "two of the scene's free spheres")
+        if frozenset(pair.bodies or ()) in met:
+            raise InputError(f"{where}.bodies", f"{pair.first} and {pair.second} have "
+                             "laws in another pair")
+        met.add(frozenset(pair.bodies or ()))
+        pairs.append(pair)
+    return tuple(pairs)
+
+
 def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
     """Read a 3-D scene from TOML text (see the module's text)."""
     return space_scene_from_data(read_toml(text), name)
@@ -422,7 +467,7 @@ def parse_space_scene(text: str, name: str = "scene") -> SpaceScene:
 def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceScene:
     """A 3-D scene from its TOML, already read."""
     allowed = {"title", "symbols", "values", "bodies", "contact", "contacts", "impact",
-               "simulate", "joints", "random", "planes"}
+               "simulate", "joints", "random", "planes", "pairs"}
     for key in data:
         if key not in allowed:
             raise InputError(key, f"unknown section in a 3-D scene; expected "
@@ -467,9 +512,10 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
         tolerance = float(value)
     planes = _read_planes(data, symbols, bodies, contacts)
+    pairs = _read_pairs(data, symbols, bodies, contacts + planes)
     used = frozenset().union(*(x.free_symbols for b in bodies for x in (
         b.mass, *b.inertia, *b.position, *b.velocity, *b.spin)
-        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts + planes
+        if isinstance(x, sp.Basic)), *(sp.sympify(x).free_symbols for c in contacts + planes + pairs
                                        for x in (c.restitution, c.friction or 0,
                                                  c.tangential_restitution or 0,
                                                  *c.point, *c.normal)))
@@ -478,7 +524,8 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
                                  for x in (*j.point, *(j.axis if j.axis is not None else ()))))
     compliance = _compliance(impact, len(contacts))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
-                       simulate, facets, rule, order, joints, randoms, compliance, planes)
+                       simulate, facets, rule, order, joints, randoms, compliance, planes,
+                       pairs)
     # its bodies, contacts, joints and rule agree
     SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints, compliance)
     if randoms is not None:

@@ -32,7 +32,7 @@ back, and after three bounces comes back at 333/343 of its speed.
 
 >>> import sympy as sp
 >>> from rigidimpact.laws.contact import Contact
->>> from rigidimpact.model.space import Body3
+>>> from rigidimpact.model.space import SPEEDS, Body3
 >>> ball = Body3.sphere(1, 1, (0, 0, 1), (1, 0, -1), name="ball")
 >>> rough = dict(restitution=1, tangential="rough", tangential_restitution=1)
 >>> floor = Contact(normal=(0, 0, 1), bodies=("floor", "ball"), point=(0, 0, 0),
@@ -49,7 +49,7 @@ Matrix([[-333/343, 0, 1]])
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import sympy as sp
@@ -57,11 +57,11 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import TOLERANCE
 from rigidimpact.laws.contact import Contact
-from rigidimpact.model.space import Body3
+from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.simulate.sphere import flight, sliding
 from rigidimpact.solve.space import SpaceCollision
 
-__all__ = ["Event", "Bounces", "bounces", "MAX_IMPACTS", "DIGITS"]
+__all__ = ["Event", "Bounces", "bounces", "spheres", "MAX_IMPACTS", "DIGITS"]
 
 MAX_IMPACTS = 1000  # a budget of impacts: past it a run is refused, never cut short
 # a bounce off a plane that gravity presses the sphere into, rising at less than this
@@ -83,6 +83,8 @@ class Event:
     velocity: sp.Matrix
     spin: sp.Matrix
     course: str = ""
+    ball: str = ""  # the sphere (the first of a pair) whose state this is
+    other: str = ""  # where two spheres meet: the second
 
 
 @dataclass(frozen=True)
@@ -100,20 +102,60 @@ class Bounces:
     stopped: str
     exact: bool
     tolerance: float | None = None  # where an impact was integrated: its stated accuracy
+    # every sphere's (position, velocity, spin) where the run stopped
+    states: dict[str, tuple[sp.Matrix, sp.Matrix, sp.Matrix]] = field(default_factory=dict)
+    # (t, each sphere's (position, velocity)) at the start, after each event and at the end
+    snapshots: tuple = ()
 
 
-def _planes(ball: Body3, planes: Sequence[Contact]) -> list[tuple[Contact, sp.Matrix,
-                                                                     sp.Matrix]]:
-    """Each contact with its plane's point and unit normal toward the sphere's side."""
+def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
+    """Each contact with its plane's point, its unit normal toward the spheres' side (the
+    side of the sphere it names: every sphere of the run may strike every plane) and
+    the spheres' names."""
+    names = {b.name for b in balls}
     found = []
     for c in planes:
         if not isinstance(c, Contact) or not c.spatial or c.bodies is None:
             raise InputError("planes", "each plane is a 3-D contact naming its two bodies")
-        if ball.name not in c.bodies:
-            raise InputError(f"{c.name}.bodies", f"must name the sphere {ball.name!r}")
+        if not names & set(c.bodies):
+            raise InputError(f"{c.name}.bodies", "must name the sphere of the run ("
+                             + ", ".join(sorted(names)) + ")")
+        if set(c.bodies) <= names:
+            raise InputError(f"{c.name}.bodies", "a plane belongs to a fixed body: two "
+                             "spheres meet by a pair's laws (pairs)")
         n = sp.Matrix(c.normal)
         n = n / sp.sqrt(n.dot(n))
-        found.append((c, sp.Matrix(c.point), n if c.second == ball.name else -n))
+        n = n if c.second in names else -n
+        p = sp.Matrix(c.point)
+        same = next((f for f in found if sp.simplify((f[2] - n).norm()) == 0
+                     and sp.simplify(n.dot(p - f[1])) == 0), None)
+        if same is not None:  # one plane written twice (the cloth under each ball)
+            if _laws(same[0]) != _laws(c):
+                raise InputError(f"{c.name}.bodies", f"is the plane of {same[0].name} with "
+                                 "other laws: a plane has one set of laws")
+            continue
+        found.append((c, p, n, frozenset(names)))
+    return found
+
+
+def _laws(c: Contact) -> tuple:
+    return (c.restitution, c.law, c.tangential, c.friction, c.tangential_restitution)
+
+
+def _pairs(balls: Sequence[Body3], pairs: Sequence[Contact]) -> dict[frozenset, Contact]:
+    """The laws of each two spheres that may meet, by the pair of their names."""
+    names = {b.name for b in balls}
+    found: dict[frozenset, Contact] = {}
+    for c in pairs:
+        if not isinstance(c, Contact) or not c.spatial or c.bodies is None or \
+                not set(c.bodies) <= names or c.first == c.second:
+            raise InputError(f"{getattr(c, 'name', 'pairs')}.bodies", "a pair names two "
+                             "spheres of the run")
+        key = frozenset(c.bodies)
+        if key in found:
+            raise InputError(f"{c.name}.bodies", f"{c.first} and {c.second} have laws "
+                             f"twice ({found[key].name})")
+        found[key] = c
     return found
 
 
@@ -139,13 +181,81 @@ def _first_root(a: sp.Expr, b: sp.Expr, c: sp.Expr, after: sp.Expr) -> sp.Expr |
     return best
 
 
+def _meeting(d: sp.Matrix, u: sp.Matrix, acc: sp.Matrix, reach: sp.Expr,
+             exact: bool) -> sp.Expr | None:
+    """The earliest time t > 0 at which two centres, `d` apart (second less first), the
+    second moving at `u` and accelerating at `acc` relative to the first, come within
+    `reach` of each other: the first root of odd multiplicity (a crossing, not a graze)
+    of the quartic ``|d + u t + acc t^2/2|^2 - reach^2``. Exact (rational or an
+    algebraic root) where the data are rational; else in floating point, a root where
+    the distance is closing."""
+    t = sp.Dummy("t")
+    gap = (d + u * t + acc * t ** 2 / 2)
+    quartic = sp.Poly(sp.expand(gap.dot(gap) - reach ** 2), t)
+    if quartic.degree() < 1:
+        return None
+    if exact and all(x.is_Rational for x in quartic.all_coeffs()):
+        roots = [r for factor, times in quartic.sqf_list()[1] if times % 2
+                 for r in factor.real_roots()]
+        ahead = [r for r in roots if r > 0]
+        return min(ahead) if ahead else None
+    quartic = sp.Poly([sp.N(x, DIGITS + 10) for x in quartic.all_coeffs()], t)
+    slope = quartic.diff(t)
+    best = None
+    for r in quartic.nroots(n=DIGITS, maxsteps=200):
+        if abs(sp.im(r)) > sp.Float(10) ** (5 - DIGITS) * (1 + abs(r)):
+            continue
+        r = sp.re(r)
+        if r > 0 and slope.eval(r) < 0 and (best is None or r < best):
+            best = r
+    return best
+
+
+class _Sphere:
+    """One sphere's state in a run: centre, velocity, spin, the plane it lies on (or
+    None while it flies), its fastest landing so far, and whether its rolling was said."""
+
+    def __init__(self, body: Body3) -> None:
+        self.body = body
+        self.name = body.name
+        self.R = body.radius
+        self.k = body.inertia[0, 0] / (body.mass * self.R ** 2)
+        self.c, self.v, self.w = (sp.Matrix(x) for x in (body.position, body.velocity,
+                                                          body.spin))
+        self.lying: tuple | None = None
+        self.fastest = sp.Integer(0)
+        self.said = False  # its rolling on the plane it lies on has been said
+
+    def moved(self) -> Body3:
+        return replace(self.body, position=sp.ImmutableMatrix(self.c),
+                       velocity=sp.ImmutableMatrix(self.v), spin=sp.ImmutableMatrix(self.w))
+
+
 def bounces(ball: Body3, planes: Sequence[Contact], gravity: Sequence[Any] = (0, 0, -9.81),
             impacts: int | None = None, horizon: Any = None) -> Bounces:
     """Follow `ball` (a :class:`~rigidimpact.model.space.Body3` sphere) among the fixed
     `planes` under `gravity` until `impacts` impacts or time `horizon` (see the module's
     text); at least one of the two must be given."""
-    if ball.radius is None or ball.support == "fixed":
-        raise InputError("bodies", "a bounce run follows one free sphere")
+    return spheres((ball,), planes, (), gravity, impacts, horizon)
+
+
+def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[Contact] = (),
+            gravity: Sequence[Any] = (0, 0, -9.81), impacts: int | None = None,
+            horizon: Any = None, rolling_resistance: Any = 0,
+            pivot_friction: Any = 0) -> Bounces:
+    """Follow the free spheres `balls` among the fixed `planes` under `gravity` until
+    `impacts` impacts or time `horizon`, two spheres meeting by their pair's laws
+    (`pairs`: contacts naming the two, whose point and normal are found where they
+    meet); two spheres whose paths cross with no laws given are refused in one line.
+    A sphere lying on a plane is slowed while it rolls by `rolling_resistance` (a
+    force mu_r m g against its velocity, rolling kept, until it stops) and its spin
+    about the normal is worn by `pivot_friction` (a moment mu_p m g R, until it ends),
+    where they are given. The answer's `position`, `velocity` and `spin` are the first
+    sphere's; `states` has every sphere's."""
+    if not balls or any(b.radius is None or b.support == "fixed" for b in balls):
+        raise InputError("bodies", "a bounce run follows free spheres")
+    if len({b.name for b in balls}) != len(balls):
+        raise InputError("bodies", "two spheres share a name")
     if impacts is None and horizon is None:
         raise InputError("simulate.until", "give a number of impacts or a time")
     if impacts is not None and (isinstance(impacts, bool) or not isinstance(impacts, int)
@@ -157,212 +267,343 @@ def bounces(ball: Body3, planes: Sequence[Contact], gravity: Sequence[Any] = (0,
     a = sp.Matrix([sp.sympify(x) for x in gravity])
     if a.shape != (3, 1) or not all(x.is_number for x in a):
         raise InputError("simulate.gravity", "three numbers [gx, gy, gz]")
-    flats = _planes(ball, planes)
-    R = ball.radius
-    k = ball.inertia[0, 0] / (ball.mass * R ** 2)
+    flats = _planes(balls, planes)
+    laws = _pairs(balls, pairs)
+    resistance, pivot = (sp.nsimplify(x) if isinstance(x, float) else sp.sympify(x)
+                         for x in (rolling_resistance, pivot_friction))
+    for name, x in (("simulate.rolling_resistance", resistance),
+                    ("simulate.pivot_friction", pivot)):
+        if not (x.is_number and x >= 0):
+            raise InputError(name, f"a number at least 0, not {x}")
+    ones = [_Sphere(b) for b in balls]
+    couples = [(p, q) for i, p in enumerate(ones) for q in ones[i + 1:]]
+    for p, q in couples:
+        d = q.c - p.c
+        if d.dot(d) < (p.R + q.R) ** 2:
+            raise InputError("bodies", f"{p.name} and {q.name} overlap at the start")
     t = sp.Integer(0)
-    c, v, w = (sp.Matrix(x) for x in (ball.position, ball.velocity, ball.spin))
-    exact = all(x.is_Rational for x in (*c, *v, *w, *a, R))
+    exact = all(x.is_Rational for s in ones for x in (*s.c, *s.v, *s.w, s.R)) and \
+        all(x.is_Rational for x in a)
     events: list[Event] = []
+    snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, sp.Matrix]]]] = []
     count = 0
-    fastest = sp.Integer(0)
     # a sphere that starts lying on a plane gravity presses it into slides or rolls there
-    lying = next((f for f in flats if _gap(f, c, R) == 0 and f[2].dot(v) == 0
-                  and f[2].dot(a) < 0), None)
-
+    for s in ones:
+        s.lying = next((f for f in flats if _gap(f, s.c, s.R) == 0 and f[2].dot(s.v) == 0
+                        and f[2].dot(a) < 0), None)
     tolerance: list[float] = []  # the accuracy of each integrated impact
+    due: tuple | None = None  # the impact the last step was taken to, whatever its rounding
 
-    def finish(stopped: str, when: sp.Expr, c: sp.Matrix, v: sp.Matrix,
-               w: sp.Matrix) -> Bounces:
-        return Bounces(tuple(events), when, c, v, w, stopped, exact,
-                       max(tolerance) if tolerance else None)
+    def snap() -> None:
+        snapshots.append((t, {s.name: (s.c, s.v) for s in ones}))
 
-    def settled(v: sp.Matrix, w: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
+    def finish(stopped: str, when: sp.Expr) -> Bounces:
+        first = ones[0]
+        return Bounces(tuple(events), when, first.c, first.v, first.w, stopped, exact,
+                       max(tolerance) if tolerance else None,
+                       {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots))
+
+    def floats(*xs: sp.Matrix) -> tuple[sp.Matrix, ...]:
+        return tuple(x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in xs)
+
+    def settled(s: _Sphere) -> None:
         """The state in the run's arithmetic: exact, or 40-digit floats from an impact
         given in floats on."""
         nonlocal exact
-        if exact and any(x.has(sp.Float) for x in (*v, *w)):
+        if exact and any(x.has(sp.Float) for x in (*s.v, *s.w)):
             exact = False
         if not exact:
-            v, w = (x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in (v, w))
-        return v, w
+            s.v, s.w = floats(s.v, s.w)
 
     def budget() -> None:
         if count >= MAX_IMPACTS:
             raise InputError("simulate.until", f"more than {MAX_IMPACTS} impacts before "
                              "the run ends: give a number of impacts or an earlier time")
 
+    def struck(who: Sequence[_Sphere], contacts: Sequence[Contact],
+               rule: str | None) -> str:
+        """Each of `who` after the impact at `contacts` (the first strikes; the planes
+        the spheres lie on rest, by the driven rule): its course."""
+        after, course, accuracy = _impact([s.moved() for s in who], contacts, rule)
+        tolerance.extend([accuracy] if accuracy else [])
+        for s in who:
+            s.v, s.w = after[s.name]
+            settled(s)
+            s.said = False
+        return course
+
+    def leave_or_lie(s: _Sphere) -> None:
+        """After an impact struck while lying, the sphere lies on or leaves its plane."""
+        if s.lying is not None:
+            n = s.lying[2]
+            if n.dot(s.v) > 0:
+                s.lying = None
+            else:
+                s.v = s.v - n.dot(s.v) * n
+
+    snap()
     while True:
-        if lying is not None:  # on a plane: sliding until it rolls, then rolling
-            cn, p, n = lying
-            phase = _on_plane(cn, n, v, w, a, R, k, max(tolerance) if tolerance else None)
-            if getattr(phase, "rolling", phase.t == 0) and (
-                    not events or events[-1].kind != "rolls"):
-                # it comes to lie already rolling: said once, as a rolling that starts
-                events.append(Event(t, "rolls", cn.name, c, v, w, "rolls"))
-            rolls = phase.t if phase.t > 0 else None
-            dv = phase.rates[0]
-            nearest = None
+        # an impact now: the one that closes fastest, if several
+        now: list[tuple[sp.Expr, tuple]] = []
+        for s in ones:
             for f in flats:
-                if f[0] is cn:
+                if f is s.lying or f[2].dot(s.v) >= 0:
                     continue
-                when = _first_root(f[2].dot(dv) / 2, f[2].dot(v), _gap(f, c, R), sp.Integer(0))
-                if when is not None and (rolls is None or when < rolls) and (
-                        nearest is None or when < nearest[0]):
-                    nearest = (when, f)
-            ahead = [x for x in (nearest[0] if nearest else None, rolls,
-                                 None if end is None else end - t) if x is not None]
-            if not ahead:  # rolling (or sliding on a smooth plane) for ever
-                return finish("rolling", t, c, v, w)
-            step = min(ahead)
-            strikes = nearest is not None and step == nearest[0]  # decided before rounding
-            if exact and not step.is_Rational:
-                exact = False
-            if not exact:
-                step = sp.N(step, DIGITS)
-            moved, v, w = phase.at(step)
-            c = c + moved
-            if not exact:
-                c, v, w = (x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in (c, v, w))
-            c = c - (_gap(lying, c, R)) * n  # on the plane, its rounding left aside
-            v = v - n.dot(v) * n
-            t = t + step
-            if end is not None and t >= end:
-                return finish("horizon", end, c, v, w)
-            if strikes:
-                assert nearest is not None
-                # a plane met while lying on this one: the struck plane strikes and
-                # this one rests (closed while it pushes): the driven rule
-                struck = nearest[1]
-                budget()
-                v, w, course, accuracy = _impact(ball, (struck, lying), c, v, w, R,
-                                                 rule="driven")
-                tolerance.extend([accuracy] if accuracy else [])
-                v, w = settled(v, w)
-                count += 1
-                events.append(Event(t, "impact", struck[0].name, c, v, w, course))
-                if n.dot(v) > 0:  # it leaves the plane it lay on
-                    lying = None
-                else:
-                    v = v - n.dot(v) * n
-                if impacts is not None and count >= impacts:
-                    return finish("impacts", t, c, v, w)
-                continue
-            events.append(Event(t, "rolls", cn.name, c, v, w, "rolls"))
-            continue
-        touching = [f for f in flats if sp.simplify(_gap(f, c, R)) == 0 and f[2].dot(v) < 0]
-        if touching:  # an impact now (the contact that closes fastest, if several)
-            f = min(touching, key=lambda f: f[2].dot(v))
-            cn, p, n = f
+                if due == ("plane", s.name, f[0].name) or sp.simplify(_gap(f, s.c, s.R)) == 0:
+                    now.append((f[2].dot(s.v), ("plane", s, f)))
+        for p, q in couples:
+            d = q.c - p.c
+            closing = d.dot(q.v - p.v) / (p.R + q.R)
+            if closing < 0 and (due == ("pair", p.name, q.name)
+                                or sp.simplify(d.dot(d) - (p.R + q.R) ** 2) == 0):
+                now.append((closing, ("pair", p, q)))
+        due = None
+        if now:
             budget()
-            fastest = max(fastest, -n.dot(v))
-            v, w, course, accuracy = _impact(ball, (f,), c, v, w, R)
-            tolerance.extend([accuracy] if accuracy else [])
-            v, w = settled(v, w)
-            count += 1
-            if n.dot(a) < 0 and 0 < n.dot(v) <= SETTLE * fastest:
-                v = v - n.dot(v) * n
-                course += (f"; the rebound is below {float(SETTLE):g} of the fastest "
-                           "landing: the sphere comes to lie on the plane")
-            events.append(Event(t, "impact", cn.name, c, v, w, course))
-            if n.dot(v) == 0 and n.dot(a) < 0:  # it lies on the plane, pressed into it
-                lying = f
+            _, what = min(now, key=lambda x: x[0])
+            if what[0] == "plane":
+                _, s, f = what
+                if s.lying is not None:  # struck while lying: the driven rule
+                    course = struck((s,), (_at_plane(f, s), _at_plane(s.lying, s)),
+                                    "driven")
+                    leave_or_lie(s)
+                else:
+                    n = f[2]
+                    s.fastest = max(s.fastest, -n.dot(s.v))
+                    course = struck((s,), (_at_plane(f, s),), None)
+                    # a rebound within rounding, or within 1000 times an integrated
+                    # impact's tolerance, of none is none
+                    settle = max(SETTLE, sp.Float(1000 * max(tolerance))) if tolerance \
+                        else SETTLE
+                    if n.dot(a) < 0 and n.dot(s.v) < 0 and \
+                            -n.dot(s.v) <= settle * s.fastest:  # rounding's closing
+                        s.v = s.v - n.dot(s.v) * n
+                    if n.dot(a) < 0 and 0 < n.dot(s.v) <= settle * s.fastest:
+                        s.v = s.v - n.dot(s.v) * n
+                        course += (f"; the rebound is below {float(settle):g} of the "
+                                   "fastest landing: the sphere comes to lie on the plane")
+                    if n.dot(s.v) == 0 and n.dot(a) < 0:  # it lies there, pressed in
+                        s.lying = f
+                count += 1
+                events.append(Event(t, "impact", f[0].name, s.c, s.v, s.w, course, s.name))
+            else:
+                _, p, q = what
+                law = laws.get(frozenset((p.name, q.name)))
+                if law is None:
+                    raise InputError("pairs", f"{p.name} and {q.name} meet at t = "
+                                     f"{float(t):.6g}: give the laws of their meeting (a "
+                                     "[[pairs]] entry naming the two)")
+                one, two = (p, q) if law.first == p.name else (q, p)
+                n = (two.c - one.c) / (one.R + two.R)
+                meeting = replace(law, normal=sp.ImmutableMatrix(n),
+                                  point=sp.ImmutableMatrix(one.c + one.R * n))
+                resting = tuple(_at_plane(s.lying, s, own=True) for s in (one, two)
+                                if s.lying)
+                course = struck((one, two), (meeting, *resting),
+                                "driven" if resting else None)
+                leave_or_lie(one)
+                leave_or_lie(two)
+                count += 1
+                events.append(Event(t, "impact", law.name, one.c, one.v, one.w, course,
+                                    one.name, two.name))
+            snap()
             if impacts is not None and count >= impacts:
-                return finish("impacts", t, c, v, w)
+                return finish("impacts", t)
             continue
-        # the next plane the centre comes within R of, approaching it
-        nearest = None
-        for f in flats:
-            when = _first_root(f[2].dot(a) / 2, f[2].dot(v), _gap(f, c, R), sp.Integer(0))
-            if when is not None and (nearest is None or when < nearest[0]):
-                nearest = (when, f)
-        if nearest is None or (end is not None and t + nearest[0] >= end):
-            if end is None:
-                return finish("flying", t, c, v, w)
-            c, v, w = flight(c, v, w, a, end - t)
-            return finish("horizon", end, c, v, w)
-        step = nearest[0]
+        # each sphere's phase: flight, or lying (sliding until it rolls, then rolling)
+        phases: dict[str, Any] = {}
+        ahead: list[tuple[sp.Expr, tuple]] = []
+        for s in ones:
+            if s.lying is None:
+                continue
+            phase = _on_plane(s.lying[0], s.lying[2], s.v, s.w, a, s.R, s.k,
+                              max(tolerance) if tolerance else None, resistance, pivot)
+            phases[s.name] = phase
+            if phase.rolling and not s.said:
+                # it comes to lie already rolling: said once, as a rolling that starts
+                # (a sphere at rest rests, said of nothing)
+                if s.v != sp.zeros(3, 1):
+                    events.append(Event(t, "rolls", s.lying[0].name, s.c, s.v, s.w,
+                                        "rolls", s.name))
+                s.said = True
+            if phase.t > 0:
+                ahead.append((phase.t, ("changes", s, phase.ends)))
+
+        def rate(s: _Sphere) -> sp.Matrix:
+            return phases[s.name].rates[0] if s.name in phases else a
+
+        for s in ones:
+            for f in flats:
+                if f is s.lying:
+                    continue
+                when = _first_root(f[2].dot(rate(s)) / 2, f[2].dot(s.v), _gap(f, s.c, s.R),
+                                   sp.Integer(0))
+                if when is not None:
+                    ahead.append((when, ("plane", s, f)))
+        for p, q in couples:
+            when = _meeting(q.c - p.c, q.v - p.v, rate(q) - rate(p), p.R + q.R, exact)
+            if when is not None:
+                ahead.append((when, ("pair", p, q)))
+        if end is not None:
+            ahead.append((end - t, ("horizon",)))
+        if not ahead:  # every sphere rolls (or flies) on for ever
+            if all(s.lying and s.v == sp.zeros(3, 1) and s.w == sp.zeros(3, 1)
+                   for s in ones):
+                return finish("rest", t)
+            return finish("rolling" if all(s.lying for s in ones) else "flying", t)
+        step = min(x[0] for x in ahead)
+        first = next(x[1] for x in ahead if x[0] == step)  # decided before rounding
         if exact and not step.is_Rational:  # from here on in floating point
             exact = False
         if not exact:
             step = sp.N(step, DIGITS)
-        c, v, w = flight(c, v, w, a, step)
-        if not exact:
-            c, v, w = (x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in (c, v, w))
+        for s in ones:
+            if s.name in phases:
+                moved, s.v, s.w = phases[s.name].at(step)
+                s.c = s.c + moved
+            else:
+                s.c, s.v, s.w = flight(s.c, s.v, s.w, a, step)
+            if not exact:
+                s.c, s.v, s.w = floats(s.c, s.v, s.w)
+            if s.lying is not None:  # on the plane, its rounding left aside
+                n = s.lying[2]
+                s.c = s.c - _gap(s.lying, s.c, s.R) * n
+                s.v = s.v - n.dot(s.v) * n
         t = t + step
-        # land exactly on the plane the root found (its rounding left aside)
-        _, p, n = nearest[1]
-        c = c - _gap(nearest[1], c, R) * n
+        if first[0] == "horizon" or (end is not None and t >= end):
+            snap()
+            return finish("horizon", end)
+        if first[0] == "changes":
+            _, s, kind = first
+            assert s.lying is not None
+            if kind == "stops":  # at rest: exactly, whatever the rounding
+                s.v = sp.zeros(3, 1)
+                s.w = s.lying[2].dot(s.w) * s.lying[2]
+            elif kind == "stops spinning":
+                s.w = s.w - s.lying[2].dot(s.w) * s.lying[2]
+            events.append(Event(t, kind, s.lying[0].name, s.c, s.v, s.w, kind, s.name))
+            s.said = s.said or kind == "rolls"
+            snap()
+        elif first[0] == "plane":
+            _, s, f = first
+            s.c = s.c - _gap(f, s.c, s.R) * f[2]  # on the plane the root found
+            due = ("plane", s.name, f[0].name)
+        else:
+            due = ("pair", first[1].name, first[2].name)
 
 
-def _gap(flat: tuple[Contact, sp.Matrix, sp.Matrix], c: sp.Matrix, R: sp.Expr) -> sp.Expr:
+def _at_plane(flat: tuple, s: _Sphere,
+              own: bool = False) -> Contact:
+    """The plane's contact with sphere `s`, at its touching point (the sphere in place
+    of the one the plane names, the normal's sense kept); `own`: named for the sphere
+    too, where several spheres touch the plane at once."""
+    c = flat[0]
+    fixed = c.first if c.first not in flat[3] else c.second
+    bodies = (fixed, s.name) if c.first == fixed else (s.name, fixed)
+    return replace(c, point=sp.ImmutableMatrix(s.c - s.R * flat[2]), bodies=bodies,
+                   name=f"{c.name}_{s.name}" if own else c.name)
+
+
+def _gap(flat: tuple, c: sp.Matrix, R: sp.Expr) -> sp.Expr:
     """How far the sphere's surface is from the plane (0: touching)."""
-    _, p, n = flat
-    return n.dot(c - p) - R
+    return flat[2].dot(c - flat[1]) - R
 
 
 def _on_plane(contact: Contact, n: sp.Matrix, v: sp.Matrix, w: sp.Matrix, a: sp.Matrix,
-              R: sp.Expr, k: sp.Expr, tolerance: float | None = None) -> Any:
-    """The sphere lying on `contact`'s plane: sliding by Coulomb's friction until it
-    rolls (:func:`rigidimpact.simulate.sphere.sliding`); rolling (its slip zero, or
-    rounding's size in floating point), or on a smooth plane, keeping its velocity and
+              R: sp.Expr, k: sp.Expr, tolerance: float | None = None,
+              resistance: sp.Expr = 0, pivot: sp.Expr = 0) -> _Phase:
+    """The sphere lying on `contact`'s plane until its motion changes: sliding by
+    Coulomb's friction until it rolls (:func:`rigidimpact.simulate.sphere.sliding`);
+    rolling (its slip zero, or rounding's size in floating point), slowed by rolling
+    resistance where asked until it stops; its spin about the normal worn by pivoting
+    friction where asked until it ends; on a smooth plane keeping its velocity and
     spin."""
     if (a - n.dot(a) * n) != sp.zeros(3, 1):
         raise InputError(f"{contact.name}.normal", "a sphere lying on a plane that gravity "
                          "does not press straight into (a slope) is not followed yet")
     slip = v + w.cross(-R * n)
-    if any(x.has(sp.Float) for x in (*v, *w)):  # floats: a slip at their rounding, or
-        # within 1000 times an integrated impact's tolerance, is a rolling sphere's
+    zero = sp.zeros(3, 1)
+    rolling = slip == zero
+    if not rolling and any(x.has(sp.Float) for x in (*v, *w)):  # floats: a slip at
+        # their rounding, or within 1000 times an integrated impact's tolerance, is a
+        # rolling sphere's
         scale = max(1, *(abs(x) for x in (*v, *(R * y for y in w))))
         floor = sp.Float(10) ** (5 - DIGITS) if tolerance is None else \
             sp.Float(1000 * tolerance)
-        if all(abs(x) <= floor * scale for x in slip):
-            return _Smooth(v, w, rolling=True)
+        rolling = all(abs(x) <= floor * scale for x in slip)
     mu = contact.friction
-    if mu is None or mu == 0:
+    if not rolling and (mu is None or mu == 0):
         if contact.tangential not in ("smooth", "coulomb"):
             raise InputError(f"{contact.name}.friction", "a sphere left lying on a plane "
                              "slides by Coulomb's friction: give the contact's friction")
-        return _Smooth(v, w, rolling=False)
-    return sliding(v, w, R, k, mu, -n.dot(a), tuple(n))
+        return _Phase(v, w, zero, zero, sp.Integer(0), "", False)  # smooth: for ever
+    g = -n.dot(a)
+    # pivoting friction: a moment pivot m g R against the spin about the normal
+    spin = n.dot(w)
+    turning = (pivot * g / (k * R)) if pivot and spin != 0 else 0
+    dw_pivot = -sp.sign(spin) * turning * n if turning else zero
+    spun = abs(spin) / turning if turning else None
+    if rolling:
+        v = v - n.dot(v) * n
+        w = n.cross(v) / R + spin * n  # rolling: the spin across n is the velocity's
+        speed = sp.sqrt(v.dot(v))
+        if resistance and speed != 0:  # slowed along its path, rolling kept
+            dv = -resistance * g * v / speed
+            dw = n.cross(dv) / R
+            stop = speed / (resistance * g)
+        else:
+            dv, dw, stop = zero, zero, None
+        ends = [x for x in ((stop, "stops"), (spun, "stops spinning")) if x[0] is not None]
+        if not ends:
+            return _Phase(v, w, zero, zero, sp.Integer(0), "", True)
+        t, why = min(ends, key=lambda x: x[0])
+        return _Phase(v, w, dv, dw + dw_pivot, t, why, True)
+    slide = sliding(v, w, R, k, mu, g, tuple(n))
+    t, why = slide.t, "rolls"
+    if spun is not None and spun < t:
+        t, why = spun, "stops spinning"
+    return _Phase(v, w, slide.rates[0], slide.rates[1] + dw_pivot, t, why, False)
 
 
 @dataclass(frozen=True)
-class _Smooth:
-    """Rolling, or lying on a smooth plane: nothing changes the velocity or the spin."""
+class _Phase:
+    """A sphere lying on a plane between two changes of its motion: its velocity and
+    spin change at the constant rates `dv` and `dw` until time `t` (0: never), when it
+    `ends` (rolls, stops, stops spinning); `rolling` if it rolls throughout."""
 
     v: sp.Matrix
     w: sp.Matrix
+    dv: sp.Matrix
+    dw: sp.Matrix
+    t: sp.Expr
+    ends: str
     rolling: bool
 
     @property
-    def t(self) -> sp.Expr:
-        return sp.Integer(0)
-
-    @property
     def rates(self) -> tuple[sp.Matrix, sp.Matrix]:
-        return sp.zeros(3, 1), sp.zeros(3, 1)
+        return self.dv, self.dw
 
     def at(self, t: Any) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
-        return self.v * t, self.v, self.w
+        """(displacement, velocity, spin) a time t into the phase (t up to its end)."""
+        return (self.v * t + self.dv * t ** 2 / 2, self.v + self.dv * t,
+                self.w + self.dw * t)
 
 
-def _impact(ball: Body3, flats: Sequence[tuple[Contact, sp.Matrix, sp.Matrix]],
-            c: sp.Matrix, v: sp.Matrix, w: sp.Matrix, R: sp.Expr,
-            rule: str | None = None) -> tuple[sp.Matrix, sp.Matrix, str, float | None]:
-    """The sphere's velocity and spin after striking the first of `flats` (the others
-    resting, by the driven rule), each contact at its touching point, the course, and
-    the tolerance it was integrated to (None: exact, or a closed form)."""
-    moved = replace(ball, position=sp.ImmutableMatrix(c), velocity=sp.ImmutableMatrix(v),
-                    spin=sp.ImmutableMatrix(w))
-    fixed = sorted({f[0].first if f[0].second == ball.name else f[0].second for f in flats})
-    contacts = tuple(replace(f[0], point=sp.ImmutableMatrix(c - R * f[2])) for f in flats)
-    solved = SpaceCollision((*(Body3.fixed(name) for name in fixed), moved), contacts,
-                            rule=rule).solve()
-    assert solved.speeds_after is not None  # a 3-D answer: its six speeds
-    after = list(solved.speeds_after)
+def _impact(movers: Sequence[Body3], contacts: Sequence[Contact], rule: str | None
+            ) -> tuple[dict[str, tuple[sp.Matrix, sp.Matrix]], str, float | None]:
+    """Each of the spheres `movers` after the impact at `contacts` (the first strikes;
+    the others rest, by the driven rule), the course, and the tolerance it was
+    integrated to (None: exact, or a closed form)."""
+    names = {b.name for b in movers}
+    fixed = sorted({b for c in contacts for b in (c.first, c.second) if b not in names})
+    solved = SpaceCollision((*(Body3.fixed(name) for name in fixed), *movers),
+                            tuple(contacts), rule=rule).solve()
+    results = solved.results()
+    after = {b.name: (sp.Matrix([results[f"{b.name}.{k}"] for k in SPEEDS[:3]]),
+                      sp.Matrix([results[f"{b.name}.{k}"] for k in SPEEDS[3:]]))
+             for b in movers}
     stated = solved.method.split("integrated to ")[-1] \
         if solved.method.startswith("integrated to ") else None
     integrated = stated is not None or any("integrated" in note for note in solved.notes)
-    return (sp.Matrix(after[:3]), sp.Matrix(after[3:]), solved.regime or "",
+    return (after, solved.regime or "",
             (float(stated) if stated else TOLERANCE) if integrated else None)

@@ -12,7 +12,7 @@ Examples
 >>> [step.model for step in plan.steps]
 ['impulse', 'free-flight']
 >>> plan.not_simulated
-('rod-compliance', 'contact-compliance', 'gravity', 'tangential-compliance')
+('rod-compliance', 'contact-compliance', 'gravity', 'tangential-compliance', 'rolling-resistance', 'pivot-friction')
 """
 
 from __future__ import annotations
@@ -34,9 +34,14 @@ EFFECTS = {
                "the relative motion, since every body falls alike",
     "tangential-compliance": "the contact is rigid across the normal too: it sticks or "
                              "slides in an instant (Routh's method)",
+    "rolling-resistance": "a sphere rolling on a plane keeps its speed",
+    "pivot-friction": "a sphere lying on a plane keeps its spin about the normal",
 }
+# the effects that need a coefficient of their own, and the setting that gives it
+COEFFICIENTS = {"rolling-resistance": "rolling_resistance", "pivot-friction": "pivot_friction"}
 SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g",
-            "integrator", "stiffness_ratio", "impacts"}
+            "integrator", "stiffness_ratio", "impacts", "rolling_resistance",
+            "pivot_friction"}
 INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
 DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81,
@@ -53,6 +58,10 @@ RANGES = {
     "g": (1e-6, 1e6, "a gravity outside it belongs to another problem"),
     "stiffness_ratio": (1e-3, 1e3, "k_t/k_n outside it is a contact that does not hold "
                         "sideways or one that is rigid across"),
+    "rolling_resistance": (1e-9, 1.0, "a coefficient of rolling resistance (0.005 to "
+                           "0.015 for a pool ball on cloth)"),
+    "pivot_friction": (1e-9, 1.0, "a coefficient of pivoting friction (about 0.01 for a "
+                       "pool ball on cloth)"),
 }
 
 
@@ -102,6 +111,8 @@ class Plan:
         left out: contact-compliance (the contact is rigid: Newton's e acts in an instant)
         left out: gravity (a horizontal table; asked for (g = 9.81 unless set) it would not change the relative motion, since every body falls alike)
         left out: tangential-compliance (the contact is rigid across the normal too: it sticks or slides in an instant (Routh's method))
+        left out: rolling-resistance (a sphere rolling on a plane keeps its speed)
+        left out: pivot-friction (a sphere lying on a plane keeps its spin about the normal)
         """  # noqa: E501
         lines = [f"until: {self.until}"]
         lines += [f"{k}. {s.model}: {s.why}" for k, s in enumerate(self.steps, 1)]
@@ -156,6 +167,18 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
         raise InputError("simulate.integrator", f"must be one of {', '.join(INTEGRATORS)}, "
                          f"got {integrator!r}")
     settings = {key: _number(table, key) for key in DEFAULTS}
+    for effect, key in COEFFICIENTS.items():
+        if effect in asked and key not in table:
+            raise InputError(f"simulate.{key}", f"{effect} needs its coefficient, e.g. "
+                             f"{key} = 0.01")
+        if key in table and effect not in asked:
+            raise InputError(f"simulate.{key}", f"is read with effects = [\"{effect}\"], "
+                             "which this scene does not ask for")
+        if effect in asked:
+            if "gravity" not in asked:
+                raise InputError("simulate.effects", f"{effect} acts through the weight "
+                                 "a plane carries: ask for \"gravity\" too")
+            settings[key] = _number(table, key)
     steps = [Step("impulse", "the impact as an instant: momentum laws and restitution, "
                              "solved exactly")]
     compliant = [x for x in asked if x.endswith("-compliance")]
@@ -174,6 +197,11 @@ def make_plan(table: Mapping[str, Any]) -> Plan:
         steps.append(Step("gravity", f"uniform gravity g = {settings['g']:g} along -y in "
                                      "every phase after the instant of impact (an "
                                      "impulse is too brief for it to matter)"))
+    for effect in COEFFICIENTS:
+        if effect in asked:
+            steps.append(Step(effect, f"{effect} asked for: a sphere lying on a plane is "
+                              "worn by it (coefficient "
+                              f"{settings[COEFFICIENTS[effect]]:g}), in closed form"))
     if until != "separation":
         steps.append(Step("free-flight", "no force between impacts: straight lines and "
                                          "steady spin in closed form, with an exact "

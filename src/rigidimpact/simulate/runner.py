@@ -111,6 +111,10 @@ def run(scene: Scene | SpaceScene) -> Outcome:
     if "impacts" in scene.simulate:
         raise InputError("simulate.impacts", "a count of impacts is read by a 3-D scene's "
                          "bouncing sphere; a planar scene runs until a time")
+    effects = scene.simulate.get("effects")
+    if isinstance(effects, list) and {"rolling-resistance", "pivot-friction"} & set(effects):
+        raise InputError("simulate.effects", "rolling-resistance and pivot-friction wear a "
+                         "sphere lying on a plane: a 3-D scene's")
     if scene.joints:  # a linkage: the impact, then its flight with the joints held
         return run_linkage(scene)
     if len(scene.contacts) > 1:

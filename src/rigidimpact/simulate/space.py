@@ -31,7 +31,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import tangential_bounce
 from rigidimpact.model.space import SPEEDS
 from rigidimpact.scenes.space import SpaceScene
-from rigidimpact.simulate.bounces import MAX_IMPACTS, Bounces, bounces
+from rigidimpact.simulate.bounces import MAX_IMPACTS, Bounces, spheres
 from rigidimpact.simulate.outcome import Outcome
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.tangential import STEPS
@@ -136,22 +136,27 @@ def _the_sphere(scene: SpaceScene, values: dict, where: str, why: str) -> Any:
 
 
 def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outcome:
-    """A sphere among the scene's fixed planes (every contact a plane it may strike),
-    until a time or a count of impacts."""
-    if not set(plan.effects) <= {"gravity"}:
-        raise InputError("simulate.effects", "past separation a 3-D scene takes "
-                         "effects = [\"gravity\"] or none (tangential-compliance is one "
-                         "bounce, until = \"separation\")")
-    ball = _the_sphere(scene, values, "bodies", "a 3-D scene is followed past its impact "
-                       "for one free sphere among fixed planes so far")
-    # the contacts at the impact are planes too (struck again later), then [[planes]]
-    planes = tuple(c.at(values) for c in (*scene.contacts, *scene.planes))
-    for c in planes:
-        other = c.first if c.second == ball.name else c.second
-        if ball.name not in (c.first, c.second) or \
-                next(b for b in scene.bodies if b.name == other).support != "fixed":
-            raise InputError(f"{c.name}.bodies", "each contact is a fixed plane the sphere "
-                             "may strike: name the sphere and a fixed body")
+    """The scene's spheres among its fixed planes (every contact of a sphere and a fixed
+    body a plane any sphere may strike; of two spheres, their laws when they meet, as
+    ``[[pairs]]`` give), until a time or a count of impacts."""
+    if not set(plan.effects) <= {"gravity", "rolling-resistance", "pivot-friction"}:
+        raise InputError("simulate.effects", "past separation a 3-D scene takes gravity, "
+                         "rolling-resistance and pivot-friction (tangential-compliance is "
+                         "one bounce, until = \"separation\")")
+    free = [b for b in scene.bodies if b.support != "fixed"]
+    if not free or any(b.radius is None for b in free):
+        raise InputError("bodies", "a 3-D scene is followed past its impact for free "
+                         "spheres among fixed planes so far")
+    balls = tuple(b.at(values) for b in free)
+    names = {b.name for b in balls}
+    if any(not names & {c.first, c.second} for c in scene.contacts):
+        raise InputError("contact.bodies", "each contact is a fixed plane a sphere may "
+                         "strike, or two spheres: name a sphere")
+    # the contacts at the impact are struck again later: planes, or two spheres' laws
+    planes = tuple(c.at(values) for c in (*scene.contacts, *scene.planes)
+                   if not {c.first, c.second} <= names)
+    pairs = tuple(c.at(values) for c in (*scene.contacts, *scene.pairs)
+                  if {c.first, c.second} <= names)
     impacts = scene.simulate.get("impacts")
     if impacts is not None and (isinstance(impacts, bool) or not isinstance(impacts, int)
                                 or not 1 <= impacts <= MAX_IMPACTS):
@@ -159,57 +164,74 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
                          f"got {impacts!r}")
     g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
     horizon = None if plan.until == "separation" else sp.Rational(str(plan.until))
-    run = bounces(ball, planes, (0, 0, -g), impacts, horizon)
+    run = spheres(balls, planes, pairs, (0, 0, -g), impacts, horizon,
+                  *(sp.Rational(str(plan.settings[key])) if key in plan.settings else 0
+                    for key in ("rolling_resistance", "pivot_friction")))
     events: list[dict[str, Any]] = []
     for e in run.events:
         event: dict[str, Any] = {"kind": e.kind, "t": float(e.t), "plane": e.plane}
+        if len(balls) > 1:
+            event["ball"] = e.ball
+        if e.other:
+            event["with"] = e.other
         if e.kind == "impact":
             event["course"] = e.course
         events.append(event)
     events.append({"kind": "end", "t": float(run.t), "why": {
         "impacts": f"{impacts} impact{'s' if impacts != 1 else ''}, as asked",
-        "horizon": "the time asked", "rolling": "it rolls on the plane for ever",
-        "flying": "no plane lies ahead"}[run.stopped]})
-    name = ball.name
-    final = {f"{name}.{k}": float(sp.N(x, 17)) for k, x in zip(
-        ("x", "y", "z", *SPEEDS), (*run.position, *run.velocity, *run.spin), strict=True)}
+        "horizon": "the time asked", "rolling": "it rolls on the plane for ever" if
+        len(balls) == 1 else "every sphere rolls on for ever",
+        "flying": "no plane lies ahead", "rest": "it comes to rest" if len(balls) == 1
+        else "every sphere is at rest"}[run.stopped]})
+    final: dict[str, float] = {}
+    for name, state in run.states.items():
+        final.update({f"{name}.{k}": float(sp.N(x, 17)) for k, x in zip(
+            ("x", "y", "z", *SPEEDS), (*state[0], *state[1], *state[2]), strict=True)})
     details = {"exact": run.exact, "impacts": sum(e.kind == "impact" for e in run.events),
                "gravity": [0.0, 0.0, -float(g)], "stopped": run.stopped}
     if run.tolerance is not None:
         details["tolerance"] = run.tolerance
-        details["notes"] = [f"a plane was struck with the sphere lying on another (the "
+        details["notes"] = [f"an impact was struck with a sphere lying on a plane (the "
                             f"driven rule, integrated to a relative tolerance of "
                             f"{run.tolerance:g}): from there on the run is good to that"]
     elif not run.exact:
         details["notes"] = ["a time of the run is irrational: from there on it is "
                             "followed in 40-digit floating point"]
     return Outcome(plan, {**final, "t": float(run.t)}, events, time.perf_counter() - start,
-                   0, details, BounceTrack(ball, run))
+                   0, details, BounceTrack(balls, run))
 
 
 @dataclass(frozen=True)
 class BounceTrack:
-    """A bounce run's path for pictures. Every phase of it (flight under gravity,
-    sliding under Coulomb's constant friction, rolling) moves the centre with a constant
-    acceleration, so each phase is the quadratic fixed by its start, its starting
-    velocity and its end; no physics is repeated here."""
+    """A bounce run's paths for pictures. Every phase of a sphere (flight under gravity,
+    sliding under Coulomb's constant friction, rolling) moves its centre with a constant
+    acceleration, and every change of phase is an event of the run; so between two of
+    the run's snapshots each centre follows the quadratic fixed by its start, its
+    starting velocity and its end. No physics is repeated here."""
 
-    ball: Any
+    balls: tuple[Any, ...]
     run: Bounces
 
-    def states(self) -> list[tuple[float, np.ndarray, np.ndarray]]:
-        """(t, centre, velocity) at the start, after each event, and at the end."""
+    @property
+    def ball(self) -> Any:
+        """The first sphere (the one a one-sphere run follows)."""
+        return self.balls[0]
+
+    def states(self, name: str | None = None) -> list[tuple[float, np.ndarray, np.ndarray]]:
+        """(t, centre, velocity) of sphere `name` (the first by default) at the start,
+        after each event, and at the end."""
+        name = self.ball.name if name is None else name
+
         def vec(x: Any) -> np.ndarray:
             return np.array([float(sp.N(y, 17)) for y in x])
-        out = [(0.0, vec(self.ball.position), vec(self.ball.velocity))]
-        out += [(float(e.t), vec(e.position), vec(e.velocity)) for e in self.run.events]
-        out.append((float(self.run.t), vec(self.run.position), vec(self.run.velocity)))
-        return out
+        return [(float(t), vec(each[name][0]), vec(each[name][1]))
+                for t, each in self.run.snapshots]
 
-    def sampled(self, count: int = 400) -> tuple[np.ndarray, np.ndarray]:
-        """Times and the centre (x, y, z) at each, `count` samples spread over the run
-        and every event's own instant."""
-        states = self.states()
+    def sampled(self, count: int = 400, name: str | None = None
+                ) -> tuple[np.ndarray, np.ndarray]:
+        """Times and the centre (x, y, z) of sphere `name` (the first by default) at
+        each, `count` samples spread over the run and every event's own instant."""
+        states = self.states(name)
         end = states[-1][0]
         times = np.union1d(np.linspace(0.0, end, count) if end > 0 else np.zeros(1),
                            [s[0] for s in states])
@@ -222,4 +244,16 @@ class BounceTrack:
             tau = t - t0
             a = 2 * (c1 - c0 - v0 * span) / span ** 2 if span > 0 else np.zeros(3)
             points[i] = c0 + v0 * tau + a * tau ** 2 / 2
+        return times, points
+
+    def every(self, count: int = 400) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """Times and every sphere's centre at each, at the same instants."""
+        times = self.sampled(count)[0]
+        for b in self.balls[1:]:
+            times = np.union1d(times, self.sampled(count, b.name)[0])
+        points = {}
+        for b in self.balls:
+            own, path = self.sampled(count, b.name)
+            points[b.name] = np.stack([np.interp(times, own, path[:, j]) for j in range(3)],
+                                      axis=1)
         return times, points

@@ -815,7 +815,7 @@ class _SpaceProblem(RowsProblem):
         if rule == "compliant":
             notes.append("every contact a push-only spring-dashpot, integrated (LSODA, "
                          "rtol 1e-10) until all let go")
-        elif exact:
+        elif exact and rule == "simultaneous":
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
         solution = space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,

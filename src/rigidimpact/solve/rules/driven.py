@@ -3,7 +3,11 @@ velocity rests, staying closed while it pushes (a ball on the table striking a c
 a block on a floor struck from the side). The impact is followed in the striking
 contact's normal impulse, each resting contact sticking or slipping under Coulomb's law
 as the impulse grows, by :func:`rigidimpact.laws.together.driven_impact`, in floating
-point; contacts moving apart take no part.
+point; contacts moving apart take no part. Where the striking contact's own impact
+(its laws' one face, exact) leaves no resting contact closing, the resting ones carry
+nothing (a resting contact pushes only to stay closed, and friction without a push is
+none): that exact answer is the rule's, and nothing is integrated (two balls lying on a
+table meeting along a level line of centres).
 
 It is one implementation in the plane and in space: each contact's rows in its own frame
 (:meth:`~rigidimpact.solve.problem.ImpactProblem.frame_rows`) go to the integrator, a
@@ -40,6 +44,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.rules.base import Rule
+from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
 
 __all__ = ["Driven", "driven"]
@@ -79,6 +84,9 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
         raise InputError("impact.rule", "the driven rule takes one striking contact and "
                          f"others resting; here {len(approaching)} approach: use the "
                          "simultaneous or sequential rule")
+    alone = _alone(problem, approaching[0], resting)
+    if alone is not None:
+        return alone
     acting = approaching + resting
     striking = problem.contacts[approaching[0]]
     rows = [problem.frame_rows(i) for i in acting]
@@ -107,3 +115,33 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
         tangential=problem.named(along), courses=courses, notes=notes,
         method=f"integrated to {out.tolerance:g}", **more)
 
+
+
+def _alone(problem: ImpactProblem, k: int, resting: list[int]) -> Solution | None:
+    """The striking contact k's own impact, where it is exact and leaves every resting
+    contact not closing (so they carry nothing); else None."""
+    if not all(x.is_Rational for x in (*problem.u_before, *problem.M_inverse)):
+        return None
+    try:
+        P, course, after, tolerance = _own_step(problem, k, problem.u_before)
+    except InputError:
+        return None
+    if tolerance is not None or any(x.has(sp.Float) for x in P) or \
+            any(problem.closing(i, list(after)) < 0 for i in resting):
+        return None
+    n = len(problem.contacts)
+    normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
+    normal[k], along[k] = P[0], P[1]
+    if len(P) == 3:
+        across[k] = P[2]
+    name = problem.contacts[k].name
+    rest = ", ".join(problem.contacts[i].name for i in resting)
+    more: dict[str, Any] = {"tangent_impulses": {
+        c.name: (along[i], across[i]) for i, c in enumerate(problem.contacts)}} \
+        if problem.tangents == 2 else {}
+    notes = (f"{name} strikes" + (f"; its own impact leaves {rest} not closing, so "
+                                  f"{'they carry' if len(resting) > 1 else 'it carries'} "
+                                  "nothing" if rest else ""),)
+    return problem.outcome("driven", (), after, problem.named(normal),
+                           (name,) if P[0] > 0 else (), tangential=problem.named(along),
+                           courses=(f"{name}: {course}",), notes=notes, **more)
