@@ -107,7 +107,7 @@ def test_the_3d_scenes_are_apart_and_checked_in_their_own_tests():
     # and tests/test_space_simulate.py the runs past the impact
     spatial = {p.stem for p in DERIVATIONS.glob("*.toml")} - {p.stem for p in PLANAR}
     assert spatial == {"spinning-ball-floor", "box-corner-floor", "cushion-rebound",
-                       "superball-under-table", "spinning-ball-bounces"}
+                       "superball-under-table", "spinning-ball-bounces", "stun-shot"}
 
 
 @pytest.mark.parametrize("path", PLANAR, ids=lambda p: p.stem)

@@ -166,12 +166,12 @@ impacts = 2
     refused(capsys, ["simulate", scene_file(tmp_path, planar)], "simulate.impacts")
 
 
-def test_two_free_bodies_past_the_impact_are_refused(tmp_path, capsys):
+def test_a_free_body_that_is_not_a_sphere_past_the_impact_is_refused(tmp_path, capsys):
     two = SPHERE.replace('[contact]', '''[[bodies]]
 name = "other"
-shape = "sphere"
+shape = "rigid"
 mass = "1"
-radius = "1"
+inertia = ["1", "1", "1"]
 position = ["5", "0", "1"]
 [contact]''') + "[simulate]\nuntil = 1"
     refused(capsys, ["simulate", scene_file(tmp_path, two)], "bodies")

@@ -109,8 +109,10 @@ def ours(shot: str) -> list[tuple[float, str, str, float, float]]:
     run = outcome.trajectory.run
     out = []
     for e in run.events:
-        if e.kind == "impact" and e.plane == "cloth" or e.kind == "stops spinning":
-            continue  # a landing after a cushion threw it up; pooltool keeps it down
+        if e.kind == "impact" and e.plane == "cloth" or e.kind == "stops spinning" or \
+                e.kind == "rolls" and e.t == 0:
+            continue  # a landing after a cushion threw it up (pooltool keeps it down);
+            # pooltool's spin about the vertical ends with no event; rolling from the start
         what = ("balls" if e.plane == "balls" else "cushion") \
             if e.kind == "impact" else e.kind
         balls = (e.ball, e.other) if e.other else (e.ball,)

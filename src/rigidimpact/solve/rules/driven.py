@@ -126,8 +126,9 @@ def _alone(problem: ImpactProblem, k: int, resting: list[int]) -> Solution | Non
         P, course, after, tolerance = _own_step(problem, k, problem.u_before)
     except InputError:
         return None
+    opening = [problem.closing(i, list(after)) for i in resting]
     if tolerance is not None or any(x.has(sp.Float) for x in P) or \
-            any(problem.closing(i, list(after)) < 0 for i in resting):
+            any(x < 0 for x in opening):
         return None
     n = len(problem.contacts)
     normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
@@ -144,4 +145,8 @@ def _alone(problem: ImpactProblem, k: int, resting: list[int]) -> Solution | Non
                                   "nothing" if rest else ""),)
     return problem.outcome("driven", (), after, problem.named(normal),
                            (name,) if P[0] > 0 else (), tangential=problem.named(along),
-                           courses=(f"{name}: {course}",), notes=notes, **more)
+                           courses=(f"{name}: {course}", *(
+                               f"{problem.contacts[i].name}: "
+                               + ("lets go" if x > 0 else "stays closed, carrying nothing")
+                               for i, x in zip(resting, opening, strict=True))),
+                           notes=notes, **more)
