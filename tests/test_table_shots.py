@@ -20,8 +20,8 @@ import sympy as sp
 from helpers import evaluated, refused, scene_file
 from rigidimpact.analyses import pool_shots
 from rigidimpact.errors import InputError
-from rigidimpact.model.space import Body3
 from rigidimpact.laws.contact import Contact
+from rigidimpact.model.space import Body3
 from rigidimpact.scenes.space import parse_space_scene
 from rigidimpact.simulate.bounces import spheres
 from rigidimpact.simulate.space import run_space

@@ -610,14 +610,20 @@ def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
 
     track = outcome.trajectory
     _, points = track.every()
-    marks = [(e.kind if e.kind == "impact" else "starts to roll",
-              np.array([float(x) for x in e.position])) for e in track.run.events]
+    said = {"impact": "impact", "rolls": "starts to roll", "stops": "stops"}
+    marks = [(said[e.kind], np.array([float(x) for x in e.position]))
+             for e in track.run.events if e.kind in said]
     names = {b.name for b in track.balls}
-    planes = [(c.name, np.array([float(x) for x in c.point]),
-               np.array([float(x) for x in c.normal]))
-              for c in (*scene.contacts, *scene.planes)
-              if not {c.first, c.second} <= names
-              and all(sp.sympify(x).is_number for x in (*c.point, *c.normal))]
+    planes: list = []
+    for c in (*scene.contacts, *scene.planes):
+        if {c.first, c.second} <= names or \
+                not all(sp.sympify(x).is_number for x in (*c.point, *c.normal)):
+            continue
+        p, n = (np.array([float(x) for x in v]) for v in (c.point, c.normal))
+        n = n / np.linalg.norm(n)
+        if not any(abs(abs(n @ m) - 1) < 1e-12 and abs(n @ (p - q)) < 1e-12
+                   for _, q, m in planes):  # one plane written twice is drawn once
+            planes.append((c.name, p, n))
     figure = space_views({f"{name}'s centre": path for name, path in points.items()},
                          scene.title, marks, planes=planes)
     try:
@@ -627,15 +633,15 @@ def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
 
 
 def _animate_space(scene: Any, outcome: Any, path: Path) -> None:
-    """A 3-D run seen from the side (x, z), animated to a GIF, whole or not at all."""
+    """A 3-D run seen from above and from the side, animated to a GIF, whole or not at
+    all."""
     from rigidimpact.outputs.atomic import write_file
     _files_only()
     from rigidimpact.outputs.plots import write_gif
 
     times, points = outcome.trajectory.every()
     write_file(path, lambda temporary: write_gif(
-        times, {name: path[:, [0, 2]] for name, path in points.items()},
-        f"{scene.title} (from the side)", temporary, fps=20, axes="xz"), "--animate")
+        times, points, scene.title, temporary, fps=20, axes="views"), "--animate")
 
 
 def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),

@@ -30,7 +30,10 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["SHOTS", "scene_text", "ours", "pooltools", "side_by_side", "markdown"]
+from rigidimpact.scenes.space import parse_space_scene
+from rigidimpact.simulate.space import run_space
+
+__all__ = ["SHOTS", "scene_text", "scene", "ours", "pooltools", "side_by_side", "markdown"]
 
 # the cue ball's spin about y at the start, per shot (rad/s)
 SHOTS = {"stun": "-2450/57", "draw": "-4900/57", "follow": "4000/57"}
@@ -99,13 +102,16 @@ until = {until}
 """
 
 
+def scene(shot: str, until: float = 8.0) -> Any:
+    """The shot as a read 3-D scene (a :class:`~rigidimpact.scenes.space.SpaceScene`),
+    followed until `until` seconds."""
+    return parse_space_scene(scene_text(shot, until), f"{shot}-shot")
+
+
 def ours(shot: str) -> list[tuple[float, str, str, float, float]]:
     """This package's events of the shot: (t, ball, what, x, y), what one of
     ``balls``, ``rolls``, ``cushion``, ``stops``."""
-    from rigidimpact.scenes.space import parse_space_scene
-    from rigidimpact.simulate.space import run_space
-
-    outcome = run_space(parse_space_scene(scene_text(shot)))
+    outcome = run_space(scene(shot))
     run = outcome.trajectory.run
     out = []
     for e in run.events:
@@ -168,7 +174,8 @@ def pooltools(shot: str) -> list[tuple[float, str, str, float, float]]:
             continue
         for agent in e.agents:
             if agent.id in ("cue", "object"):
-                x, y = agent.final.state.rvw[0][:2]
+                final: Any = agent.final  # a ball, for these two
+                x, y = final.state.rvw[0][:2]
                 out.append((float(e.time), agent.id, what, float(x) - SHIFT,
                             float(y) - SHIFT))
     return out

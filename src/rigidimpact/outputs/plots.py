@@ -482,8 +482,9 @@ def space_views(points: np.ndarray | Mapping[str, np.ndarray], title: str,
                     label="start (t = 0)" if k == 0 else None)
         for k, (kind, where) in enumerate(marks):
             first = all(m[0] != kind for m in marks[:k])
-            ax.plot([where[i]], [where[j]], "x" if kind == "impact" else "s", ms=7,
-                    color="C3" if kind == "impact" else "C2", label=kind if first else None)
+            style = {"impact": ("x", "C3"), "stops": ("o", "0.2")}.get(kind, ("s", "C2"))
+            ax.plot([where[i]], [where[j]], style[0], ms=7, color=style[1],
+                    label=kind if first else None)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("yz"[j - 1] + " (m)")
         ax.set_title(view, fontsize="small")
@@ -546,7 +547,9 @@ def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path
               frames: int = 60, fps: int = 20, axes: str = "xy") -> None:
     """:func:`animation`'s frames written as a GIF, the still parts (axes, ticks, grid,
     legend) drawn once and only the moving ones each frame: the same pictures as
-    saving the animation with Pillow, in a fraction of the time.
+    saving the animation with Pillow, in a fraction of the time. `axes` names the two
+    coordinates drawn, or is ``"views"``: 3-D paths seen from above and from the side
+    side by side.
 
     Examples
     --------
@@ -561,7 +564,8 @@ def write_gif(times: np.ndarray, points: dict[str, np.ndarray], title: str, path
     """
     from PIL import Image
 
-    fig, draw = _animated(times, points, title, frames, axes)
+    fig, draw = _animated_views(times, points, title, frames) if axes == "views" else \
+        _animated(times, points, title, frames, axes)
     moving = draw(0)
     for artist in moving:
         artist.set_animated(True)
@@ -627,6 +631,45 @@ def _animated(times: np.ndarray, points: dict[str, np.ndarray], title: str, fram
             line.set_data([a[0], b[0]], [a[1], b[1]])
         clock.set_text(f"{title}\nt = {when[i]:.4g} s after the impact")
         return [*trails.values(), *dots.values(), *rods.values(), clock]
+
+    return fig, draw
+
+
+def _animated_views(times: np.ndarray, points: dict[str, np.ndarray], title: str,
+                    frames: int):
+    """Like :func:`_animated`, for 3-D paths: from above (x, y) and from the side
+    (x, z), side by side, each sphere's trail and centre in both."""
+    when = np.linspace(times[0], times[-1], frames)
+    tracks = {name: np.stack([np.interp(when, times, xyz[:, j]) for j in range(3)], axis=1)
+              for name, xyz in points.items()}
+    every = np.concatenate(list(tracks.values()))
+    low, high = every.min(axis=0), every.max(axis=0)
+    pad = 0.08 * max(float((high - low).max()), 1e-9)
+    fig, (top, side) = plt.subplots(1, 2, figsize=(9.0, 4.2), dpi=80)
+    artists = []
+    for ax, (i, j), view in ((top, (0, 1), "from above"), (side, (0, 2), "from the side")):
+        ax.set_xlim(low[i] - pad, high[i] + pad)
+        ax.set_ylim(low[j] - pad, high[j] + pad)
+        if high[j] - low[j] > 0.05 * (high[i] - low[i]):  # else a flat run: a strip
+            ax.set_aspect("equal", adjustable="box")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("yz"[j - 1] + " (m)")
+        ax.set_title(view, fontsize="small")
+        ax.grid(alpha=0.3)
+        for k, name in enumerate(tracks):
+            trail = ax.plot([], [], "-", lw=1, alpha=0.5, color=f"C{k}")[0]
+            dot = ax.plot([], [], "o", ms=7, color=f"C{k}", label=name)[0]
+            artists.append((tracks[name], (i, j), trail, dot))
+    side.legend(fontsize="small", loc="upper right")
+    clock = fig.suptitle(title, fontsize="medium")
+    fig.tight_layout()
+
+    def draw(n: int):
+        for xyz, (i, j), trail, dot in artists:
+            trail.set_data(xyz[: n + 1, i], xyz[: n + 1, j])
+            dot.set_data(xyz[n : n + 1, i], xyz[n : n + 1, j])
+        clock.set_text(f"{title}\nt = {when[n]:.4g} s")
+        return [*(a[2] for a in artists), *(a[3] for a in artists), clock]
 
     return fig, draw
 

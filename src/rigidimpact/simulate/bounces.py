@@ -113,7 +113,7 @@ def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
     side of the sphere it names: every sphere of the run may strike every plane) and
     the spheres' names."""
     names = {b.name for b in balls}
-    found = []
+    found: list[tuple] = []
     for c in planes:
         if not isinstance(c, Contact) or not c.spatial or c.bodies is None:
             raise InputError("planes", "each plane is a 3-D contact naming its two bodies")
@@ -218,7 +218,8 @@ class _Sphere:
     def __init__(self, body: Body3) -> None:
         self.body = body
         self.name = body.name
-        self.R = body.radius
+        assert body.radius is not None  # a sphere
+        self.R: sp.Expr = body.radius
         self.k = body.inertia[0, 0] / (body.mass * self.R ** 2)
         self.c, self.v, self.w = (sp.Matrix(x) for x in (body.position, body.velocity,
                                                           body.spin))
@@ -429,19 +430,17 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             if phase.t > 0:
                 ahead.append((phase.t, ("changes", s, phase.ends)))
 
-        def rate(s: _Sphere) -> sp.Matrix:
-            return phases[s.name].rates[0] if s.name in phases else a
-
+        rate = {s.name: phases[s.name].rates[0] if s.name in phases else a for s in ones}
         for s in ones:
             for f in flats:
                 if f is s.lying:
                     continue
-                when = _first_root(f[2].dot(rate(s)) / 2, f[2].dot(s.v), _gap(f, s.c, s.R),
+                when = _first_root(f[2].dot(rate[s.name]) / 2, f[2].dot(s.v), _gap(f, s.c, s.R),
                                    sp.Integer(0))
                 if when is not None:
                     ahead.append((when, ("plane", s, f)))
         for p, q in couples:
-            when = _meeting(q.c - p.c, q.v - p.v, rate(q) - rate(p), p.R + q.R, exact)
+            when = _meeting(q.c - p.c, q.v - p.v, rate[q.name] - rate[p.name], p.R + q.R, exact)
             if when is not None:
                 ahead.append((when, ("pair", p, q)))
         if end is not None:
@@ -553,7 +552,8 @@ def _on_plane(contact: Contact, n: sp.Matrix, v: sp.Matrix, w: sp.Matrix, a: sp.
             stop = speed / (resistance * g)
         else:
             dv, dw, stop = zero, zero, None
-        ends = [x for x in ((stop, "stops"), (spun, "stops spinning")) if x[0] is not None]
+        ends: list[tuple[Any, str]] = [x for x in ((stop, "stops"), (spun, "stops spinning"))
+                                       if x[0] is not None]
         if not ends:
             return _Phase(v, w, zero, zero, sp.Integer(0), "", True)
         t, why = min(ends, key=lambda x: x[0])

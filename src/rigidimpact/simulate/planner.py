@@ -11,8 +11,9 @@ Examples
 >>> plan = make_plan({"until": "restrike"})
 >>> [step.model for step in plan.steps]
 ['impulse', 'free-flight']
->>> plan.not_simulated
-('rod-compliance', 'contact-compliance', 'gravity', 'tangential-compliance', 'rolling-resistance', 'pivot-friction')
+>>> plan.not_simulated  # doctest: +NORMALIZE_WHITESPACE
+('rod-compliance', 'contact-compliance', 'gravity', 'tangential-compliance',
+ 'rolling-resistance', 'pivot-friction')
 """
 
 from __future__ import annotations
