@@ -55,10 +55,12 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws.compliance import sphere_bounce
 from rigidimpact.laws.cone import TOLERANCE
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.simulate.sphere import flight, sliding
+from rigidimpact.simulate.tangential import STEPS
 from rigidimpact.solve.space import SpaceCollision
 
 __all__ = ["Event", "Bounces", "bounces", "spheres", "MAX_IMPACTS", "DIGITS"]
@@ -243,7 +245,7 @@ def bounces(ball: Body3, planes: Sequence[Contact], gravity: Sequence[Any] = (0,
 def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[Contact] = (),
             gravity: Sequence[Any] = (0, 0, -9.81), impacts: int | None = None,
             horizon: Any = None, rolling_resistance: Any = 0,
-            pivot_friction: Any = 0) -> Bounces:
+            pivot_friction: Any = 0, compliance: float | None = None) -> Bounces:
     """Follow the free spheres `balls` among the fixed `planes` under `gravity` until
     `impacts` impacts or time `horizon`, two spheres meeting by their pair's laws
     (`pairs`: contacts naming the two, whose point and normal are found where they
@@ -251,8 +253,12 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     A sphere lying on a plane is slowed while it rolls by `rolling_resistance` (a
     force mu_r m g against its velocity, rolling kept, until it stops) and its spin
     about the normal is worn by `pivot_friction` (a moment mu_p m g R, until it ends),
-    where they are given. The answer's `position`, `velocity` and `spin` are the first
-    sphere's; `states` has every sphere's."""
+    where they are given. With `compliance` (k_t/k_n), a flying sphere's bounce on a
+    plane goes through the tangentially compliant contact
+    (:func:`rigidimpact.laws.compliance.sphere_bounce`, integrated to first order with
+    :data:`~rigidimpact.simulate.tangential.STEPS` steps a period); a cushion struck
+    while lying and the meeting of two spheres stay rigid. The answer's `position`,
+    `velocity` and `spin` are the first sphere's; `states` has every sphere's."""
     if not balls or any(b.radius is None or b.support == "fixed" for b in balls):
         raise InputError("bodies", "a bounce run follows free spheres")
     if len({b.name for b in balls}) != len(balls):
@@ -371,7 +377,11 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                 else:
                     n = f[2]
                     s.fastest = max(s.fastest, -n.dot(s.v))
-                    course = struck((s,), (_at_plane(f, s),), None)
+                    if compliance is None:
+                        course = struck((s,), (_at_plane(f, s),), None)
+                    else:
+                        course = _compliant(s, f[0], n, compliance)
+                        exact = False
                     # a rebound within rounding, or within 1000 times an integrated
                     # impact's tolerance, of none is none
                     settle = max(SETTLE, sp.Float(1000 * max(tolerance))) if tolerance \
@@ -489,6 +499,22 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             due = ("plane", s.name, f[0].name)
         else:
             due = ("pair", first[1].name, first[2].name)
+
+
+def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:
+    """Sphere `s` bounces on `contact`'s plane through the tangentially compliant
+    contact: its velocity and spin after, in 40-digit floats of the float64 answer;
+    the course."""
+    if contact.law != "newton" or contact.tangential != "coulomb" or not contact.friction:
+        raise InputError(f"{contact.name}.tangential", "tangential-compliance bounces a "
+                         "sphere on a plane with Newton's e and Coulomb's friction "
+                         "(tangential = \"coulomb\", friction = mu)")
+    v, w = sphere_bounce([float(x) for x in s.v], [float(x) for x in s.w],
+                         [float(x) for x in n], float(s.R), float(s.k),
+                         float(contact.friction), float(contact.restitution), ratio, STEPS)
+    s.v, s.w = (sp.Matrix([sp.Float(float(x), DIGITS) for x in y]) for y in (v, w))
+    s.said = False
+    return f"the compliant contact (k_t/k_n = {ratio:g}), integrated"
 
 
 def _at_plane(flat: tuple, s: _Sphere,

@@ -28,7 +28,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws.compliance import tangential_bounce
+from rigidimpact.laws.compliance import sphere_bounce
 from rigidimpact.model.space import SPEEDS
 from rigidimpact.scenes.space import SpaceScene
 from rigidimpact.simulate.bounces import MAX_IMPACTS, Bounces, spheres
@@ -97,32 +97,14 @@ def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str
     R, m = number(ball.radius), number(ball.mass)
     inertia = number(ball.inertia[0]) / (m * R * R)  # in units of m R^2
     n = np.array([number(x) for x in contact.normal])
-    n /= np.linalg.norm(n)
     if ball.name == contact.first:  # the normal from the flat into the sphere
         n = -n
     v = np.array([number(x) for x in ball.velocity])
     w = np.array([number(x) for x in ball.spin])
-    vn = float(v @ n)
-    if vn >= 0:
+    if float(v @ n) >= 0:
         raise InputError("bodies", f"{ball.name} is not approaching the flat")
-    v_t = v - vn * n
-    spin_slip = R * np.cross(w, -n)  # the touching point at -R n moves at w x (-R n)
-    slip = v_t + spin_slip
-    size = float(np.linalg.norm(slip))
-    e, mu = number(contact.restitution), number(contact.friction)
-    if size == 0.0:  # nothing to stretch the spring: the tangential motion is kept
-        s = np.zeros(3)
-        along_v = along_w = 0.0
-    else:
-        s = slip / size
-        along_v, along_w = float(v_t @ s), float(spin_slip @ s)
-    vt_after, vn_after, turn = tangential_bounce(along_v, vn, along_w, mu, e, ratio,
-                                                 inertia, STEPS)
-    v_after = v + (float(vn_after) - vn) * n + (float(vt_after) - along_v) * s
-    # the spin's change: the tangential force F s at -R n turns the sphere about
-    # (-R n) x s; its slip along s changes by R (w x (-n)) . s, which is turn - along_w
-    axis = np.cross(-n, s)
-    w_after = w + (float(turn) - along_w) / R * axis
+    v_after, w_after = sphere_bounce(v, w, n, R, inertia, number(contact.friction),
+                                     number(contact.restitution), ratio, STEPS)
     return {f"{ball.name}.{k}": float(x) for k, x in
             zip(SPEEDS, (*v_after, *w_after), strict=True)}
 
@@ -139,10 +121,10 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
     """The scene's spheres among its fixed planes (every contact of a sphere and a fixed
     body a plane any sphere may strike; of two spheres, their laws when they meet, as
     ``[[pairs]]`` give), until a time or a count of impacts."""
-    if not set(plan.effects) <= {"gravity", "rolling-resistance", "pivot-friction"}:
+    if not set(plan.effects) <= {"gravity", "rolling-resistance", "pivot-friction",
+                                 "tangential-compliance"}:
         raise InputError("simulate.effects", "past separation a 3-D scene takes gravity, "
-                         "rolling-resistance and pivot-friction (tangential-compliance is "
-                         "one bounce, until = \"separation\")")
+                         "rolling-resistance, pivot-friction and tangential-compliance")
     free = [b for b in scene.bodies if b.support != "fixed"]
     if not free or any(b.radius is None for b in free):
         raise InputError("bodies", "a 3-D scene is followed past its impact for free "
@@ -164,9 +146,11 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
                          f"got {impacts!r}")
     g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
     horizon = None if plan.until == "separation" else sp.Rational(str(plan.until))
-    run = spheres(balls, planes, pairs, (0, 0, -g), impacts, horizon,
-                  *(sp.Rational(str(plan.settings[key])) if key in plan.settings else 0
-                    for key in ("rolling_resistance", "pivot_friction")))
+    wear = {key: sp.Rational(str(plan.settings[key])) if key in plan.settings else 0
+            for key in ("rolling_resistance", "pivot_friction")}
+    run = spheres(balls, planes, pairs, (0, 0, -g), impacts, horizon, **wear,
+                  compliance=plan.settings["stiffness_ratio"]
+                  if "tangential-compliance" in plan.effects else None)
     events: list[dict[str, Any]] = []
     for e in run.events:
         event: dict[str, Any] = {"kind": e.kind, "t": float(e.t), "plane": e.plane}
@@ -187,7 +171,8 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
     for name, state in run.states.items():
         final.update({f"{name}.{k}": float(sp.N(x, 17)) for k, x in zip(
             ("x", "y", "z", *SPEEDS), (*state[0], *state[1], *state[2]), strict=True)})
-    details = {"exact": run.exact, "impacts": sum(e.kind == "impact" for e in run.events),
+    details: dict[str, Any] = {"exact": run.exact,
+                               "impacts": sum(e.kind == "impact" for e in run.events),
                "gravity": [0.0, 0.0, -float(g)], "stopped": run.stopped}
     if run.tolerance is not None:
         details["tolerance"] = run.tolerance
@@ -197,6 +182,12 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
     elif not run.exact:
         details["notes"] = ["a time of the run is irrational: from there on it is "
                             "followed in 40-digit floating point"]
+    if "tangential-compliance" in plan.effects:
+        details.setdefault("notes", []).append(
+            f"each bounce of a flying sphere on a plane goes through the tangentially "
+            f"compliant contact (k_t/k_n = {plan.settings['stiffness_ratio']:g}), "
+            f"integrated to first order with {STEPS} steps a period, in float64; a "
+            "cushion struck while lying and two spheres meeting stay rigid")
     return Outcome(plan, {**final, "t": float(run.t)}, events, time.perf_counter() - start,
                    0, details, BounceTrack(balls, run))
 
