@@ -4,7 +4,7 @@ a block on a floor struck from the side). The impact is followed in the striking
 contact's normal impulse, each resting contact sticking or slipping under Coulomb's law
 as the impulse grows, by :func:`rigidimpact.laws.together.driven_impact`, in floating
 point; contacts moving apart take no part. Where the striking contact's own impact
-(its laws' one face, exact) leaves no resting contact closing, the resting ones carry
+(its laws' one face, in closed form) leaves no resting contact closing, the resting ones carry
 nothing (a resting contact pushes only to stay closed, and friction without a push is
 none): that exact answer is the rule's, and nothing is integrated (two balls lying on a
 table meeting along a level line of centres).
@@ -118,17 +118,17 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
 
 
 def _alone(problem: ImpactProblem, k: int, resting: list[int]) -> Solution | None:
-    """The striking contact k's own impact, where it is exact and leaves every resting
-    contact not closing (so they carry nothing); else None."""
-    if not all(x.is_Rational for x in (*problem.u_before, *problem.M_inverse)):
+    """The striking contact k's own impact, where it is a closed form (exact, or in the
+    numbers' own floating point) and leaves every resting contact not closing (so they
+    carry nothing); else None."""
+    if not all(sp.sympify(x).is_number for x in (*problem.u_before, *problem.M_inverse)):
         return None
     try:
         P, course, after, tolerance = _own_step(problem, k, problem.u_before)
     except InputError:
         return None
     opening = [problem.closing(i, list(after)) for i in resting]
-    if tolerance is not None or any(x.has(sp.Float) for x in P) or \
-            any(x < 0 for x in opening):
+    if tolerance is not None or any(x < 0 for x in opening):
         return None
     n = len(problem.contacts)
     normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
