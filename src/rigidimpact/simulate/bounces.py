@@ -14,9 +14,19 @@ into ends the flight (so does starting on such a plane at rest across it): the s
 slides there by Coulomb's friction until it rolls
 (:func:`rigidimpact.simulate.sphere.sliding`), then rolls on, its path a quadratic in
 time in which the next plane (a cushion, a wall) is found as in flight. Struck while
-lying, that plane strikes and the one it lies on rests (the driven rule, integrated);
-after it the sphere lies on, or leaves the plane and flies. A plane that gravity does
-not press the sphere straight into (a slope) is refused in one line.
+lying, that plane strikes and the one it lies on rests (the driven rule: the struck
+plane's own impact where it leaves the other open, else integrated); after it the
+sphere lies on, or leaves the plane and flies. A plane that gravity does not press the
+sphere straight into (a slope) is refused in one line.
+
+Several spheres (:func:`spheres`) each live so, every one striking every plane; two
+meet when the distance of their centres, each on its own quadratic path, comes down to
+the sum of their radii: the first root of odd multiplicity of a quartic in time, exact
+where its coefficients are rational. They meet by their pair's laws, the planes they lie
+on resting (the driven rule again). Rolling resistance slows a rolling sphere at
+``mu_r g`` until it stops, and pivoting friction wears its spin about the plane's normal
+at ``mu_p g / (k R)`` until it ends: each a constant rate, so every phase stays a
+quadratic in time with its end found in closed form.
 
 The run stops after a stated number of impacts or at a stated time (``horizon``), and
 its events up to any time are the same whatever later horizon was asked. The times are
