@@ -45,7 +45,6 @@ l*u(t)*A.x
 from __future__ import annotations
 
 import math
-import random
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -61,6 +60,9 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import Equation
+from rigidimpact.mechanics.certify import FLOAT_DIGITS
+from rigidimpact.mechanics.certify import checks as certify_checks
+from rigidimpact.mechanics.certify import wide as _wide
 from rigidimpact.solve.collision import (
     MAX_ENUMERATED,
     Rule,
@@ -71,18 +73,11 @@ from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.solution import Solution
 
-FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
 # a closed form (symbols left) is sought where its work is at most this: the symbols
 # times the product of the linear system's rows' terms (a bound on the fraction-free
 # solve's terms). A chain of four point masses on links (3.9e5) solves in 8 s, the compass
 # gait (6.5e6) in seconds; a chain of five (1.4e7) ran past 200 s
 MAX_SYMBOLIC_TERMS = 10**7
-# a residual of the checks beyond this (relative to the largest speed or impulse) is a
-# wrong answer: the exact paths give zero, the floating ones about 1e-45
-CHECK_TOLERANCE = 1e-30
-SETTLING = 1e-12  # the sequential rule's passes end once no contact closes faster
-SYMBOLIC_POINTS = 3  # seeded random rational points a closed form is checked at
-SYMBOLIC_TRIES = 12  # points drawn to find them (a point with no impact is no check)
 
 __all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
 
@@ -282,7 +277,7 @@ class SystemImpact:
         M = sp.Matrix(self.M)
         before = (self.u_before.T * M * self.u_before)[0] / 2
         lost = _small(before - (after.T * M * after)[0] / 2)
-        checks = self._checks(after, P)
+        checks = certify_checks(self, after, P)
         if checks is not None and not all(x.is_Rational or not x.is_Float for x in P):
             checks["_tolerance"] = 1e-8
         solution = Solution(
@@ -580,7 +575,7 @@ class SystemImpact:
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
-        checks = self._checks(back(after), P, rule)
+        checks = certify_checks(self, back(after), P, rule)
         if checks is not None and rule == "compliant":  # integrated in floating point:
             checks.pop("_tolerance")  # the rule's own tolerance, not the exact paths'
         solution = Solution(
@@ -597,179 +592,6 @@ class SystemImpact:
             given_checks=checks, rule=rule)
         # its energy warning is its own (above): only a broken condition is acted on
         return solution if checks is None else certified(solution, limits=False)
-
-    def _checks(self, u_after: sp.Matrix, P: sp.Matrix,
-                rule: str = "simultaneous") -> dict[str, Any] | None:
-        """The residuals of the laws, apart from the path that solved them and from the
-        M and J it solved with: the system's own bodies and points (:meth:`_own`) give
-        the generalized momentum balance (``dT/du`` after less before, less each contact
-        impulse's generalized impulse ``P . dv/du``), each contact's normal velocity
-        after (none closing beyond the sequential rule's settling) and slip, the
-        restitution law's end where the velocities fix it (Newton's law at one contact,
-        whatever the path; a law acting at the velocity level under the simultaneous
-        rule: the acting contacts leave at its target, the released ones at least as
-        fast), and the energy; the impulses give the push-only condition and Coulomb's
-        cone. A system
-        built without its bodies is checked with M and J themselves. None with symbols
-        left (the closed forms are checked in the tests)."""
-        numbers = [*u_after, *P, *self.u_before, *self.M, *self.J]
-        if not all(sp.sympify(x).is_number for x in numbers):
-            return self._at_points(u_after, P, rule)
-        with mpmath.workdps(FLOAT_DIGITS):
-            def num(x: Any) -> Any:
-                return mpmath.mpf(sp.N(x, FLOAT_DIGITS + 10)._to_mpmath(mpmath.mp.prec))
-
-            p = mpmath.matrix([num(x) for x in P])
-            own = self._own(u_after, P, num)
-            if own is None:
-                balance, v, v0, kinetic = self._by_M_and_J(u_after, P, num)
-            else:
-                balance, v, v0, kinetic = own
-            width = len(P) // len(self.contacts)
-            scale = max([abs(x) for x in v0] + [abs(x) for x in p] + [mpmath.mpf(1e-300)])
-            out: dict[str, Any] = {"momentum": max(abs(x) for x in balance)}
-            for i, c in enumerate(self.contacts):
-                tangential = c.laws.laws[1]
-                k = width * i
-                out[f"{c.name}.pushes"] = max(0, -p[k])
-                out[f"{c.name}.opens"] = max(0, -v[k] - SETTLING * scale)
-                mu = tangential.cone()
-                size = mpmath.sqrt(sum(p[k + j] ** 2 for j in range(1, width)))
-                if not tangential.grips:
-                    out[f"{c.name}.smooth"] = size
-                elif mu is not None:
-                    out[f"{c.name}.cone"] = max(0, size - num(mu) * p[k])
-                if tangential.unknown_tangential and p[k] > 0:
-                    out[f"{c.name}.sticks"] = max(abs(v[k + j]) for j in range(1, width))
-                restitution = c.laws.laws[0]
-                one = len(self.contacts) == 1 and restitution.name == "newton"
-                if one or (rule == "simultaneous" and restitution.together == "velocity"):
-                    target = num(restitution.leaving(sp.Float(min(v0[k], 0), FLOAT_DIGITS)))
-                    if one or p[k] > 0:
-                        out[f"{c.name}.restitution"] = abs(v[k] - target)
-                    else:
-                        out[f"{c.name}.released"] = max(0, target - v[k])
-            out["energy"] = max(0, kinetic[1] - kinetic[0])
-            out["_scale"] = scale
-            out["_kinetic"] = kinetic[0]
-            out["_tolerance"] = CHECK_TOLERANCE
-        return out
-
-    def _at_points(self, u_after: sp.Matrix, P: sp.Matrix, rule: str) -> dict[str, Any] | None:
-        """The residuals of a closed form (symbols left), at seeded random rational
-        points of its symbols and coordinates where the impact happens: each constant
-        within its assumptions (a restitution coefficient in [0, 1], a friction
-        coefficient in [0, 2]), each coordinate and speed in [-3/2, 3/2]; the worst of
-        each residual over :data:`SYMBOLIC_POINTS` points, relative to that point's
-        scale (the energy to its kinetic energy). The system's own kinematics check
-        each point (:meth:`_own`), apart from the M and J the closed form came from.
-        None where no point of the first :data:`SYMBOLIC_TRIES` is an impact."""
-        laws = sp.Tuple(*(x for c in self.contacts for x in (
-            c.laws.restitution, c.laws.friction or 0, c.laws.tangential_restitution or 0)))
-        data = sp.Tuple(*self.M, *self.J, *self.u_before, *u_after, *P, laws)
-        constants = sorted(data.free_symbols - {me.dynamicsymbols._t}, key=str)
-        ranges = {c.laws.restitution: (0, 1) for c in self.contacts} | {
-            c.laws.friction: (0, 2) for c in self.contacts if c.laws.friction is not None}
-        functions = sorted({*self.q, *self.u} & data.atoms(sp.Function), key=str)
-        rng = random.Random(44)
-        worst: dict[str, Any] = {}
-        checked = 0
-        for _ in range(SYMBOLIC_TRIES):
-            if checked == SYMBOLIC_POINTS:
-                break
-            point: dict[Any, Any] = {}
-            for x in constants:
-                low, high = ranges.get(x, (0, 3) if x.is_positive or x.is_nonnegative
-                                       else (-3, 3))
-                value = sp.Rational(rng.randint(low * 311, high * 311), 311)
-                if x.is_positive and value <= 0:
-                    value = sp.Rational(rng.randint(1, 3 * 311), 311)
-                point[x] = value
-            for f in functions:
-                point[f] = sp.Rational(rng.randint(-466, 466), 311)
-            try:
-                here = self.at({k: v for k, v in point.items() if k not in self.u} |
-                               {u: point.get(u, b) for u, b in
-                                zip(self.u, self.u_before, strict=True)})
-                normals = here.J * here.u_before
-                if not any(normals[2 * i] < 0 for i in range(len(self.contacts))):
-                    continue  # no impact at this point
-                found = here._checks(u_after.xreplace(point), P.xreplace(point), rule)
-            except (InputError, ZeroDivisionError, TypeError, ValueError):
-                continue
-            if found is None:
-                continue
-            checked += 1
-            for key, value in found.items():
-                if key.startswith("_"):
-                    continue
-                size = value / (found["_kinetic"] if key == "energy" else found["_scale"])
-                worst[key] = max(worst.get(key, 0), size)
-        if not checked:
-            return None
-        return {**worst, "_scale": 1, "_kinetic": 1, "_tolerance": CHECK_TOLERANCE,
-                "_points": checked}
-
-    def _by_M_and_J(self, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple:
-        """The balance, the contact velocities after and before and the kinetic energies
-        from the M and J the solve used (a system given without its bodies)."""
-        M = mpmath.matrix([[num(x) for x in self.M.row(i)] for i in range(self.M.rows)])
-        J = self.J if len(P) == self.J.rows else self.J_plane
-        J = mpmath.matrix([[num(x) for x in J.row(i)] for i in range(J.rows)])
-        after = mpmath.matrix([num(x) for x in u_after])
-        before = mpmath.matrix([num(x) for x in self.u_before])
-        balance = M * (after - before) - J.T * mpmath.matrix([num(x) for x in P])
-        kinetic = [(x.T * M * x)[0] / 2 for x in (before, after)]
-        return balance, J * after, J * before, kinetic
-
-    def _own(self, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple | None:
-        """The system's own view of an answer, from its bodies and points alone: the
-        generalized momentum balance along the independent speeds, each contact's
-        velocity after and before in its own frame (normal, then tangents), and the
-        kinetic energy before and after. None for a system given without bodies."""
-        if not self.bodies:
-            return None
-        speeds = list(self.fold[0] if self.fold is not None else self.u)
-        kinematics, values = dict(self.kinematics), dict(self.values)
-
-        wide = _wide
-        values = {k: wide(v) for k, v in values.items()}
-
-        def ready(x: Any) -> sp.Expr:  # q' as the speeds give it, then the numbers
-            x = sp.sympify(x)
-            if kinematics:
-                x = x.subs(kinematics)
-            return wide(x).xreplace(values)
-
-        def at(x: sp.Expr, state: sp.Matrix) -> Any:
-            return num(x.xreplace({s: wide(v) for s, v in zip(speeds, state, strict=True)}))
-
-        states = [self._all(sp.Matrix(self.u_before)), self._all(sp.Matrix(u_after))]
-        energy = ready(sum((b.kinetic_energy(self.frame) for b in self.bodies),
-                           sp.Integer(0)))
-        momentum = [energy.diff(s) for s in speeds]
-        width = len(P) // len(self.contacts)
-        generalized = [mpmath.mpf(0)] * len(speeds)
-        seen: list[list[Any]] = [[], []]
-        for i, c in enumerate(self.contacts):
-            velocity = c.point.vel(self.frame)
-            if c.other is not None:
-                velocity = velocity - c.other.vel(self.frame)
-            axes = self._plane(c) if width == 3 else self._unit(c)
-            push = sum((P[width * i + j] * axes[j] for j in range(width)), me.Vector(0))
-            for j, s in enumerate(speeds):
-                generalized[j] += num(ready(push.dot(velocity.diff(s, self.frame))))
-            for k, state in enumerate(states):
-                seen[k] += [at(ready(velocity.dot(axis)), state) for axis in axes]
-        change = [at(x, states[1]) - at(x, states[0]) - g
-                  for x, g in zip(momentum, generalized, strict=True)]
-        # along the independent speeds' partial velocities (the velocity constraints'
-        # reactions do no work there)
-        fold = sp.eye(len(speeds)) if self.fold is None else self.fold[1]
-        balance = [sum((num(fold[j, r]) * change[j] for j in range(len(speeds))),
-                       mpmath.mpf(0)) for r in range(fold.cols)]
-        kinetic = [at(energy, state) for state in states]
-        return balance, seen[1], seen[0], kinetic
 
     def _all(self, independent: sp.Matrix) -> sp.Matrix:
         """Every speed from the independent ones (the dependent ones by the velocity
@@ -911,13 +733,6 @@ def _exact_enough(numbers: Sequence[Any]) -> bool:
                      and p.exp.is_Rational and not p.exp.is_Integer}
     return len({sp.sqrt(r.base).as_coeff_Mul()[1] for r in radicals
                 if r.exp.q == 2}) <= 1 and all(r.exp.q == 2 for r in radicals)
-
-
-def _wide(x: Any) -> sp.Expr:
-    """`x` with every float in it at the solve's precision and more (SymPy rounds a
-    product of floats, or the sine of one, to its narrowest operand's digits)."""
-    x = sp.sympify(x)
-    return x.xreplace({f: sp.Float(f, FLOAT_DIGITS + 10) for f in x.atoms(sp.Float)})
 
 
 def _no_tan(expr: Any) -> sp.Expr:
