@@ -36,10 +36,24 @@ def tidy(expr: sp.Expr) -> sp.Expr:
     expr = sp.sympify(expr)
     if expr.is_Rational or expr.is_Float:  # nothing to put over one denominator
         return expr
+    # each expression is rewritten once a process: a derivation and the checks that
+    # follow it tidy the same results again (not with floats in it: SymPy counts two
+    # Floats of one value and different precisions as equal)
+    exact = not expr.has(sp.Float)
+    if exact and expr in _TIDIED:
+        return _TIDIED[expr]
     shielded, back = _shield(expr)
     if back:
-        return _positive_lead(sp.together(_tidy(shielded).xreplace(back)))
-    return _tidy(expr)
+        out = _positive_lead(sp.together(_tidy(shielded).xreplace(back)))
+    else:
+        out = _tidy(expr)
+    if exact and len(_TIDIED) < _KEPT:
+        _TIDIED[expr] = out
+    return out
+
+
+_TIDIED: dict[sp.Expr, sp.Expr] = {}  # what tidy gave for each exact expression
+_KEPT = 20_000  # at most this many are kept (a long session's memory stays bounded)
 
 
 def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
