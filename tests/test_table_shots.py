@@ -259,3 +259,97 @@ def test_the_box_family_has_balls_meeting():
         run = spheres(bodies, planes, pairs, gravity=(0, 0, -10), impacts=25)
         meetings += sum(bool(e.other) for e in run.events)
     assert meetings >= 8
+
+
+def test_the_stun_shot_turned_and_moved_on_the_table_gives_the_turned_run():
+    # the whole table turned about the vertical by a rational rotation and moved: the
+    # same events at the same times, each place and velocity turned with it
+    from dataclasses import replace
+
+    scene = parse_space_scene(Path(STUN).read_text().replace("until = 8", "until = 2"))
+    values = dict(scene.values)
+    turn = sp.Matrix([[R(3, 5), -R(4, 5), 0], [R(4, 5), R(3, 5), 0], [0, 0, 1]])
+    shift = sp.Matrix([R(7, 3), -R(1, 2), 0])
+
+    def moved(scene_bodies, contacts, turned):
+        f = (lambda x: turn * sp.Matrix(x)) if turned else (lambda x: sp.Matrix(x))
+        g = (lambda x: turn * sp.Matrix(x) + shift) if turned else (lambda x: sp.Matrix(x))
+        balls = tuple(replace(b.at(values), position=sp.ImmutableMatrix(g(b.position)),
+                              velocity=sp.ImmutableMatrix(f(b.velocity)),
+                              spin=sp.ImmutableMatrix(f(b.spin)))
+                      for b in scene_bodies if b.support != "fixed")
+        placed = tuple(replace(c.at(values), point=sp.ImmutableMatrix(g(c.point)),
+                               normal=sp.ImmutableMatrix(f(c.normal))) for c in contacts)
+        return balls, placed
+
+    runs = []
+    for turned in (False, True):
+        balls, placed = moved(scene.bodies, (*scene.contacts, *scene.planes), turned)
+        planes = tuple(c for c in placed if c.name != "balls")
+        pairs = tuple(c for c in placed if c.name == "balls")
+        runs.append(spheres(balls, planes, pairs, gravity=(0, 0, -R(49, 5)), horizon=2,
+                            rolling_resistance=R(1, 100), pivot_friction=R(127, 10000)))
+    plain, turned = runs
+    assert [(e.kind, e.ball, e.plane) for e in plain.events] == \
+        [(e.kind, e.ball, e.plane) for e in turned.events]
+    for a, b in zip(plain.events, turned.events, strict=True):
+        assert abs(a.t - b.t) < 1e-30
+        assert max(abs(x) for x in turn * a.position + shift - b.position) < 1e-30
+        assert max(abs(x) for x in turn * a.velocity - b.velocity) < 1e-30
+        assert max(abs(x) for x in turn * a.spin - b.spin) < 1e-30
+
+
+def _rough_table(seed: int) -> tuple:
+    """A seeded table of 2 or 3 spinning balls on a Coulomb cloth inside four Coulomb
+    rails, the balls meeting with friction too."""
+    import random
+
+    rng = random.Random(1000 + seed)
+    r = R(1, 20)
+    places: list = []
+    while len(places) < rng.randint(2, 3):
+        c = (R(rng.randint(2, 18), 20), R(rng.randint(2, 18), 20))
+        if all((c[0] - b[0]) ** 2 + (c[1] - b[1]) ** 2 > (2 * r) ** 2 for b in places):
+            places.append(c)
+    bodies = tuple(Body3.sphere(R(1, 5), r, (x, y, r),
+                                (R(rng.randint(-8, 8), 4), R(rng.randint(-8, 8), 4), 0),
+                                tuple(R(rng.randint(-40, 40)) for _ in range(3)),
+                                name=f"b{k}") for k, (x, y) in enumerate(places))
+    rough = dict(tangential="coulomb", friction=R(rng.randint(1, 4), 10))
+    planes = [Contact(normal=(0, 0, 1), bodies=("table", "b0"), point=(0, 0, 0),
+                      name="cloth", restitution=R(1, 2), **rough)]
+    planes += [Contact(normal=n, bodies=("table", "b0"), point=p, name=name,
+                       restitution=R(rng.randint(1, 9), 10), **rough)
+               for name, p, n in (("west", (0, 0, 0), (1, 0, 0)), ("east", (1, 0, 0), (-1, 0, 0)),
+                                  ("south", (0, 0, 0), (0, 1, 0)),
+                                  ("north", (0, 1, 0), (0, -1, 0)))]
+    pairs = [Contact(normal=(1, 0, 0), bodies=(a.name, b.name), name=f"{a.name}_{b.name}",
+                     restitution=R(rng.randint(5, 10), 10), tangential="coulomb",
+                     friction=R(1, 20)) for i, a in enumerate(bodies) for b in bodies[i + 1:]]
+    return bodies, planes, pairs
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_spinning_balls_on_a_rough_table_never_gain_energy_nor_overlap(seed):
+    # friction everywhere, spins, rolling resistance and pivoting friction: the energy
+    # (kinetic, rotational and the height's) never grows from one event to the next,
+    # every ball stays on or above the cloth and inside the rails, and no two overlap
+    bodies, planes, pairs = _rough_table(seed)
+    g = R(49, 5)
+    run = spheres(bodies, planes, pairs, gravity=(0, 0, -g), horizon=2, impacts=60,
+                  rolling_resistance=R(1, 100), pivot_friction=R(1, 100))
+    mass, inertia = R(1, 5), R(2, 5) * R(1, 5) * R(1, 20) ** 2
+    energies = [sum(mass * v.dot(v) / 2 + inertia * w.dot(w) / 2 + mass * g * c[2]
+                    for c, v, w in states.values()) for _, states in run.snapshots]
+    assert len(energies) > 3
+    for before, after in zip(energies, energies[1:], strict=False):
+        assert after <= before + sp.Float(1e-25) * energies[0], (seed, before, after)
+    _, points = BounceTrack(bodies, run).every(1500)
+    names = list(points)
+    for i, a in enumerate(names):
+        path = points[a]
+        assert path[:, 2].min() >= 1 / 20 - 1e-9
+        assert path[:, :2].min() >= 1 / 20 - 1e-9 and path[:, :2].max() <= 1 - 1 / 20 + 1e-9
+        for b in names[i + 1:]:
+            gap = ((path - points[b]) ** 2).sum(axis=1) ** 0.5
+            assert gap.min() >= 2 / 20 - 1e-9, (seed, a, b)

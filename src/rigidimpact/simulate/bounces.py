@@ -116,7 +116,8 @@ class Bounces:
     tolerance: float | None = None  # where an impact was integrated: its stated accuracy
     # every sphere's (position, velocity, spin) where the run stopped
     states: dict[str, tuple[sp.Matrix, sp.Matrix, sp.Matrix]] = field(default_factory=dict)
-    # (t, each sphere's (position, velocity)) at the start, after each event and at the end
+    # (t, each sphere's (position, velocity, spin)) at the start, after each event and at
+    # the end
     snapshots: tuple = ()
 
 
@@ -302,7 +303,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     exact = all(x.is_Rational for s in ones for x in (*s.c, *s.v, *s.w, s.R)) and \
         all(x.is_Rational for x in a)
     events: list[Event] = []
-    snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, sp.Matrix]]]] = []
+    snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
     count = 0
     # a sphere that starts lying on a plane gravity presses it into slides or rolls there
     for s in ones:
@@ -312,7 +313,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     due: tuple | None = None  # the impact the last step was taken to, whatever its rounding
 
     def snap() -> None:
-        snapshots.append((t, {s.name: (s.c, s.v) for s in ones}))
+        snapshots.append((t, {s.name: (s.c, s.v, s.w) for s in ones}))
 
     def finish(stopped: str, when: sp.Expr) -> Bounces:
         first = ones[0]
