@@ -43,7 +43,13 @@ RADIUS, MASS = 0.0285, 0.17
 
 
 def scene_text(shot: str, until: float = 8.0) -> str:
-    """The shot as a 3-D scene on the table of the module's text."""
+    """The shot as a 3-D scene on the table of the module's text.
+
+    Examples
+    --------
+    >>> 'spin = ["0", "-2450/57", "0"]' in scene_text("stun")
+    True
+    """
     spin = SHOTS[shot]
     rails = [("near_rail", ("0", "0"), ("0", "1")), ("far_rail", ("0", "1"), ("0", "-1")),
              ("left_rail", ("0", "0"), ("1", "0")), ("right_rail", ("3", "0"), ("-1", "0"))]
@@ -104,13 +110,26 @@ until = {until}
 
 def scene(shot: str, until: float = 8.0) -> Any:
     """The shot as a read 3-D scene (a :class:`~rigidimpact.scenes.space.SpaceScene`),
-    followed until `until` seconds."""
+    followed until `until` seconds.
+
+    Examples
+    --------
+    >>> [b.name for b in scene("draw").bodies]
+    ['table', 'cue', 'object']
+    """
     return parse_space_scene(scene_text(shot, until), f"{shot}-shot")
 
 
 def ours(shot: str) -> list[tuple[float, str, str, float, float]]:
     """This package's events of the shot: (t, ball, what, x, y), what one of
-    ``balls``, ``rolls``, ``cushion``, ``stops``."""
+    ``balls``, ``rolls``, ``cushion``, ``stops``.
+
+    Examples
+    --------
+    >>> first = ours("stun")[0]
+    >>> first[:3], round(first[3], 6)
+    ((0.25, 'cue', 'balls'), 0.93875)
+    """
     outcome = run_space(scene(shot))
     run = outcome.trajectory.run
     out = []
@@ -182,7 +201,13 @@ def pooltools(shot: str) -> list[tuple[float, str, str, float, float]]:
 
 
 def eval_fraction(text: str) -> float:
-    """A fraction written "p/q" as a float (the module's own constants only)."""
+    """A fraction written "p/q" as a float (the module's own constants only).
+
+    Examples
+    --------
+    >>> eval_fraction("-4900/57") == -4900 / 57
+    True
+    """
     top, _, bottom = text.partition("/")
     return int(top) / int(bottom or 1)
 
@@ -215,7 +240,15 @@ def _until_cushion(events: list) -> list:
 
 
 def markdown(rows_by_shot: dict[str, list]) -> str:
-    """The side-by-side rows as a Markdown table."""
+    """The side-by-side rows as a Markdown table.
+
+    Examples
+    --------
+    >>> print(markdown({"stun": [("cue", "balls", (0.25, 0.5, 0.0), (0.25, 0.5, 0.0))]}))
+    | shot | ball | event | t here (s) | t pooltool (s) | x, y here (m) | x, y pooltool (m) |
+    |---|---|---|---|---|---|---|
+    | stun | cue | balls | 0.250000 | 0.250000 | 0.500000, 0.000000 | 0.500000, 0.000000 |
+    """
     lines = ["| shot | ball | event | t here (s) | t pooltool (s) | x, y here (m) | "
              "x, y pooltool (m) |", "|---|---|---|---|---|---|---|"]
     for shot, rows in rows_by_shot.items():

@@ -269,7 +269,26 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     (:func:`rigidimpact.laws.compliance.sphere_bounce`, integrated to first order with
     :data:`~rigidimpact.simulate.tangential.STEPS` steps a period); a cushion struck
     while lying and the meeting of two spheres stay rigid. The answer's `position`,
-    `velocity` and `spin` are the first sphere's; `states` has every sphere's."""
+    `velocity` and `spin` are the first sphere's; `states` has every sphere's.
+
+    Examples
+    --------
+    Two equal balls of radius 1/10 lie on a smooth cloth 1 apart; the first slides at 1
+    into the second, which it meets when the gap of 4/5 is closed, and, the meeting
+    elastic and smooth, stops there while the second goes on at 1:
+
+    >>> r = sp.Rational(1, 10)
+    >>> a = Body3.sphere(1, r, (0, 0, r), (1, 0, 0), name="a")
+    >>> b = Body3.sphere(1, r, (1, 0, r), name="b")
+    >>> cloth = Contact(normal=(0, 0, 1), bodies=("table", "a"), point=(0, 0, 0),
+    ...                 name="cloth", restitution=0)
+    >>> meeting = Contact(normal=(1, 0, 0), bodies=("a", "b"), name="balls", restitution=1)
+    >>> run = spheres((a, b), (cloth,), (meeting,), gravity=(0, 0, -10), horizon=2)
+    >>> [(e.t, e.ball, e.other) for e in run.events]
+    [(4/5, 'a', 'b')]
+    >>> run.states["a"][1].T, run.states["b"][1].T
+    (Matrix([[0, 0, 0]]), Matrix([[1, 0, 0]]))
+    """
     if not balls or any(b.radius is None or b.support == "fixed" for b in balls):
         raise InputError("bodies", "a bounce run follows free spheres")
     if len({b.name for b in balls}) != len(balls):
