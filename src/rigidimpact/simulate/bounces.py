@@ -369,6 +369,16 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             s.said = False
         return course
 
+    def touching(gap: sp.Expr, scale: sp.Expr) -> bool:
+        """Whether a gap (a plane's, or two centres' squared distance less its least)
+        is none: exactly, or once the run is in floating point, within its rounding (a
+        gap the rounding closed a little too far must not let two bodies pass through
+        each other)."""
+        gap = sp.simplify(gap) if exact else gap
+        if gap == 0:
+            return True
+        return not exact and abs(gap) <= sp.Float(10) ** (5 - DIGITS) * scale
+
     def leave_or_lie(s: _Sphere) -> None:
         """After an impact struck while lying, the sphere lies on or leaves its plane."""
         if s.lying is not None:
@@ -386,13 +396,15 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             for f in flats:
                 if f is s.lying or f[2].dot(s.v) >= 0:
                     continue
-                if due == ("plane", s.name, f[0].name) or sp.simplify(_gap(f, s.c, s.R)) == 0:
+                if due == ("plane", s.name, f[0].name) or \
+                        touching(_gap(f, s.c, s.R), 1 + max(abs(x) for x in s.c)):
                     now.append((f[2].dot(s.v), ("plane", s, f)))
         for p, q in couples:
             d = q.c - p.c
             closing = d.dot(q.v - p.v) / (p.R + q.R)
             if closing < 0 and (due == ("pair", p.name, q.name)
-                                or sp.simplify(d.dot(d) - (p.R + q.R) ** 2) == 0):
+                                or touching(d.dot(d) - (p.R + q.R) ** 2,
+                                            (1 + max(abs(x) for x in (*p.c, *q.c))) ** 2)):
                 now.append((closing, ("pair", p, q)))
         due = None
         if now:
