@@ -602,7 +602,6 @@ def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
     """A 3-D run's path from above and from the side, its impacts marked, to a PNG
     written whole or not at all."""
     import numpy as np
-    import sympy as sp
 
     from rigidimpact.outputs.atomic import write_file
     _files_only()
@@ -613,17 +612,8 @@ def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
     said = {"impact": "impact", "rolls": "starts to roll", "stops": "stops"}
     marks = [(said[e.kind], np.array([float(x) for x in e.position]))
              for e in track.run.events if e.kind in said]
-    names = {b.name for b in track.balls}
-    planes: list = []
-    for c in (*scene.contacts, *scene.planes):
-        if {c.first, c.second} <= names or \
-                not all(sp.sympify(x).is_number for x in (*c.point, *c.normal)):
-            continue
-        p, n = (np.array([float(x) for x in v]) for v in (c.point, c.normal))
-        n = n / np.linalg.norm(n)
-        if not any(abs(abs(n @ m) - 1) < 1e-12 and abs(n @ (p - q)) < 1e-12
-                   for _, q, m in planes):  # one plane written twice is drawn once
-            planes.append((c.name, p, n))
+    planes = [(name, np.array([float(x) for x in p]), np.array([float(x) for x in n]))
+              for name, p, n in track.run.planes]  # the run's own, each once
     figure = space_views({f"{name}'s centre": path for name, path in points.items()},
                          scene.title, marks, planes=planes)
     try:

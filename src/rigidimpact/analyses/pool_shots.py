@@ -28,6 +28,7 @@ collision differ from the exact ones by about 1e-5 relative.
 
 from __future__ import annotations
 
+from fractions import Fraction
 from typing import Any
 
 from rigidimpact.scenes.space import parse_space_scene
@@ -172,7 +173,7 @@ def pooltools(shot: str) -> list[tuple[float, str, str, float, float]]:
         made.state = BallState(np.array([[*xy, RADIUS], v, w], dtype=float), state)
         return made
 
-    spin = float(eval_fraction(SHOTS[shot]))
+    spin = float(Fraction(SHOTS[shot]))
     cue = ball("cue", (SHIFT, SHIFT), (2.0, 0.0, 0.0), (0.0, spin, 0.0),
                const.rolling if shot == "follow" else const.sliding)
     target = ball("object", (9687 / 20000 + SHIFT, 171 / 5000 + SHIFT), (0.0, 0.0, 0.0),
@@ -198,18 +199,6 @@ def pooltools(shot: str) -> list[tuple[float, str, str, float, float]]:
                 out.append((float(e.time), agent.id, what, float(x) - SHIFT,
                             float(y) - SHIFT))
     return out
-
-
-def eval_fraction(text: str) -> float:
-    """A fraction written "p/q" as a float (the module's own constants only).
-
-    Examples
-    --------
-    >>> eval_fraction("-4900/57") == -4900 / 57
-    True
-    """
-    top, _, bottom = text.partition("/")
-    return int(top) / int(bottom or 1)
 
 
 def side_by_side(shot: str, mine: list | None = None, theirs: list | None = None

@@ -119,6 +119,8 @@ class Bounces:
     # (t, each sphere's (position, velocity, spin)) at the start, after each event and at
     # the end
     snapshots: tuple = ()
+    # each distinct plane of the run: (name, a point on it, its unit normal)
+    planes: tuple = ()
 
 
 def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
@@ -338,7 +340,8 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         first = ones[0]
         return Bounces(tuple(events), when, first.c, first.v, first.w, stopped, exact,
                        max(tolerance) if tolerance else None,
-                       {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots))
+                       {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots),
+                       tuple((f[0].name, f[1], f[2]) for f in flats))
 
     def floats(*xs: sp.Matrix) -> tuple[sp.Matrix, ...]:
         return tuple(x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in xs)
