@@ -72,3 +72,29 @@ def test_a_new_restitution_law_is_one_class():
                 [(r.name, r.impulse) for r in newton]
             bent += sum(len(r.path) == 3 for r in ours)  # slip stopped: the class's end
     assert bent >= 2
+
+
+def test_a_law_written_only_as_printed_equations_is_refused_where_the_rules_need_more(
+        monkeypatch):
+    # the law above, at a floor the ball strikes together with a wall: the rules of
+    # several contacts ask a law's contact-space face, which it does not have. Before,
+    # the sequential rule took it for a smooth contact and the simultaneous rule for a
+    # sticking one, each printing a wrong number; now each refuses in one line
+    import pytest
+
+    from rigidimpact.errors import InputError
+    from rigidimpact.solve.collision import Collision
+    from rigidimpact.solve.rules import Sequential, Simultaneous
+
+    monkeypatch.setitem(laws.TANGENTIAL_LAWS, "reverse", TangentialRestitution)
+    ball = Body.rigid(1, sp.Rational(2, 5), (0, 0), (1, -1), name="ball")
+    floor = Contact((0, 1), 1, "reverse", name="floor", bodies=("floor", "ball"),
+                    point=(0, -1))
+    wall = Contact((-1, 0), 1, "smooth", name="wall", bodies=("ball", "floor"), point=(1, 0))
+    for rule in (Simultaneous(), Sequential()):
+        with pytest.raises(InputError, match="printed equations"):
+            Collision((ball, Body.fixed("floor")), (floor, wall)).solve(rule)
+    # alone, it is the two-body derivation's, under every rule: Garwin's 3/7
+    for rule in (Simultaneous(), Sequential()):
+        (out,) = Collision((ball, Body.fixed("floor")), (floor,)).solve(rule)
+        assert out.results()["ball.vx"] == sp.Rational(3, 7)

@@ -334,7 +334,7 @@ class ContactLaw:
     # act together (the simultaneous rule): "on" (pushing, no tangential impulse),
     # "stick" (no slip after), "slide+"/"slide-" (on the friction cone's edge); empty:
     # the law has no velocity-level form and acts only as one contact's own impact
-    velocity_states: ClassVar[tuple[str, ...]] = ("stick",)
+    velocity_states: ClassVar[tuple[str, ...]] = ()
     grips: ClassVar[bool] = True  # False: the law never gives a tangential impulse
     # True: the law's printed condition is on the velocities after (no slip), so where
     # no momentum law holds its tangential impulse is an unknown of its own
@@ -411,8 +411,15 @@ class ContactLaw:
         space, one tangent or two), that a law imposed as linear conditions asks to
         vanish: the normal velocity after the restitution law asks (`leaving`, its
         :meth:`NewtonRestitution.leaving` of ``v_before[0]``) and the tangential
-        conditions. Any solver of W P = v+ - v- may impose them."""
-        return [v_after[0] - leaving, *impulse[1:]]
+        conditions. Any solver of W P = v+ - v- may impose them. A law written only
+        as its printed equations has none: it is refused in one line wherever its
+        contact-space face is asked (several contacts, space, a mechanics system),
+        never taken for another law."""
+        raise InputError(f"{self.name or type(self).__name__}.tangential",
+                         "this law is written only as its printed equations (equations); "
+                         "the rules and 3-D contacts need its contact-space face too "
+                         "(linear_conditions, or regimes): the two-body derivation of "
+                         "one contact takes it as it is")
 
     def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
         solved = self._linear(W, v_before, restitution)
@@ -597,6 +604,9 @@ class Smooth(ContactLaw):
 
     def conditions(self, before, kicked, impulse):
         return [impulse[1]]
+
+    def linear_conditions(self, v_before, v_after, impulse, leaving) -> list[sp.Expr]:
+        return [v_after[0] - leaving, *impulse[1:]]  # the restitution law; no friction
 
 
 class Stick(ContactLaw):
