@@ -204,6 +204,21 @@ def test_the_shots_agree_with_pooltool_up_to_each_first_cushion(shot):
         assert ours[1:] == pytest.approx(theirs[1:], abs=3e-5), (name, what)
 
 
+# the four rails of the unit table: (name, a point on the rail, its normal inward)
+RAILS = (("west", (0, 0, 0), (1, 0, 0)), ("east", (1, 0, 0), (-1, 0, 0)),
+         ("south", (0, 0, 0), (0, 1, 0)), ("north", (0, 1, 0), (0, -1, 0)))
+
+
+def _places(rng: Any, r: Any, most: int) -> list:
+    """2 to `most` rational places on the unit table for balls of radius r, apart."""
+    places: list = []
+    while len(places) < rng.randint(2, most):
+        c = (R(rng.randint(2, 18), 20), R(rng.randint(2, 18), 20))
+        if all((c[0] - b[0]) ** 2 + (c[1] - b[1]) ** 2 > (2 * r) ** 2 for b in places):
+            places.append(c)
+    return places
+
+
 def _box(seed: int, speed: Any = 1) -> tuple:
     """A seeded box of 2 to 4 equal balls on a smooth table inside four smooth,
     elastic rails, each ball at a rational place and velocity (times `speed`), none
@@ -212,11 +227,7 @@ def _box(seed: int, speed: Any = 1) -> tuple:
 
     rng = random.Random(seed)
     r = R(1, 20)
-    balls: list = []
-    while len(balls) < rng.randint(2, 4):
-        c = (R(rng.randint(2, 18), 20), R(rng.randint(2, 18), 20))
-        if all((c[0] - b[0]) ** 2 + (c[1] - b[1]) ** 2 > (2 * r) ** 2 for b in balls):
-            balls.append(c)
+    balls = _places(rng, r, 4)
     bodies = tuple(Body3.sphere(1, r, (x, y, r), (speed * R(rng.randint(-9, 9), 4),
                                                   speed * R(rng.randint(-9, 9), 4), 0),
                                 name=f"b{k}") for k, (x, y) in enumerate(balls))
@@ -224,9 +235,7 @@ def _box(seed: int, speed: Any = 1) -> tuple:
     planes = [Contact(normal=(0, 0, 1), bodies=("table", "b0"), point=(0, 0, 0),
                       name="cloth", restitution=0)]
     planes += [Contact(normal=n, bodies=("table", "b0"), point=p, name=name, **smooth)
-               for name, p, n in (("west", (0, 0, 0), (1, 0, 0)), ("east", (1, 0, 0), (-1, 0, 0)),
-                                  ("south", (0, 0, 0), (0, 1, 0)),
-                                  ("north", (0, 1, 0), (0, -1, 0)))]
+               for name, p, n in RAILS]
     pairs = [Contact(normal=(1, 0, 0), bodies=(a.name, b.name), name=f"{a.name}_{b.name}",
                      **smooth) for i, a in enumerate(bodies) for b in bodies[i + 1:]]
     return bodies, planes, pairs
@@ -310,11 +319,7 @@ def _rough_table(seed: int) -> tuple:
 
     rng = random.Random(1000 + seed)
     r = R(1, 20)
-    places: list = []
-    while len(places) < rng.randint(2, 3):
-        c = (R(rng.randint(2, 18), 20), R(rng.randint(2, 18), 20))
-        if all((c[0] - b[0]) ** 2 + (c[1] - b[1]) ** 2 > (2 * r) ** 2 for b in places):
-            places.append(c)
+    places = _places(rng, r, 3)
     bodies = tuple(Body3.sphere(R(1, 5), r, (x, y, r),
                                 (R(rng.randint(-8, 8), 4), R(rng.randint(-8, 8), 4), 0),
                                 tuple(R(rng.randint(-40, 40)) for _ in range(3)),
@@ -324,9 +329,7 @@ def _rough_table(seed: int) -> tuple:
                       name="cloth", restitution=R(1, 2), **rough)]
     planes += [Contact(normal=n, bodies=("table", "b0"), point=p, name=name,
                        restitution=R(rng.randint(1, 9), 10), **rough)
-               for name, p, n in (("west", (0, 0, 0), (1, 0, 0)), ("east", (1, 0, 0), (-1, 0, 0)),
-                                  ("south", (0, 0, 0), (0, 1, 0)),
-                                  ("north", (0, 1, 0), (0, -1, 0)))]
+               for name, p, n in RAILS]
     pairs = [Contact(normal=(1, 0, 0), bodies=(a.name, b.name), name=f"{a.name}_{b.name}",
                      restitution=R(rng.randint(5, 10), 10), tangential="coulomb",
                      friction=R(1, 20)) for i, a in enumerate(bodies) for b in bodies[i + 1:]]
