@@ -15,6 +15,10 @@ $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev]'
+	# the package's bytecode now, as a wheel's install does (an editable one does not):
+	# a command's first start does not compile it, nor every start where Python may
+	# not write it
+	$(PY) -m compileall -q src
 	touch $(STAMP)
 
 run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and figures to build/

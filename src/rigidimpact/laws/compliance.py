@@ -15,9 +15,15 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+from rigidimpact.lazy import deferred
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
+
 
 __all__ = ["tangential_bounce", "sphere_bounce", "restitution_of", "damping_ratio_for",
            "MAX_DAMPING_RATIO"]

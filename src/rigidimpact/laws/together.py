@@ -55,12 +55,16 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends as ends_of
+from rigidimpact.lazy import deferred
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["DrivenImpact", "driven_impact", "TOLERANCE"]
 

@@ -26,13 +26,18 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.lazy import deferred
 from rigidimpact.model.bodies import _expr, as_vector
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["Body3", "as_vector3", "rotation", "SPEEDS"]
 

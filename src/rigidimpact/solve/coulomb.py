@@ -13,11 +13,15 @@ this module takes the rest, and gives them their first guess.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
+from rigidimpact.lazy import deferred
 from rigidimpact.solve.lcp import NoSolution, pivoting, proximal
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["coulomb_newton", "coulomb_residual", "least_norm_rough", "START_ROUNDS"]
 

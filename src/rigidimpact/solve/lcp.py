@@ -35,15 +35,20 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
-import numpy as np
 import sympy as sp
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
+from rigidimpact.lazy import deferred
 from rigidimpact.symbolic.rewrite import tidy
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm",
            "least_norm", "sparse_solve", "confirm_by_rows"]

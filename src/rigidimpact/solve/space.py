@@ -42,14 +42,14 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.contact import Contact
+from rigidimpact.lazy import deferred
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
@@ -60,6 +60,11 @@ from rigidimpact.solve.rules.driven import driven
 from rigidimpact.solve.rules.sequential import sequential
 from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 

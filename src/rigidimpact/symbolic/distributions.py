@@ -28,15 +28,20 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import sympy as sp
 from sympy.simplify.fu import TR8
 
 from rigidimpact.errors import InputError
+from rigidimpact.lazy import deferred
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["Distribution", "Pushforward", "RandomInputs", "distribution", "pushforward",
            "monte_carlo", "histogram", "random_table", "chunk_sizes", "chunk_sums",

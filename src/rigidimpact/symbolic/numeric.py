@@ -25,17 +25,23 @@ Examples
 
 from __future__ import annotations
 
+import sys
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.lazy import deferred
 from rigidimpact.symbolic.rewrite import tidy
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["stable_form", "magnitude", "Kernel", "kernels", "evaluate", "Fused", "fused",
            "BACKENDS", "CHUNK", "has_numba"]
@@ -459,7 +465,9 @@ def _fused_function(source: str, backend: str):
     text from a user's file)."""
     import math
 
-    namespace: dict[str, Any] = {"numpy": np, "math": math}
+    import numpy  # the module itself, not this module's stand-in: numba types it
+
+    namespace: dict[str, Any] = {"numpy": numpy, "math": math}
     exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
     if backend == "numba":
         import numba
@@ -472,8 +480,8 @@ def _fused_function(source: str, backend: str):
 
 
 FALLBACK_DIGITS = 40  # where float64 cannot hold a result or a step toward it
-_FLOAT_MAX = np.finfo(np.float64).max
-_FLOAT_TINY = np.finfo(np.float64).tiny
+_FLOAT_MAX = sys.float_info.max
+_FLOAT_TINY = sys.float_info.min
 
 
 def _float_point(kernel: Kernel, args: Mapping[str, Any]) -> float | None:

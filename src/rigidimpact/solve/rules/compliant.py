@@ -8,17 +8,22 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.law import NewtonRestitution
+from rigidimpact.lazy import deferred
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.rules.base import Rule
 from rigidimpact.solve.solution import Solution
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 # the compliant rule integrates at rtol 1e-10; an elastic Hertz chain of 3 to 8 balls kept
 # its energy to 6e-10 to 9e-10: a gain is reported only beyond 1000 times the rtol

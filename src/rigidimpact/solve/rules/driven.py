@@ -35,17 +35,22 @@ e = 1/2: the floor takes nothing, the disc leaves the wall at 1.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.together import driven_impact
+from rigidimpact.lazy import deferred
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.rules.base import Rule
 from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 __all__ = ["Driven", "driven"]
 

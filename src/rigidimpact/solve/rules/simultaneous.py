@@ -15,14 +15,14 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import numpy as np
 import sympy as sp
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
 from rigidimpact.errors import InputError
+from rigidimpact.lazy import deferred
 from rigidimpact.solve.conditions import (
     case_conditions,
     exact_solve,
@@ -46,6 +46,11 @@ from rigidimpact.solve.rules.base import Rule
 from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
 
 # the simultaneous rule with symbols: a case (signs before x acting contacts) that can
 # hold took 0.3 to 2.5 s here (64 cases of three contacts with symbolic speeds 40 s, 256
