@@ -375,17 +375,6 @@ class ContactLaw:
                    impulse: sp.MatrixBase) -> list[sp.Expr]:
         return [eq.residual for eq in self.equations(before, kicked)]
 
-    def alone(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
-              restitution: NewtonRestitution) -> tuple[sp.Expr, sp.Expr, str]:
-        """This contact's impact on its own in contact space: ``(P_n, P_t, course)``
-        from its 2x2 W (normal, tangent) and its velocities before (second minus
-        first). With regimes, the course that holds (numbers needed to pick one)."""
-        if self.solved_by_regimes:
-            regime = next(r for r in self.regimes(W, v_before, restitution)
-                          if r.holds() is not False)
-            return sp.sympify(regime.impulse[0]), sp.sympify(regime.impulse[1]), regime.name
-        return self._linear_alone(W, v_before, restitution)
-
     def impulse(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution, tolerance: float | None = None
                 ) -> ContactImpulse:
@@ -420,10 +409,6 @@ class ContactLaw:
                          "the rules and 3-D contacts need its contact-space face too "
                          "(linear_conditions, or regimes): the two-body derivation of "
                          "one contact takes it as it is")
-
-    def _linear_alone(self, W, v_before, restitution) -> tuple[sp.Expr, sp.Expr, str]:
-        solved = self._linear(W, v_before, restitution)
-        return solved[0], solved[1], self.name
 
     def _linear(self, W, v_before, restitution) -> sp.Matrix:
         P = sp.Matrix(sp.symbols(f"p0:{len(v_before)}"))

@@ -546,8 +546,11 @@ class SystemImpact:
                              f"depends on {name}: give it a number in SystemImpact.at (a "
                              "course that holds for some values only is not printed as "
                              "if it held for all)")
-        normal, along, course = tangential.alone(W, v, restitution)
-        impulse = sp.Matrix([normal, along])
+        out = tangential.impulse(W, v, restitution)  # the law's one face, one tangent
+        if out.impulse.has(sp.Piecewise):  # numbers pick one course: this is a defect
+            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law left "
+                             f"several courses at numbers ({out.course}): please report")
+        impulse, course = out.impulse, out.course
         after = u + self._M_inv_JT * impulse
         energy = ((u.T * self.M * u)[0] - (after.T * self.M * after)[0]) / 2
         return self._map(self._in(after), self._in(impulse), {c.name: course},

@@ -334,12 +334,12 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
         for u, total, along, conditions, courses in branches:
             v = (rows * u).applyfunc(tidy)
             here = [*conditions, sp.Lt(v[0], 0)]
-            if tangential.solved_by_regimes:
+            if tangential.solved_by_regimes:  # each course a branch, with its conditions
                 steps = [(r.impulse, r.conditions, r.name)
                          for r in tangential.regimes(W, v, restitution)]
-            else:
-                normal, t, course = tangential.alone(W, v, restitution)
-                steps = [((normal, t), (), course)]
+            else:  # the law's one face: its impact alone
+                out = tangential.impulse(W, v, restitution)
+                steps = [((out.impulse[0], out.impulse[1]), (), out.course)]
             for (normal, t), more, course in steps:
                 kept = case_conditions([*here, *more])
                 if kept == (sp.false,):
