@@ -333,13 +333,14 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
                              "give the scene rule = \"sequential\", orders = N, seed = S")
         from rigidimpact.outputs.atomic import write_file
         _files_only()
+        from rigidimpact.figures import close
         from rigidimpact.outputs.plots import order_spread
 
         rows = [row["results"] for row in result.extra["orders"]]
         figure = order_spread(rows, result.extra["sample"])
         write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
                    "--plot")
-        _close(figure)
+        close(figure)
 
     def literal(x: Any) -> str:  # a float's repr, or an mpmath number beyond float64
         if isinstance(x, float):
@@ -405,12 +406,13 @@ def _cmd_routh(args: argparse.Namespace) -> int:
     if args.plot:
         from rigidimpact.outputs.atomic import write_file
         _files_only()
+        from rigidimpact.figures import close
         from rigidimpact.outputs.plots import routh_diagram
 
         figure = routh_diagram(found, scene.title)
         write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
                    "--plot")
-        _close(figure)
+        close(figure)
     path = [[float(a), float(b)] for a, b in found.regime.path]
     if args.json:
         _print_json({"regime": found.regime.name, "law": found.law, "mu": float(found.mu),
@@ -516,7 +518,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         if not args.json and not args.plot:
             return 0
     outcome = run(scene)
-    _said_and_drawn(args, scene, outcome, _plot_outcome, _animate_outcome)
+    _said_and_drawn(args, scene, outcome, "outcome")
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -563,7 +565,7 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
         if not args.json:
             return 0
     outcome = run_space(scene, values)
-    _said_and_drawn(args, scene, outcome, _plot_space, _animate_space)
+    _said_and_drawn(args, scene, outcome, "space")
     if args.json:
         _print_json(outcome.as_json())
         return 0
@@ -585,53 +587,24 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
     return 0
 
 
-def _said_and_drawn(args: argparse.Namespace, scene: Any, outcome: Any, plot: Any,
-                    animate: Any) -> None:
-    """A run's warnings on stderr, and its figure and animation where asked."""
+def _said_and_drawn(args: argparse.Namespace, scene: Any, outcome: Any, kind: str) -> None:
+    """A run's warnings on stderr, and its figure and animation where asked (`kind`:
+    ``"outcome"``, a planar run; ``"space"``, a 3-D one)."""
     for warning in outcome.details.get("warnings", ()):
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if not (args.plot or args.animate):
+        return
+    _files_only()
+    from rigidimpact import figures
+
+    plot, animate = ((figures.plot_space, figures.animate_space) if kind == "space" else
+                     (figures.plot_outcome, figures.animate_outcome))
     if args.plot:
         plot(scene, outcome, Path(args.plot))
         print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
     if args.animate:
         animate(scene, outcome, Path(args.animate))
         print(f"rigidimpact: animation written to {args.animate}", file=sys.stderr)
-
-
-def _plot_space(scene: Any, outcome: Any, path: Path) -> None:
-    """A 3-D run's path from above and from the side, its impacts marked, to a PNG
-    written whole or not at all."""
-    import numpy as np
-
-    from rigidimpact.outputs.atomic import write_file
-    _files_only()
-    from rigidimpact.outputs.plots import space_views
-
-    track = outcome.trajectory
-    _, points = track.every()
-    said = {"impact": "impact", "rolls": "starts to roll", "stops": "stops"}
-    marks = [(said[e.kind], np.array([float(x) for x in e.position]))
-             for e in track.run.events if e.kind in said]
-    planes = [(name, np.array([float(x) for x in p]), np.array([float(x) for x in n]))
-              for name, p, n in track.run.planes]  # the run's own, each once
-    figure = space_views({f"{name}'s centre": path for name, path in points.items()},
-                         scene.title, marks, planes=planes)
-    try:
-        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
-    finally:
-        _close(figure)
-
-
-def _animate_space(scene: Any, outcome: Any, path: Path) -> None:
-    """A 3-D run seen from above and from the side, animated to a GIF, whole or not at
-    all."""
-    from rigidimpact.outputs.atomic import write_file
-    _files_only()
-    from rigidimpact.outputs.plots import write_gif
-
-    times, points = outcome.trajectory.every()
-    write_file(path, lambda temporary: write_gif(
-        times, points, scene.title, temporary, fps=20, axes="views"), "--animate")
 
 
 def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),
@@ -652,78 +625,6 @@ def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),
     if not os.access(path.parent, os.W_OK | os.X_OK):
         raise InputError(option, f"cannot write in {str(path.parent)!r} (permission "
                          "denied)")
-
-
-def _animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
-    """Animate a run to a GIF (Pillow) or MP4 (ffmpeg), written whole or not at all."""
-    import numpy as np
-    from matplotlib.animation import FFMpegWriter
-
-    from rigidimpact.outputs.atomic import write_file
-    _files_only()
-    from rigidimpact.outputs.plots import animation, write_gif
-
-    if _ends_at_impact(outcome):
-        raise InputError("--animate", "this run ends at the impact (until = "
-                         f"{outcome.plan.until!r}): nothing moves to animate; give "
-                         "[simulate] until a time, or draw the impact with --plot")
-    track = outcome.trajectory
-    if path.suffix.lower() != ".mp4":  # a GIF: the still parts drawn once
-        write_file(path, lambda temporary: write_gif(
-            np.asarray(track.t), track.points(), scene.title, temporary, fps=20),
-            "--animate")
-        return
-    movie = animation(np.asarray(track.t), track.points(), scene.title)
-
-    def save(temporary: Path) -> None:
-        movie.save(str(temporary), writer=FFMpegWriter(fps=20))
-
-    try:
-        write_file(path, save, "--animate")
-    finally:
-        _close(movie._fig)
-
-
-def _ends_at_impact(outcome: Any) -> bool:
-    """Whether a run has nothing after the impact to draw (it stops at separation)."""
-    return float(outcome.final.get("t", 0.0)) == 0.0 and outcome.ode_steps == 0
-
-
-def _plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
-    """Draw a run's trajectories to a PNG (or, for a run that ends at the impact, the
-    bodies at the impact with their velocities), written whole or not at all."""
-    from rigidimpact.outputs.atomic import write_file
-    _files_only()
-    from rigidimpact.outputs.plots import impact_picture, trajectories
-    from rigidimpact.simulate import impact_view
-
-    if _ends_at_impact(outcome):
-        figure = impact_picture(*impact_view(scene, outcome), scene.title)
-        try:
-            write_file(path, lambda temporary: figure.savefig(temporary, format="png"),
-                       "--plot")
-        finally:
-            _close(figure)
-        return
-    track = outcome.trajectory
-    velocity = None
-    if hasattr(track, "contact_velocity"):
-        name = scene.contact.second
-        velocity = (f"{name} at O", track.contact_velocity(name))
-    bodies, contacts, _ = impact_view(scene, outcome)
-    figure = trajectories(track.t, track.points(), scene.title, velocity,
-                          (bodies, contacts) if len(scene.contacts) > 1 else None)
-    try:
-        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
-    finally:
-        _close(figure)
-
-
-def _close(figure: Any) -> None:
-    """Release a figure (pyplot keeps every figure it made until closed)."""
-    import matplotlib.pyplot as plt
-
-    plt.close(figure)
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:

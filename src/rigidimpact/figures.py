@@ -1,0 +1,114 @@
+"""The command line's pictures of a run: a planar run's trajectories (or the bodies at
+the impact, for a run that ends there) and its animation; a 3-D run's path from above and
+from the side, still and animated. Each file is written whole or not at all.
+
+The command line loads this module only when a picture is asked for, after choosing the
+Agg backend (it draws to files, whatever the machine has).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FFMpegWriter
+
+from rigidimpact.errors import InputError
+from rigidimpact.outputs.atomic import write_file
+from rigidimpact.outputs.plots import (
+    animation,
+    impact_picture,
+    space_views,
+    trajectories,
+    write_gif,
+)
+from rigidimpact.simulate import impact_view
+
+__all__ = ["plot_outcome", "animate_outcome", "plot_space", "animate_space",
+           "ends_at_impact", "close"]
+
+
+def plot_space(scene: Any, outcome: Any, path: Path) -> None:
+    """A 3-D run's path from above and from the side, its impacts marked, to a PNG
+    written whole or not at all."""
+    track = outcome.trajectory
+    _, points = track.every()
+    said = {"impact": "impact", "rolls": "starts to roll", "stops": "stops"}
+    marks = [(said[e.kind], np.array([float(x) for x in e.position]))
+             for e in track.run.events if e.kind in said]
+    planes = [(name, np.array([float(x) for x in p]), np.array([float(x) for x in n]))
+              for name, p, n in track.run.planes]  # the run's own, each once
+    figure = space_views({f"{name}'s centre": path for name, path in points.items()},
+                         scene.title, marks, planes=planes)
+    try:
+        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    finally:
+        close(figure)
+
+
+def animate_space(scene: Any, outcome: Any, path: Path) -> None:
+    """A 3-D run seen from above and from the side, animated to a GIF, whole or not at
+    all."""
+    times, points = outcome.trajectory.every()
+    write_file(path, lambda temporary: write_gif(
+        times, points, scene.title, temporary, fps=20, axes="views"), "--animate")
+
+
+def animate_outcome(scene: Any, outcome: Any, path: Path) -> None:
+    """Animate a run to a GIF (Pillow) or MP4 (ffmpeg), written whole or not at all."""
+    if ends_at_impact(outcome):
+        raise InputError("--animate", "this run ends at the impact (until = "
+                         f"{outcome.plan.until!r}): nothing moves to animate; give "
+                         "[simulate] until a time, or draw the impact with --plot")
+    track = outcome.trajectory
+    if path.suffix.lower() != ".mp4":  # a GIF: the still parts drawn once
+        write_file(path, lambda temporary: write_gif(
+            np.asarray(track.t), track.points(), scene.title, temporary, fps=20),
+            "--animate")
+        return
+    movie = animation(np.asarray(track.t), track.points(), scene.title)
+
+    def save(temporary: Path) -> None:
+        movie.save(str(temporary), writer=FFMpegWriter(fps=20))
+
+    try:
+        write_file(path, save, "--animate")
+    finally:
+        close(movie._fig)
+
+
+def ends_at_impact(outcome: Any) -> bool:
+    """Whether a run has nothing after the impact to draw (it stops at separation)."""
+    return float(outcome.final.get("t", 0.0)) == 0.0 and outcome.ode_steps == 0
+
+
+def plot_outcome(scene: Any, outcome: Any, path: Path) -> None:
+    """Draw a run's trajectories to a PNG (or, for a run that ends at the impact, the
+    bodies at the impact with their velocities), written whole or not at all."""
+    if ends_at_impact(outcome):
+        figure = impact_picture(*impact_view(scene, outcome), scene.title)
+        try:
+            write_file(path, lambda temporary: figure.savefig(temporary, format="png"),
+                       "--plot")
+        finally:
+            close(figure)
+        return
+    track = outcome.trajectory
+    velocity = None
+    if hasattr(track, "contact_velocity"):
+        name = scene.contact.second
+        velocity = (f"{name} at O", track.contact_velocity(name))
+    bodies, contacts, _ = impact_view(scene, outcome)
+    figure = trajectories(track.t, track.points(), scene.title, velocity,
+                          (bodies, contacts) if len(scene.contacts) > 1 else None)
+    try:
+        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    finally:
+        close(figure)
+
+
+def close(figure: Any) -> None:
+    """Release a figure (pyplot keeps every figure it made until closed)."""
+    plt.close(figure)
