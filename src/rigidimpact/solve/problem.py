@@ -34,6 +34,17 @@ from rigidimpact.symbolic.rewrite import tidy
 MAX_ENUMERATED = 12
 
 
+MAX_FACETS = 256  # the most edges of a pyramid standing for Coulomb's cone
+
+
+def check_facets(facets: Any) -> None:
+    """None, or an even whole number of a pyramid's edges from 4 to MAX_FACETS."""
+    if facets is not None and (isinstance(facets, bool) or not isinstance(facets, int)
+                               or not 4 <= facets <= MAX_FACETS or facets % 2):
+        raise InputError("impact.facets", f"an even whole number from 4 to {MAX_FACETS}, "
+                         f"not {facets!r}")
+
+
 @dataclass(frozen=True)
 class ImpactProblem:
     """Bodies in the world frame and the smooth contacts that close together.
@@ -53,8 +64,13 @@ class ImpactProblem:
     bodies: tuple[Body, ...]
     contacts: tuple[Contact, ...]
     joints: tuple[Joint, ...] = ()
+    # Coulomb's cone as the inscribed pyramid of this many edges (the simultaneous rule
+    # with friction; None: the cone itself). A planar contact's one tangent has two
+    # edges, + and -, so there the pyramid is the law itself.
+    facets: int | None = None
 
     def __post_init__(self) -> None:
+        check_facets(self.facets)
         names = [b.name for b in self.bodies]
         if len(set(names)) != len(names):
             raise InputError("bodies", "two bodies share a name")

@@ -11,8 +11,8 @@ contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone
 impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
 where several strike, the simultaneous rule: the plane's one implementation on the
 problem of rows (:class:`_SpaceProblem`), exact for smooth contacts and with Coulomb's
-circular cone in floating point; or with the cone as a pyramid of a stated number of
-edges, :meth:`SpaceCollision._faceted`.
+circular cone in floating point, or with the cone as a pyramid of a stated number of
+edges (``facets``; the rule's own, as in the plane).
 
 What comes back is the one :class:`~rigidimpact.solve.solution.Solution`: its speeds are
 named ``BODY.vx`` ... ``BODY.omega_z`` (the result keys), each contact's tangential
@@ -53,8 +53,7 @@ from rigidimpact.lazy import deferred
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
-from rigidimpact.solve.lcp import lemke_float
-from rigidimpact.solve.problem import RowsProblem
+from rigidimpact.solve.problem import RowsProblem, check_facets
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.driven import driven
 from rigidimpact.solve.rules.sequential import sequential
@@ -69,7 +68,6 @@ else:
 __all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
 
 CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
-MAX_FACETS = 256  # the most edges of a pyramid standing for the cone at several strikes
 EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
 # the rules several 3-D contacts take (the compliant rule is not built in 3-D)
 RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
@@ -140,11 +138,7 @@ class SpaceCollision:
                 raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
                                  f"or coulomb so far, not {c.tangential!r} (the sequential "
                                  "rule takes every law)")
-        if self.facets is not None and (
-                isinstance(self.facets, bool) or not isinstance(self.facets, int)
-                or not 4 <= self.facets <= MAX_FACETS or self.facets % 2):
-            raise InputError("impact.facets", f"an even whole number from 4 to {MAX_FACETS}, "
-                             f"not {self.facets!r}")
+        check_facets(self.facets)
         by_name = {b.name: b for b in self.bodies}
         for c in self.contacts:
             for name in c.bodies or ():
@@ -495,11 +489,9 @@ class SpaceCollision:
             raise InputError(f"{formless[0].name}.tangential", f"the {formless[0].tangential} "
                              "law has no form for contacts acting together: use the "
                              "sequential rule (each contact's own impact)")
-        if self.facets is None:
-            # the plane's rule, one implementation, on the problem of rows: exact for
-            # smooth contacts, Coulomb's circular cone in floating point
-            return simultaneous(_SpaceProblem.of(self))
-        return self._faceted(approaching + resting, rows, u, self.facets)
+        # the plane's rule, one implementation, on the problem of rows: exact for smooth
+        # contacts, Coulomb's circular cone (or its pyramid of facets) in floating point
+        return simultaneous(_SpaceProblem.of(self))
 
     def sequential(self, order: Sequence[str]) -> Solution:
         """One contact at a time in `order`, each its own impact under its own laws (the
@@ -575,121 +567,6 @@ class SpaceCollision:
             speeds_before=self.speeds, speeds_after=speeds_after,
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
             given_checks=checks))
-
-    def _faceted(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
-                 u: np.ndarray, m: int) -> Solution:
-        """Several contacts striking at once: the simultaneous rule at the velocity level
-        with Newton's law (Stewart and Trinkle's formulation), Coulomb's circular cone
-        replaced by the inscribed pyramid of `m` edges ``d_j`` in the tangent plane
-        (along t1 and then every 360/m degrees). Each contact's unknowns are
-        its normal impulse p, an impulse p_j >= 0 along each edge and a slack s (the
-        slip speed after, as seen by the pyramid):
-
-            w_p = v_n+ + e v_n- >= 0     with p
-            w_j = s + d_j . v_t+ >= 0    with p_j
-            w_s = mu p - sum_j p_j >= 0  with s
-
-        solved by Lemke's method in floating point and checked by the laws' residuals.
-        The pyramid is an accuracy choice: exact where the slip after is along an edge
-        (a body sliding straight along t1 or t2), otherwise its friction is short of the
-        cone's by up to 1 - cos(180/m degrees)."""
-        late = [c for c in acting if c.laws[0].together != "velocity"]
-        if late:
-            raise InputError(f"{late[0].name}.law", "several 3-D contacts striking at once "
-                             "take a law of the velocities after, such as Newton's (the "
-                             "simultaneous rule at the velocity level)")
-        k = len(acting)
-        angles = np.arange(m) * 2 * np.pi / m
-        D = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # edges in (t1, t2)
-        D[np.abs(D) < 1e-15] = 0.0
-        Minv = np.array(self.M_inverse.evalf(30), dtype=float)
-        J = np.vstack([rows[c.name] for c in acting])  # 3k rows: n, t1, t2 per contact
-        W = J @ Minv @ J.T
-        v = J @ u
-        size = k * (m + 2)
-        # unknowns: p (k), p_j (k m, contact by contact), s (k); impulse = B z in the
-        # contacts' frames
-        B = np.zeros((3 * k, size))
-        for i in range(k):
-            B[3 * i, i] = 1.0
-            B[3 * i + 1:3 * i + 3, k + i * m:k + (i + 1) * m] = D.T
-        WB = W @ B
-        M = np.zeros((size, size))
-        q = np.zeros(size)
-        mu = [float(c.friction or 0) for c in acting]
-        for i, c in enumerate(acting):
-            M[i] = WB[3 * i]
-            q[i] = v[3 * i] - _leaving(c, v[3 * i])
-            for j in range(m):
-                r = k + i * m + j
-                M[r] = D[j] @ WB[3 * i + 1:3 * i + 3]
-                M[r, k + k * m + i] = 1.0
-                q[r] = D[j] @ v[3 * i + 1:3 * i + 3]
-            last = k + k * m + i
-            M[last, i] = mu[i]
-            M[last, k + i * m:k + (i + 1) * m] = -1.0
-        z = lemke_float(M, q)
-        if z is None:
-            raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
-                             "friction here (Lemke's method ended on a ray: a "
-                             "Painleve-type inconsistency)")
-        note = (f"{k} contacts act together (the simultaneous rule, Newton's law at the "
-                f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
-                "choice: exact where a slip is along an edge), solved by Lemke's method "
-                "in floating point; it gives one answer, and with friction or more "
-                "contacts than freedoms others may exist")
-        return self._together(acting, rows, J, Minv, u, B @ z, note)
-
-    def _together(self, acting: list[Contact], rows: Mapping[str, np.ndarray],
-                  J: np.ndarray, Minv: np.ndarray, u: np.ndarray, impulse: np.ndarray,
-                  note: str) -> Solution:
-        """The Solution of contacts acting together with the `impulse` found (each
-        contact's normal, t1 and t2 parts in turn): the bodies after, each contact's
-        course, and the laws' residuals, Newton's law and complementarity among them."""
-        k = len(acting)
-        v = J @ u
-        u_after = u + Minv @ J.T @ impulse
-        P = {c.name: [sp.Float(x, 17) for x in impulse[3 * i:3 * i + 3]]
-             for i, c in enumerate(acting)}
-        moved = [b.moved([sp.Float(x, 17) for x in u_after[6 * j:6 * j + 6]])
-                 for j, b in enumerate(self.free)]
-        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
-        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-        after = J @ u_after
-        size = max(1.0, float(np.abs(u).max()))
-        pushing = [bool(impulse[3 * i] > 1e-12 * size) for i in range(k)]
-        states = []
-        for i, c in enumerate(acting):
-            slip = float(np.linalg.norm(after[3 * i + 1:3 * i + 3]))
-            states.append("released" if not pushing[i] else "acts" if not c.friction else
-                          "slides" if slip > 1e-9 * size else "sticks")
-        courses = tuple(f"{c.name}: {state}" for c, state in zip(acting, states,
-                                                                  strict=True))
-        notes = [note]
-        normals = J[0::3][[i for i in range(k) if pushing[i]]]
-        if len(normals) and np.linalg.matrix_rank(normals @ np.linalg.cholesky(
-                Minv + 1e-300 * np.eye(len(Minv)))) < len(normals):
-            notes.append("more acting contacts than the freedoms they hold (their normal "
-                         "rows are dependent): the impulses shown are one of many that fit "
-                         "the rule")
-        checks = self._driven_checks(acting, P, u, u_after, before, lost, 1e-12)
-        scale = max(1.0, float(np.abs(v).max()))
-        for i, c in enumerate(acting):
-            leave = after[3 * i] - _leaving(c, v[3 * i])
-            checks[f"{c.name}.restitution"] = sp.Float(abs(leave) if pushing[i] else
-                                                       max(0.0, -leave), 17)
-            checks[f"{c.name}.complementarity"] = sp.Float(
-                abs(impulse[3 * i] * leave) / scale, 17)
-            if c.friction is not None and pushing[i]:  # a law of the velocities after
-                checks.update(friction_residuals(
-                    c.name, c.laws[1], sp.Float, sp.Float(impulse[3 * i], 17),
-                    [sp.Float(x, 17) for x in impulse[3 * i + 1:3 * i + 3]],
-                    [sp.Float(x, 17) for x in v[3 * i + 1:3 * i + 3]],
-                    [sp.Float(x, 17) for x in after[3 * i + 1:3 * i + 3]], exact=False,
-                    speed=sp.Float(max(scale, float(np.abs(impulse).max())), 17)))
-        return self._numeric(acting, tuple(c.name for i, c in enumerate(acting)
-                                           if pushing[i]),
-                             P, u_after, courses, notes, (before, lost), checks)
 
     def _driven_checks(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
                        u: Any, u_after: Any, before: sp.Expr, lost: sp.Expr,
@@ -785,7 +662,7 @@ class _SpaceProblem(RowsProblem):
                    normal_rows=sp.ImmutableMatrix([list(J[0, :]) for J in rows]),
                    tangent_rows=sp.ImmutableMatrix([list(J[1, :]) for J in rows]),
                    second_tangent_rows=sp.ImmutableMatrix([list(J[2, :]) for J in rows]),
-                   space=space)
+                   facets=space.facets, space=space)
 
     def numbers_only(self, rule: str) -> None:
         """Checked already: several 3-D contacts are solved at numbers."""
@@ -827,12 +704,6 @@ class _SpaceProblem(RowsProblem):
                                   notes, (before, lost), checks)
         return replace(solution, rule=rule, order=tuple(order), passes=passes,
                        method=more.get("method", ""))
-
-
-def _leaving(contact: Contact, closing: float) -> float:
-    """The normal velocity `contact`'s restitution law asks after a closing velocity (a
-    contact at rest or opening asks none: 0)."""
-    return float(contact.laws[0].leaving(sp.Float(min(closing, 0.0), 30)))
 
 
 def _touches_its_surface(body: Body3, contact: Contact) -> None:

@@ -220,11 +220,15 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     if problem.tangents == 2:  # in space: Coulomb's circular cone, in floating point
         across = sp.SparseMatrix([list(problem.contact_rows(i)[j, :]) for i in range(n)
                                   for j in (1, 2)])
-        return _frictional_newton(problem, sp.SparseMatrix.vstack(
-                                      sp.SparseMatrix(problem.scaled_J), across),
-                                  v_n, _sparse_times(across, problem.u_before), mu, target,
-                                  tangential)
+        solve = _frictional_newton if problem.facets is None else _frictional_pyramid
+        return solve(problem, sp.SparseMatrix.vstack(sp.SparseMatrix(problem.scaled_J),
+                                                     across),
+                     v_n, _sparse_times(across, problem.u_before), mu, target, tangential)
     v_t = _sparse_times(problem.scaled_J_t, problem.u_before)
+    if problem.facets is not None:  # one tangent's pyramid, + and -: Coulomb's law
+        return _frictional_pyramid(problem, sp.SparseMatrix.vstack(
+            sp.SparseMatrix(problem.scaled_J), sp.SparseMatrix(problem.scaled_J_t)),
+            v_n, v_t, mu, target, tangential)
     states = [("off",) + law.velocity_states for law in tangential]
     count = math.prod(len(s) for s in states)
     if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
@@ -527,6 +531,8 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     on = lam[:n] > 1e-12 * big
     inside = np.linalg.norm(friction, axis=1) < cone * lam[:n] - 1e-9 * big
     acting = [i for i in range(n) if on[i]]
+    if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
+        return _one_acting(problem, acting[0], list(target))  # its own answer, any rule
     states = ["off" if not on[i] else "on" if not tangential[i].grips else
               "stick" if inside[i] or not np.isfinite(cone[i]) else
               "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
@@ -567,6 +573,100 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
                             notes=(note,), method="newton", **more)
 
 
+def _frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
+                        v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
+                        tangential: Sequence[Any]) -> Solution:
+    """The same conditions as :func:`_frictional_newton` with each contact's cone
+    replaced by the inscribed pyramid of ``problem.facets`` edges ``d_j`` in its tangent
+    plane (along t1, then every 360/facets degrees; one tangent has the two edges + and
+    -): Stewart and Trinkle's formulation. Each contact's unknowns are its normal
+    impulse p, an impulse p_j >= 0 along each edge and a slack s (the slip speed after
+    as the pyramid sees it)::
+
+        w_p = v_n+ - target >= 0     with p
+        w_j = s + d_j . v_t+ >= 0    with p_j
+        w_s = mu p - sum_j p_j >= 0  with s
+
+    solved by Lemke's method in floating point; the certificate checks the answer as it
+    checks every other. The pyramid is an accuracy choice: exact where the slip after is
+    along an edge, otherwise its friction is short of the cone's by up to
+    1 - cos(180/facets degrees)."""
+    n, t, m = len(problem.contacts), problem.tangents, problem.facets or 2
+    stuck = [c.name for c, law, c_mu in zip(problem.contacts, tangential, mu, strict=True)
+             if c_mu is None and law.grips]
+    if stuck:
+        raise InputError(f"{stuck[0]}.tangential", "a sticking contact has no cone to make "
+                         "a pyramid of: use coulomb with a friction coefficient, or no "
+                         "facets")
+    J, Minv, W, b, cone, u0 = _float_problem(problem, rows, v_n, v_t, mu, target, tangential)
+    W = W.toarray()
+    if t == 1:
+        D = np.array([[1.0], [-1.0]])
+    else:
+        angles = np.arange(m) * 2 * np.pi / m
+        D = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        D[np.abs(D) < 1e-15] = 0.0
+    e = len(D)  # edges a contact
+    size = n * (e + 2)
+    B = np.zeros((n + n * t, size))  # the impulse (normal ones, then tangential) = B z
+    for i in range(n):
+        B[i, i] = 1.0
+        B[n + i * t:n + (i + 1) * t, n + i * e:n + (i + 1) * e] = D.T
+    WB = W @ B
+    M, q = np.zeros((size, size)), np.zeros(size)
+    for i in range(n):
+        M[i], q[i] = WB[i], b[i]
+        across = slice(n + i * t, n + (i + 1) * t)
+        for j in range(e):
+            r = n + i * e + j
+            M[r] = D[j] @ WB[across]
+            M[r, n + n * e + i] = 1.0
+            q[r] = D[j] @ b[across]
+        last = n + n * e + i
+        M[last, i] = cone[i]
+        M[last, n + i * e:n + (i + 1) * e] = -1.0
+    z = lemke_float(M, q)
+    if z is None:  # with friction the matrix is not copositive-plus: no proof of none
+        raise InputError("impact.rule", f"Coulomb's cone as a pyramid of {m} edges: "
+                         "Lemke's method ended on a ray, which with friction says neither "
+                         "that an answer exists nor that none does; leave out facets (the "
+                         "circular cone itself), or try the sequential rule")
+    lam = B @ z
+    u = u0 + Minv @ (J.T @ lam)
+    big = max(1.0, float(np.abs(lam).max()), float(np.abs(u0).max()))
+    on = lam[:n] > 1e-12 * big
+    if on.sum() == 1 and tangential[int(np.argmax(on))].solved_by_regimes:
+        return _one_acting(problem, int(np.argmax(on)), list(target))  # its own answer
+    slip = (J @ u)[n:].reshape(n, t)
+    still = np.linalg.norm(slip, axis=1) <= 1e-9 * big
+    states = ["off" if not on[i] else "on" if cone[i] == 0 else "stick" if still[i] else
+              "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
+
+    def number(x: float) -> sp.Float:
+        return sp.Float(float(x), 17)
+
+    friction = lam[n:].reshape(n, t)
+    normal = sp.Matrix([number(x) if on[i] else sp.Integer(0)
+                        for i, x in enumerate(lam[:n])])
+    along = sp.Matrix([number(friction[i, 0]) if on[i] else sp.Integer(0)
+                       for i in range(n)])
+    more: dict[str, Any] = {"tangent_impulses": {
+        c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
+        for i, c in enumerate(problem.contacts)}} if t == 2 else {}
+    note = (f"{n} contacts act together (the simultaneous rule, Newton's law at the "
+            f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
+            "choice: exact where a slip is along an edge), solved by Lemke's method in "
+            "floating point; it gives one answer, and with friction or more contacts than "
+            "freedoms others may exist")
+    return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
+                           problem.named(normal), tuple(problem.contacts[i].name
+                                                        for i in range(n) if on[i]),
+                           tangential=problem.named(along),
+                           courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
+                                         zip(problem.contacts, states, strict=True)),
+                           notes=(note,), method="pyramid", **more)
+
+
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
     """Only contact k acts: its frictional impact alone by Routh's method (the answer
     for one contact under every rule), if that leaves every other contact opening
@@ -585,12 +685,16 @@ def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Soluti
     zeros = sp.zeros(len(problem.contacts), 1)
     normals, tangentials = zeros.copy(), zeros.copy()
     normals[k], tangentials[k] = normal, along
+    zero = sp.Integer(0)
+    more: dict[str, Any] = {"tangent_impulses": {  # in space: its second tangent too
+        t.name: (along, P[2]) if i == k else (zero, zero)
+        for i, t in enumerate(problem.contacts)}} if problem.tangents == 2 else {}
     return problem.outcome("simultaneous", (), u,
                    problem.named(normals), (name,),
                    tangential=problem.named(tangentials) if problem.frictional else {},
                    courses=tuple(f"{t.name}: {course}" if i == k else
                                  f"{t.name}: {_STATE['off']}"
-                                 for i, t in enumerate(problem.contacts)))
+                                 for i, t in enumerate(problem.contacts)), **more)
 
 
 def _friction_pattern(problem: ImpactProblem, pattern, W, v_n, v_t, target,
