@@ -528,11 +528,13 @@ class SystemImpact:
 
     def _by_regimes(self) -> Solution:
         """One contact whose law picks its course from the numbers (Coulomb by Routh's
-        method, rough by Walton's): W and the velocities before must be numbers."""
+        method, rough by Walton's): W, the velocities before and the law's coefficients
+        must be numbers. It is the rules' one-contact case (each rule's answer for one
+        contact is that contact's own impact, :func:`rigidimpact.solve.rules.sequential.
+        _own_step`, through its law's one face), run on this system's rows."""
         c = self.contacts[0]
         restitution, tangential = c.laws.laws
-        u = self.u_before
-        W, v = self.W, (self.J * u)
+        W, v = self.W, (self.J * self.u_before)
         if not (all(x.is_number for x in W) and all(x.is_number for x in v)):
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
                              "depends on the numbers: give numbers for q, the speeds and "
@@ -546,15 +548,8 @@ class SystemImpact:
                              f"depends on {name}: give it a number in SystemImpact.at (a "
                              "course that holds for some values only is not printed as "
                              "if it held for all)")
-        out = tangential.impulse(W, v, restitution)  # the law's one face, one tangent
-        if out.impulse.has(sp.Piecewise):  # numbers pick one course: this is a defect
-            raise InputError(f"{c.name}.tangential", f"the {tangential.name} law left "
-                             f"several courses at numbers ({out.course}): please report")
-        impulse, course = out.impulse, out.course
-        after = u + self._M_inv_JT * impulse
-        energy = ((u.T * self.M * u)[0] - (after.T * self.M * after)[0]) / 2
-        return self._map(self._in(after), self._in(impulse), {c.name: course},
-                         self._in(sp.Matrix([energy]))[0])
+        (found,) = self.outcomes(Simultaneous())
+        return found
 
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
              energy: sp.Expr, summed: bool = False, how: str | None = None,
@@ -886,9 +881,10 @@ class _AsCollision(RowsProblem):
         # the contact's own printed laws hold where the rule imposed them as they are
         # (Newton's law at each acting contact, smooth or sticking); otherwise the
         # rule's impulses are what is printed
-        own = rule == "simultaneous" and not self.acts_by_impulse() and all(
-            courses[c.name] in ("acts", "released", "sticks")
-            for c in self.contacts)
+        # (one contact: its own impact under every rule, its own laws printed)
+        own = len(self.contacts) == 1 or rule == "simultaneous" and \
+            not self.acts_by_impulse() and all(
+                courses[c.name] in ("acts", "released", "sticks") for c in self.contacts)
         for c in self.contacts:  # a contact that stuck prints its no-slip law
             if courses[c.name] == "sticks" or (courses[c.name] == "acts" and
                                                c.laws[1].unknown_tangential):
