@@ -599,3 +599,76 @@ def test_the_compliant_rule_in_space_is_the_planar_one():
     stiffer = SpaceCollision(balls, contacts, rule="compliant",
                              compliance=((1e6, 1e8), False)).solve().results()
     assert stiffer["ball2.vx"] != r["ball2.vx"]  # the stiffnesses' ratio decides
+
+
+def _ball_in_a_corner(rule, order=(), velocity=(1, HALF, -2)):
+    """A solid ball (m = 1, r = 1, I = 2/5) with six speeds built with KanesMethod, its
+    centre at (0, 0, 1), moving at (1, 1/2, -2) and spinning at (3, -1, 2) into a
+    corner: the floor z = 0 (e = 1/2, mu = 1/5) and the wall x = 1 (e = 1/2, mu =
+    3/10). The mechanics bridge and the built-in 3-D ball, solved by `rule`."""
+    N = me.ReferenceFrame("N")
+    q = me.dynamicsymbols("x y z a b c")
+    u = me.dynamicsymbols("u_x u_y u_z w_x w_y w_z")
+    B = N.orientnew("B", "Body", q[3:], "XYZ")
+    B.set_ang_vel(N, u[3] * N.x + u[4] * N.y + u[5] * N.z)
+    origin = me.Point("O")
+    origin.set_vel(N, 0)
+    C = origin.locatenew("C", q[0] * N.x + q[1] * N.y + q[2] * N.z)
+    C.set_vel(N, u[0] * N.x + u[1] * N.y + u[2] * N.z)
+    low = C.locatenew("low", -N.z)
+    low.v2pt_theory(C, N, B)
+    side = C.locatenew("side", N.x)
+    side.v2pt_theory(C, N, B)
+    fifth = sp.Rational(2, 5)
+    body = me.RigidBody("ball", C, B, 1, (me.inertia(B, fifth, fifth, fifth), C))
+    kane = me.KanesMethod(N, q, u, [a.diff() - b for a, b in zip(q, u, strict=True)])
+    kane.kanes_equations([body], [])
+    spin = (3, -1, 2)
+    hit = ri.mechanics.impact(kane, [
+        ri.mechanics.contact(low, N.z, restitution=HALF, tangential="coulomb",
+                             friction=FIFTH, name="floor"),
+        ri.mechanics.contact(side, -N.x, restitution=HALF, tangential="coulomb",
+                             friction=sp.Rational(3, 10), name="wall")], frame=N)
+    bridge = hit.at(dict(zip(q, [0, 0, 1, 0, 0, 0], strict=True))).at(
+        dict(zip(u, [*velocity, *spin], strict=True))).solve(rule)
+    ball = Body3.sphere(1, 1, (0, 0, 1), velocity, spin, name="ball")
+    contacts = (Contact(normal=(0, 0, 1), restitution=HALF, tangential="coulomb",
+                        friction=FIFTH, name="floor", bodies=("ground", "ball"),
+                        point=(0, 0, 0)),
+                Contact(normal=(-1, 0, 0), restitution=HALF, tangential="coulomb",
+                        friction=sp.Rational(3, 10), name="wall", bodies=("ground", "ball"),
+                        point=(1, 0, 1)))
+    built_in = SpaceCollision((Body3.fixed("ground"), ball), contacts, rule=rule.name,
+                              order=tuple(order) or None).solve()
+    return bridge, built_in
+
+
+@pytest.mark.parametrize("rule", ["simultaneous", "sequential"])
+def test_a_mechanics_system_with_two_tangent_planes_is_the_built_in_balls(rule):
+    # several contacts sliding across tangent planes were refused by the bridge ("solved
+    # alone so far"); now the rules run on its rows (n, t1, t2 a contact), and the same
+    # ball written as a KanesMethod system and as the built-in 3-D body gets one answer
+    chosen = ri.Simultaneous() if rule == "simultaneous" else ri.Sequential(("floor", "wall"))
+    bridge, built_in = _ball_in_a_corner(chosen, () if rule == "simultaneous"
+                                         else ("floor", "wall"))
+    theirs, ours = bridge.results(), built_in.results()
+    for mine, other in zip(["u_x", "u_y", "u_z", "w_x", "w_y", "w_z"],
+                           ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"], strict=True):
+        assert abs(float(theirs[mine]) - float(ours[f"ball.{other}"])) < 1e-9, mine
+    for name in ("floor", "wall"):
+        assert abs(float(theirs[f"{name}.normal_impulse"])
+                   - float(ours[f"{name}.normal_impulse"])) < 1e-9
+    assert bridge.rule == built_in.rule == rule
+    assert max(float(x) for k, x in bridge.checks.items()) < 1e-8
+
+
+def test_a_mechanics_ball_resting_on_a_floor_into_a_wall_by_the_driven_rule():
+    # the driven rule on the same rows: the ball rolls on the floor (no normal speed)
+    # into the wall, the floor resting and pushing while the wall strikes
+    bridge, built_in = _ball_in_a_corner(ri.Driven(), velocity=(1, HALF, 0))
+    theirs, ours = bridge.results(), built_in.results()
+    for mine, other in zip(["u_x", "u_y", "u_z", "w_x", "w_y", "w_z"],
+                           ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"], strict=True):
+        assert abs(float(theirs[mine]) - float(ours[f"ball.{other}"])) < 1e-8, mine
+    assert float(theirs["floor.normal_impulse"]) > 0  # the floor pushed while resting
+    assert bridge.rule == built_in.rule == "driven"

@@ -255,10 +255,8 @@ class SystemImpact:
         """One contact with a tangent plane: its tangential law's one face in contact
         space with two tangents (:meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
         stick, Coulomb's circular cone, Walton's law), through the system's M:
-        ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2)."""
-        if len(self.contacts) != 1:
-            raise InputError("contacts", "a contact with a tangent plane (3-D) and "
-                             "friction is solved alone so far, not among several contacts")
+        ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2). Several such
+        contacts are the rules' (:meth:`outcomes`), at numbers."""
         (c,) = self.contacts
         restitution, tangential = c.laws.laws
         J = sp.Matrix(self.J_plane)
@@ -274,20 +272,36 @@ class SystemImpact:
         out = tangential.impulse(W, v, restitution)
         P, course = out.impulse, "sticks" if tangential.name == "stick" else out.course
         after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
+        return self._in_plane(after, P, {c.name: course}, exact=all(
+            x.is_Rational or not x.is_Float for x in P))
+
+    def _in_plane(self, after: sp.Matrix, P: sp.Matrix, courses: dict[str, str],
+                  rule: str = "simultaneous", exact: bool = True,
+                  notes: tuple[str, ...] = ()) -> Solution:
+        """The Solution of contacts with tangent planes: the speeds after, each
+        contact's impulse (n, t1, t2 in turn, its tangential part's size reported),
+        checked from the system's own bodies and points."""
         M = sp.Matrix(self.M)
         before = (self.u_before.T * M * self.u_before)[0] / 2
         lost = _small(before - (after.T * M * after)[0] / 2)
-        checks = certify_checks(self, after, P)
-        if checks is not None and not all(x.is_Rational or not x.is_Float for x in P):
+        checks = certify_checks(self, after, P, rule)
+        if checks is not None and not exact:
             checks["_tolerance"] = 1e-8
+        names = [c.name for c in self.contacts]
+        one = len(self.contacts) == 1
         solution = Solution(
-            before=(), after=(), impulses={c.name: P[0]},
-            tangential={c.name: _small(sp.sqrt(P[1] ** 2 + P[2] ** 2))},
-            tangent_impulses={c.name: (P[1], P[2])}, contacts=(c.laws,),
-            acted=(c.name,), regime=course, courses=(f"{c.name}: {course}",),
-            energies=(before, lost, lost / before),
+            before=(), after=(), impulses={n: P[3 * i] for i, n in enumerate(names)},
+            tangential={n: _small(sp.sqrt(P[3 * i + 1] ** 2 + P[3 * i + 2] ** 2))
+                        for i, n in enumerate(names)},
+            tangent_impulses={n: (P[3 * i + 1], P[3 * i + 2]) for i, n in enumerate(names)},
+            contacts=tuple(c.laws for c in self.contacts),
+            acted=tuple(n for i, n in enumerate(names) if P[3 * i] != 0),
+            regime=courses[names[0]] if one else None,
+            courses=tuple(f"{n}: {courses[n]}" for n in names),
+            energies=(before, lost, lost / before), notes=notes,
             speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
-            speeds_after=sp.ImmutableMatrix(self._all(after)), given_checks=checks)
+            speeds_after=sp.ImmutableMatrix(self._all(after)), given_checks=checks,
+            rule=rule)
         return solution if checks is None else certified(solution)
 
     @cached_property
@@ -360,7 +374,7 @@ class SystemImpact:
                              f"{', '.join(f'{float(x):.6g}' for x in normals)} >= 0): "
                              "there is no impact")
         laws = [c.laws.laws for c in self.contacts]
-        if self.J_plane is not None:
+        if self.J_plane is not None and len(self.contacts) == 1:
             return self._spatial()
         if len(self.contacts) == 1:
             if laws[0][1].solved_by_regimes:
@@ -374,9 +388,11 @@ class SystemImpact:
                                  "here (every order, or a sample of them): ask "
                                  "SystemImpact.outcomes(rule) for all of them")
             return found[0]
-        if not isinstance(rule, Simultaneous):
+        if not isinstance(rule, Simultaneous) or self.J_plane is not None:
             raise InputError("rule", f"the {rule.name} rule at a mechanics system needs "
-                             "numbers: SystemImpact.at(...) with q, the speeds and the "
+                             "numbers" + (" where contacts slide across tangent planes "
+                                          "(3-D)" if self.J_plane is not None else "")
+                             + ": SystemImpact.at(...) with q, the speeds and the "
                              "constants")
         for c, (restitution, tangential) in zip(self.contacts, laws, strict=True):
             if tangential.solved_by_regimes:
@@ -857,19 +873,40 @@ class _AsCollision(RowsProblem):
 
     @classmethod
     def of(cls, system: Any) -> _AsCollision:
-        """The one assembly of a system into the problem of rows."""
+        """The one assembly of a system into the problem of rows: each contact's normal
+        and tangent rows, and in 3-D (a contact sliding across a tangent plane) its
+        second tangent's row too."""
+        plane = system.J_plane
+        rows = {} if plane is None else dict(
+            normal_rows=sp.ImmutableMatrix(plane[::3, :]),
+            tangent_rows=sp.ImmutableMatrix(plane[1::3, :]),
+            second_tangent_rows=sp.ImmutableMatrix(plane[2::3, :]))
         return cls((), tuple(c.laws for c in system.contacts), system=system,
                    speeds=tuple(str(u) for u in system.u),
                    velocities=sp.ImmutableMatrix(system.u_before),
                    inverse_mass=sp.ImmutableMatrix(sp.Matrix(system.M).inv()),
-                   normal_rows=sp.ImmutableMatrix(system.J[::2, :]),
-                   tangent_rows=sp.ImmutableMatrix(system.J[1::2, :]))
+                   **(rows or dict(normal_rows=sp.ImmutableMatrix(system.J[::2, :]),
+                                   tangent_rows=sp.ImmutableMatrix(system.J[1::2, :]))))
 
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                  **more: Any) -> Solution:
         system = self.system
         along = more.pop("tangential", None) or {}
+        if self.second_tangent_rows is not None:  # 3-D: each contact's n, t1, t2
+            zero = sp.Integer(0)
+            sideways = more.pop("tangent_impulses", None) or {}
+            P = sp.Matrix([x for c in self.contacts for x in (
+                impulses[c.name], *sideways.get(c.name, (along.get(c.name, zero), zero)))])
+            states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
+            exact = not any(sp.sympify(x).has(sp.Float) for x in (*u, *P))
+            solution = system._in_plane(
+                sp.Matrix(u), P, {c.name: states.get(c.name, "acts" if c.name in acted
+                                                     else "released")
+                                  for c in self.contacts}, rule, exact,
+                tuple(more.pop("notes", ())))
+            return replace(solution, order=tuple(order), passes=passes,
+                           method=more.pop("method", ""))
         P = sp.Matrix([x for c in self.contacts
                        for x in (impulses[c.name], along.get(c.name, 0))])
         states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
