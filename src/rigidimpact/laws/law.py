@@ -521,7 +521,7 @@ class NewtonRestitution(ContactLaw):
         return abs(path[-1][1] - num(self.leaving(back(closing))))
 
     def __repr__(self) -> str:
-        return f"NewtonRestitution({self.e})"
+        return f"{type(self).__name__}({self.e})"
 
 
 def compression_end(path: Sequence[tuple[Any, Any]]) -> Any:
@@ -693,7 +693,7 @@ class PoissonRestitution(NewtonRestitution):
                                         "impulse path)"),)
 
     def __repr__(self) -> str:
-        return f"PoissonRestitution({self.e})"
+        return f"{type(self).__name__}({self.e})"
 
 
 @dataclass(frozen=True, repr=False)
@@ -744,7 +744,7 @@ class EnergeticRestitution(NewtonRestitution):
                                         "impulse path)"),)
 
     def __repr__(self) -> str:
-        return f"EnergeticRestitution({self.e})"
+        return f"{type(self).__name__}({self.e})"
 
 
 @dataclass(frozen=True, repr=False)
@@ -822,7 +822,7 @@ class Coulomb(ContactLaw):
         return ContactImpulse(out.impulse, out.course, notes, out.exact, out.tolerance)
 
     def __repr__(self) -> str:
-        return f"Coulomb({self.mu})"
+        return f"{type(self).__name__}({self.mu})"
 
 
 @dataclass(frozen=True, repr=False)

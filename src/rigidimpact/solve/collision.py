@@ -1,4 +1,5 @@
-"""Several smooth contacts closing at the same instant, under a stated rule.
+"""Several contacts closing at the same instant (smooth or with friction), under a stated
+rule.
 
 The bodies are placed in one world frame (origin O); each contact has its own point and
 normal. The generalized-impulse core extends row by row: the Jacobian J maps the

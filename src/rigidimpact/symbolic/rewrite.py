@@ -66,8 +66,9 @@ def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
 
     Examples
     --------
-    >>> _shield(sp.sqrt(2) * sp.Symbol("x"))[0].free_symbols == {sp.Symbol("x")}
-    False
+    >>> shielded, back = _shield(sp.sqrt(2) * sp.Symbol("x"))
+    >>> shielded.has(sp.sqrt(2)), list(back.values()), shielded.xreplace(back)
+    (False, [sqrt(2)], sqrt(2)*x)
     """
     constants = sorted((a for a in expr.atoms(sp.Pow)  # radicals of rationals only:
                         if a.base.is_Rational and a.exp.is_Rational  # sin(1)**2 must stay

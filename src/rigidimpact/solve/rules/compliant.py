@@ -83,7 +83,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     integrator's times and the generalized velocities u there (rows: coordinates).
     The integration's energy error grows with the contacts (about k times the
     tolerance: 1e-7 for a 1000-ball Hertz chain at the default), and the outcome's
-    energy tolerance says so. A 1000-ball Hertz chain runs in about 6 s here.
+    energy tolerance says so.
 
     Examples
     --------

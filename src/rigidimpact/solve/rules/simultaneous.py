@@ -139,10 +139,9 @@ def simultaneous(problem: ImpactProblem) -> Solution:
     before, every released one at least that fast. Poisson's law: the compression
     impulses solve the same problem with target zero, and each is scaled by 1 + e.
     How the problem is solved depends on its size and numbers (see :func:`_lcp`):
-    Lemke's method in exact arithmetic (a 16-contact fan in 0.025 s here), trying
-    the acting sets from the largest down, or past those sizes floating point with
-    an exact check (a 1001-ball cradle in about 1 s); the outcome's `method` and
-    notes say which when it is not the first.
+    Lemke's method in exact arithmetic, trying the acting sets from the largest down,
+    or past those sizes floating point with an exact check (``rigidimpact bench``
+    times both); the outcome's `method` and notes say which when it is not the first.
     """
     problem.numbers_only("simultaneous")
     if problem.frictional:
