@@ -92,10 +92,7 @@ def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, 
     >>> round(float(out.results()["ball1.vx"]), 6)
     1.0
     """
-    import math
-
-    import numpy as np
-    import scipy.sparse as sps
+    import scipy.sparse as sps  # scipy on demand: a smooth derivation never loads it
     from scipy.integrate import ode, solve_ivp
     from scipy.sparse.csgraph import reverse_cuthill_mckee
 
