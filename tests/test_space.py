@@ -672,3 +672,46 @@ def test_a_mechanics_ball_resting_on_a_floor_into_a_wall_by_the_driven_rule():
         assert abs(float(theirs[mine]) - float(ours[f"ball.{other}"])) < 1e-8, mine
     assert float(theirs["floor.normal_impulse"]) > 0  # the floor pushed while resting
     assert bridge.rule == built_in.rule == "driven"
+
+
+# ---- a 3-D closed form with symbols is certified too ----
+
+def _symbolic_ball(tangential, **coefficients):
+    e, m, v = sp.symbols("e m v", positive=True)
+    ball = Body3.sphere(m, 1, (0, 0, 1), (1, HALF, -v), (3, -1, 2), name="ball")
+    floor = Contact(normal=(0, 0, 1), restitution=e, tangential=tangential,
+                    bodies=("floor", "ball"), point=(0, 0, 0), **coefficients)
+    return SpaceCollision((Body3.fixed("floor"), ball), (floor,))
+
+
+@pytest.mark.parametrize("tangential, coefficients", [
+    ("smooth", {}), ("stick", {}), ("coulomb", {"friction": sp.Symbol("mu", positive=True)}),
+    ("rough", {"tangential_restitution": HALF})])
+def test_a_3d_closed_form_is_checked_at_random_points_of_its_symbols(tangential,
+                                                                     coefficients):
+    # it used to carry no check at all ("checked in the tests"); now each law's residuals
+    # are computed at three seeded rational points of m, v, e (and mu) where the ball
+    # approaches, as the plane checks its closed forms
+    out = _symbolic_ball(tangential, **coefficients).solve()
+    assert out.impulses["contact"].free_symbols  # a closed form, not numbers
+    checks = out.given_checks
+    assert checks["_symbolic"] and checks["_points"] == 3
+    own = {"smooth": "smooth", "stick": "sticks", "coulomb": "cone", "rough": "rough"}
+    assert f"contact.{own[tangential]}" in checks and "contact.restitution" in checks
+    assert max(float(v) for k, v in checks.items() if not k.startswith("_")) < 1e-30
+
+
+def test_a_wrong_3d_closed_form_is_refused_not_printed(monkeypatch):
+    # a smooth law whose impulse is twice its own: its symbolic answer breaks Newton's
+    # law at every point, so it is refused in one line instead of printed
+    from rigidimpact.laws.law import ContactImpulse, Smooth
+
+    own = Smooth.impulse
+
+    def doubled(self, W, v, restitution, tolerance=None):
+        out = own(self, W, v, restitution, tolerance)
+        return ContactImpulse(out.impulse * 2, out.course)
+
+    monkeypatch.setattr(Smooth, "impulse", doubled)
+    with pytest.raises(InputError, match="contact.restitution off by"):
+        _symbolic_ball("smooth").solve()

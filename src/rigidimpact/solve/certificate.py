@@ -52,7 +52,7 @@ Examples
 from __future__ import annotations
 
 import random
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 import mpmath
@@ -62,7 +62,8 @@ from sympy.polys.domains import QQ
 from rigidimpact.errors import InputError
 
 __all__ = ["residuals", "friction_residuals", "path_residuals", "assess", "as_sympy",
-           "PHYSICAL_LIMITS", "FLOAT_TOLERANCE"]
+           "PHYSICAL_LIMITS", "FLOAT_TOLERANCE", "random_points", "coefficient_ranges",
+           "SYMBOLIC_POINTS"]
 
 DIGITS = 50
 # a floating-point answer (a large problem's, or a compliant integration's) is trusted
@@ -321,34 +322,22 @@ def _at_points(before, after, contacts, impulses, tangential, rule, locked, join
                             *(b.pivot if b.support == "pivot" else ())).free_symbols
     for b in after:
         symbols |= sp.Tuple(*b.velocity, b.spin).free_symbols
-    ranges: dict[sp.Symbol, tuple[int, int]] = {}
+    ranges = coefficient_ranges(contacts)
     for c in contacts:
         symbols |= sp.Tuple(*c.point, *c.normal, impulses[c.name],
                             tangential.get(c.name, 0), c.restitution).free_symbols
-        for x, span in ((c.restitution, (0, 1)), (c.friction, (0, 2)),
-                        (c.tangential_restitution, (-1, 1))):
-            if isinstance(x, sp.Symbol):
-                ranges[x] = span
-            elif x is not None:
+        for x in (c.friction, c.tangential_restitution):
+            if x is not None:
                 symbols |= sp.sympify(x).free_symbols
     for j in joints:
         symbols |= sp.Tuple(*j.point, *joint_impulses[j.name]).free_symbols
     for c in conditions:
         symbols |= sp.sympify(c).free_symbols
-    rng = random.Random(44)
     worst: dict[str, Any] = {}
     checked, exact, floats = 0, True, False
-    for _ in range(SYMBOLIC_TRIES):
+    for point in random_points(symbols, ranges):
         if checked == SYMBOLIC_POINTS:
             break
-        point = {}
-        for s in sorted(symbols, key=str):
-            low, high = ranges.get(s, (-3, 3) if not (s.is_positive or s.is_nonnegative)
-                                   else (0, 3))
-            x = sp.Rational(rng.randint(low * 311, high * 311), 311)
-            if s.is_positive and x <= 0 or s.is_negative and x >= 0:
-                x = sp.Rational(rng.randint(1, 3 * 311), 311) * (-1 if s.is_negative else 1)
-            point[s] = x
         if not all(sp.sympify(c).xreplace(point) is sp.true for c in conditions):
             continue  # another case's ground
         try:
@@ -371,6 +360,36 @@ def _at_points(before, after, contacts, impulses, tangential, rule, locked, join
         return {}
     return {**worst, "_scale": 1, "_kinetic": 1, "_exact": exact, "_floats": floats,
             "_points": checked, "_symbolic": True}
+
+
+def coefficient_ranges(contacts: Sequence[Any]) -> dict[sp.Symbol, tuple[int, int]]:
+    """Where a contact's coefficient left a symbol may lie: a restitution coefficient in
+    [0, 1], a friction coefficient in [0, 2], Walton's beta in [-1, 1]."""
+    ranges: dict[sp.Symbol, tuple[int, int]] = {}
+    for c in contacts:
+        for x, span in ((c.restitution, (0, 1)), (c.friction, (0, 2)),
+                        (c.tangential_restitution, (-1, 1))):
+            if isinstance(x, sp.Symbol):
+                ranges[x] = span
+    return ranges
+
+
+def random_points(symbols: set[sp.Symbol], ranges: Mapping[sp.Symbol, tuple[int, int]]
+                  ) -> Iterator[dict[sp.Symbol, sp.Rational]]:
+    """SYMBOLIC_TRIES seeded random rational points of `symbols` (the same on every
+    machine): each within its range, or else in [-3, 3] ([0, 3] where it is positive or
+    nonnegative), and of its sign."""
+    rng = random.Random(44)
+    for _ in range(SYMBOLIC_TRIES):
+        point = {}
+        for s in sorted(symbols, key=str):
+            low, high = ranges.get(s, (-3, 3) if not (s.is_positive or s.is_nonnegative)
+                                   else (0, 3))
+            x = sp.Rational(rng.randint(low * 311, high * 311), 311)
+            if s.is_positive and x <= 0 or s.is_negative and x >= 0:
+                x = sp.Rational(rng.randint(1, 3 * 311), 311) * (-1 if s.is_negative else 1)
+            point[s] = x
+        yield point
 
 
 def _at_point(point, before, after, contacts, impulses, tangential, rule, locked, joints,

@@ -52,7 +52,13 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.lazy import deferred
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
-from rigidimpact.solve.certificate import FLOAT_TOLERANCE, friction_residuals
+from rigidimpact.solve.certificate import (
+    FLOAT_TOLERANCE,
+    SYMBOLIC_POINTS,
+    coefficient_ranges,
+    friction_residuals,
+    random_points,
+)
 from rigidimpact.solve.problem import RowsProblem, check_facets
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.driven import driven
@@ -347,7 +353,7 @@ class SpaceCollision:
         numbers = [*P, *u_after, *self.u_before, *(x for b in self.free for x in
                                                    (b.mass, *b.inertia, *b.position))]
         if not all(sp.sympify(x).is_number for x in numbers):
-            return None  # closed forms with symbols: checked in the tests
+            return self._checks_at_points(c, P, u_after, course, exact, pinned or {})
 
         def num(x: Any) -> sp.Float:
             return sp.N(x, CHECK_DIGITS)
@@ -399,6 +405,61 @@ class SpaceCollision:
         out["_tolerance"] = max(1e-8, 1000 * (self.tolerance or 1e-10)) if not exact else \
             FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
         return out
+
+    def _checks_at_points(self, c: Contact, P: sp.Matrix, u_after: sp.Matrix,
+                          course: str, exact: bool, pinned: Mapping[str, Sequence[Any]]
+                          ) -> dict[str, Any] | None:
+        """A closed form with symbols, checked as the plane checks one: the same
+        residuals (:meth:`_checks`) at seeded random rational points of its symbols
+        (:func:`~rigidimpact.solve.certificate.random_points`: each coefficient within
+        its range, each symbol of its sign), kept where the contact approaches; a
+        Piecewise takes the course that holds there. Each residual is the worst over
+        the points, relative to that point's scale (the energy: to its kinetic
+        energy). None where no point of the symbols is an impact."""
+        symbols: set[sp.Symbol] = set()
+        for x in (*P, *u_after, *self.u_before, *c.point, *c.normal, c.restitution,
+                  *(x for b in self.free for x in (b.mass, *b.inertia, *b.position)),
+                  *(y for j in self.joints for y in (*j.point, *(j.axis or ())))):
+            symbols |= sp.sympify(x).free_symbols
+        for x in (c.friction, c.tangential_restitution):
+            if x is not None:
+                symbols |= sp.sympify(x).free_symbols
+        worst: dict[str, Any] = {}
+        checked, tolerance = 0, 0.0
+        for point in random_points(symbols, coefficient_ranges((c,))):
+            if checked == SYMBOLIC_POINTS:
+                break
+            try:
+                here = self.at(point)
+                (touch,) = (x for x in here.contacts if x.name == c.name)
+                J = here.rows(touch)
+                if not (J * here.u_before)[0] < 0:
+                    continue  # no impact at this point: nothing to check
+                at = (P.xreplace(point), u_after.xreplace(point))
+                if not all(x.is_number for m in at for x in m):
+                    continue
+                moved = [b.moved(at[1][6 * k:6 * k + 6, 0]) for k, b in enumerate(here.free)]
+                before = sum((b.kinetic_energy for b in here.free), sp.Integer(0))
+                lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+                found = here._checks(touch, J, at[0], at[1], before, lost, course, exact, {
+                    name: tuple(sp.sympify(x).xreplace(point) for x in parts)
+                    for name, parts in pinned.items()})
+            except (InputError, ZeroDivisionError, TypeError, ValueError):
+                continue  # not a collision there (a body of no mass, a sphere touched
+                # off its surface, ...)
+            if found is None:
+                continue
+            checked += 1
+            tolerance = max(tolerance, float(found.get("_tolerance", 0)))
+            scale, kinetic = found["_scale"] or 1, found["_kinetic"] or 1
+            for key, value in found.items():
+                if not key.startswith("_"):
+                    worst[key] = max(worst.get(key, 0), value / (kinetic if key == "energy"
+                                                                 else scale))
+        if not checked:
+            return None
+        return {**worst, "_scale": 1, "_kinetic": 1, "_tolerance": tolerance,
+                "_points": checked, "_symbolic": True}
 
     def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
                 P: Mapping[str, Sequence[Any]]) -> dict[str, tuple[sp.Expr, ...]]:
