@@ -239,10 +239,9 @@ def test_bad_3d_input_is_refused_in_one_line():
 
 # ---- the same bodies as sympy.physics.mechanics systems: the bridge's tangent plane ----
 
-def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton",
-               tangential="coulomb", beta=None):
-    """A free rigid body with six speeds (centre velocity, angular velocity in N) built
-    with KanesMethod, striking the floor z = 0 at `point` (from its centre)."""
+def _six_speeds():
+    """A free rigid body's frame N, coordinates q (centre, then XYZ body angles),
+    speeds u (centre velocity, angular velocity in N), body frame B and centre C."""
     N = me.ReferenceFrame("N")
     q = me.dynamicsymbols("x y z a b c")
     u = me.dynamicsymbols("u_x u_y u_z w_x w_y w_z")
@@ -252,6 +251,14 @@ def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton",
     origin.set_vel(N, 0)
     C = origin.locatenew("C", q[0] * N.x + q[1] * N.y + q[2] * N.z)
     C.set_vel(N, u[0] * N.x + u[1] * N.y + u[2] * N.z)
+    return N, q, u, B, C
+
+
+def _free_body(inertia, centre, velocity, spin, point, e, mu, law="newton",
+               tangential="coulomb", beta=None):
+    """A free rigid body with six speeds (centre velocity, angular velocity in N) built
+    with KanesMethod, striking the floor z = 0 at `point` (from its centre)."""
+    N, q, u, B, C = _six_speeds()
     P = C.locatenew("P", point[0] * B.x + point[1] * B.y + point[2] * B.z)
     P.v2pt_theory(C, N, B)
     tensor = sp.Matrix(inertia)
@@ -606,15 +613,7 @@ def _ball_in_a_corner(rule, order=(), velocity=(1, HALF, -2)):
     centre at (0, 0, 1), moving at (1, 1/2, -2) and spinning at (3, -1, 2) into a
     corner: the floor z = 0 (e = 1/2, mu = 1/5) and the wall x = 1 (e = 1/2, mu =
     3/10). The mechanics bridge and the built-in 3-D ball, solved by `rule`."""
-    N = me.ReferenceFrame("N")
-    q = me.dynamicsymbols("x y z a b c")
-    u = me.dynamicsymbols("u_x u_y u_z w_x w_y w_z")
-    B = N.orientnew("B", "Body", q[3:], "XYZ")
-    B.set_ang_vel(N, u[3] * N.x + u[4] * N.y + u[5] * N.z)
-    origin = me.Point("O")
-    origin.set_vel(N, 0)
-    C = origin.locatenew("C", q[0] * N.x + q[1] * N.y + q[2] * N.z)
-    C.set_vel(N, u[0] * N.x + u[1] * N.y + u[2] * N.z)
+    N, q, u, B, C = _six_speeds()
     low = C.locatenew("low", -N.z)
     low.v2pt_theory(C, N, B)
     side = C.locatenew("side", N.x)

@@ -547,6 +547,21 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
             u = u0 + Minv @ (J.T @ lam)
             error = max(error, coulomb_residual(W, b, cone, lam))
 
+    note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
+            f"Newton method on Alart and Curnier's function ({(1 + t) * n} unknowns, "
+            f"{steps} steps{', the circular cone' if t == 2 else ''}), residual "
+            f"{error:.1e} of the largest closing speed; it gives one answer, and with "
+            "friction others may exist" + shared)
+    return _in_floats(problem, u, lam, on, states, note, "newton")
+
+
+def _in_floats(problem: ImpactProblem, u: np.ndarray, lam: np.ndarray, on: np.ndarray,
+               states: Sequence[str], note: str, method: str) -> Solution:
+    """The rule's outcome from impulses found in floating point (`lam`: the normal
+    ones, then each contact's one or two tangential ones; `on`: which push), each
+    number a 17-digit Float, for the certificate to check at 50 digits."""
+    n, t = len(problem.contacts), problem.tangents
+
     def number(x: float) -> sp.Float:
         return sp.Float(float(x), 17)
 
@@ -555,21 +570,17 @@ def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
                         for i, x in enumerate(lam[:n])])
     along = sp.Matrix([number(friction[i, 0]) if on[i] else sp.Integer(0)
                        for i in range(n)])
-    sideways = {c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
-                for i, c in enumerate(problem.contacts)} if t == 2 else None
-    more: dict[str, Any] = {"tangent_impulses": sideways} if sideways else {}
-    note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
-            f"Newton method on Alart and Curnier's function ({(1 + t) * n} unknowns, "
-            f"{steps} steps{', the circular cone' if t == 2 else ''}), residual "
-            f"{error:.1e} of the largest closing speed; it gives one answer, and with "
-            "friction others may exist" + shared)
+    more: dict[str, Any] = {"tangent_impulses": {
+        c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
+        for i, c in enumerate(problem.contacts)}} if t == 2 else {}
     return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
-                            problem.named(normal), tuple(problem.contacts[i].name
-                                                          for i in acting),
-                            tangential=problem.named(along),
-                            courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
-                                          zip(problem.contacts, states, strict=True)),
-                            notes=(note,), method="newton", **more)
+                           problem.named(normal), tuple(c.name for i, c in
+                                                        enumerate(problem.contacts)
+                                                        if on[i]),
+                           tangential=problem.named(along),
+                           courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
+                                         zip(problem.contacts, states, strict=True)),
+                           notes=(note,), method=method, **more)
 
 
 def _frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
@@ -641,29 +652,12 @@ def _frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     states = ["off" if not on[i] else "on" if cone[i] == 0 else "stick" if still[i] else
               "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
 
-    def number(x: float) -> sp.Float:
-        return sp.Float(float(x), 17)
-
-    friction = lam[n:].reshape(n, t)
-    normal = sp.Matrix([number(x) if on[i] else sp.Integer(0)
-                        for i, x in enumerate(lam[:n])])
-    along = sp.Matrix([number(friction[i, 0]) if on[i] else sp.Integer(0)
-                       for i in range(n)])
-    more: dict[str, Any] = {"tangent_impulses": {
-        c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
-        for i, c in enumerate(problem.contacts)}} if t == 2 else {}
     note = (f"{n} contacts act together (the simultaneous rule, Newton's law at the "
             f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
             "choice: exact where a slip is along an edge), solved by Lemke's method in "
             "floating point; it gives one answer, and with friction or more contacts than "
             "freedoms others may exist")
-    return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
-                           problem.named(normal), tuple(problem.contacts[i].name
-                                                        for i in range(n) if on[i]),
-                           tangential=problem.named(along),
-                           courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
-                                         zip(problem.contacts, states, strict=True)),
-                           notes=(note,), method="pyramid", **more)
+    return _in_floats(problem, u, lam, on, states, note, "pyramid")
 
 
 def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
