@@ -358,21 +358,7 @@ class SpaceCollision:
         def num(x: Any) -> sp.Float:
             return sp.N(x, CHECK_DIGITS)
 
-        frame = sp.Matrix(c.frame)
-        impulse = frame.T * P  # on the second body, world frame
-        out: dict[str, Any] = self._joint_checks(pinned or {}, u_after, num)
-        held = self._held(pinned or {})
-        for k, body in enumerate(self.free):
-            sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
-            du = u_after[6 * k:6 * k + 6, 0] - self.u_before[6 * k:6 * k + 6, 0]
-            linear = body.mass * du[:3, 0] - sign * impulse - held[6 * k:6 * k + 3, 0]
-            arm = sp.Matrix(c.point) - sp.Matrix(body.position)
-            angular = sp.Matrix(body.inertia) * du[3:, 0] - sign * arm.cross(impulse) \
-                - held[6 * k + 3:6 * k + 6, 0]
-            for axis, x in zip("xyz", linear, strict=True):
-                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
-            for axis, x in zip("xyz", angular, strict=True):
-                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(x))
+        out = self._momenta((c,), {c.name: P}, self.u_before, u_after, pinned or {}, num)
         v_before, v_after = J * self.u_before, J * u_after
         out[f"{c.name}.pushes"] = max(0, -num(P[0]))
         out[f"{c.name}.opens"] = max(0, -num(v_after[0]))
@@ -460,6 +446,31 @@ class SpaceCollision:
             return None
         return {**worst, "_scale": 1, "_kinetic": 1, "_tolerance": tolerance,
                 "_points": checked, "_symbolic": True}
+
+    def _momenta(self, acting: Sequence[Contact], impulses: Mapping[str, Any], u: Any,
+                 u_after: Any, pinned: Mapping[str, Sequence[Any]], num: Any
+                 ) -> dict[str, Any]:
+        """Each free body's change of linear and angular momentum (about its centre)
+        less the impulses it received (each contact's, from its frame, and the joints'),
+        and each joint holding after (:meth:`_joint_checks`)."""
+        out: dict[str, Any] = self._joint_checks(pinned, u_after, num)
+        held = self._held(pinned)
+        for k, body in enumerate(self.free):
+            du = sp.Matrix(u_after[6 * k:6 * k + 6, 0]) - sp.Matrix(u[6 * k:6 * k + 6, 0])
+            linear = body.mass * du[:3, 0] - held[6 * k:6 * k + 3, 0]
+            angular = sp.Matrix(body.inertia) * du[3:, 0] - held[6 * k + 3:6 * k + 6, 0]
+            for c in acting:
+                sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
+                if sign:  # on the second body, in the world frame
+                    impulse = sp.Matrix(c.frame).T * sp.Matrix(impulses[c.name])
+                    arm = sp.Matrix(c.point) - sp.Matrix(body.position)
+                    linear -= sign * impulse
+                    angular -= sign * arm.cross(impulse)
+            for axis, x in zip("xyz", linear, strict=True):
+                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
+            for axis, x in zip("xyz", angular, strict=True):
+                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(x))
+        return out
 
     def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
                 P: Mapping[str, Sequence[Any]]) -> dict[str, tuple[sp.Expr, ...]]:
@@ -649,22 +660,7 @@ class SpaceCollision:
         pinned = self.joint_impulses(sum((J[c.name].T * impulses[c.name] for c in acting),
                                          sp.zeros(6 * len(self.free), 1))) \
             if self.joints else {}
-        held = self._held(pinned)
-        out: dict[str, Any] = self._joint_checks(pinned, u1, num)
-        for k, body in enumerate(self.free):
-            du = u1[6 * k:6 * k + 6, 0] - u0[6 * k:6 * k + 6, 0]
-            linear = body.mass * du[:3, 0] - held[6 * k:6 * k + 3, 0]
-            angular = sp.Matrix(body.inertia) * du[3:, 0] - held[6 * k + 3:6 * k + 6, 0]
-            for c in acting:
-                sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
-                if sign:
-                    impulse = sp.Matrix(c.frame).T * impulses[c.name]
-                    arm = sp.Matrix(c.point) - sp.Matrix(body.position)
-                    linear -= sign * impulse
-                    angular -= sign * arm.cross(impulse)
-            for axis, x, y in zip("xyz", linear, angular, strict=True):
-                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
-                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(y))
+        out = self._momenta(acting, impulses, u0, u1, pinned, num)
         for c in acting:
             Pn, Pt1, Pt2 = impulses[c.name]
             closing, leaving = (J[c.name] * u0)[0], (J[c.name] * u1)[0]
