@@ -379,3 +379,41 @@ def test_the_exact_confirmation_through_sparse_rows_is_the_product_with_m(make,
     monkeypatch.setattr(simultaneous_rule, "confirm_support", both)
     make().simultaneous()
     assert calls and calls[-1]
+
+
+@pytest.mark.parametrize("want", [4, pytest.param(60, marks=pytest.mark.slow)])
+def test_one_acting_contact_gets_its_own_impact_whatever_the_method(monkeypatch, want):
+    # where one contact acts, its answer is its own impact (Routh's courses) under every
+    # rule; the simultaneous rule has four ways to find the acting set (every state
+    # tried, the complementarity problem, the Newton method in floats, Coulomb's
+    # pyramid), and each must then hand over to that one answer, not keep its own
+    # velocity-level one (the Newton method and the pyramid did not, before)
+    from dataclasses import replace
+
+    rng = random.Random(44)
+    compared = 0
+    for _ in range(400):
+        if compared == want:
+            break
+        collision = _random_cluster(rng, rng.randint(2, 4))
+        try:
+            enumerated = collision.simultaneous()
+        except ri.InputError:
+            continue
+        if len(enumerated.acted) != 1 or not any(
+                word in course for course in enumerated.courses
+                for word in ("reversal", "slip-stick")):
+            continue  # a course the velocity level would get wrong: Routh's own
+        found = []
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_STATES", 0)
+        found.append(collision.simultaneous())  # the complementarity problem
+        monkeypatch.setattr(simultaneous_rule, "MAX_FRICTION_LEMKE", 0)
+        found.append(collision.simultaneous())  # the Newton method
+        monkeypatch.undo()
+        found.append(replace(collision, facets=4).simultaneous())  # the pyramid
+        for other in found:
+            assert other.courses == enumerated.courses
+            for b, c in zip(enumerated.after, other.after, strict=True):
+                assert sp.Matrix(b.velocity) == sp.Matrix(c.velocity) and b.spin == c.spin
+        compared += 1
+    assert compared == want
