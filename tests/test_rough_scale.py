@@ -15,6 +15,7 @@ import pytest
 import sympy as sp
 
 import rigidimpact as ri
+import rigidimpact.solve.rules.floating as floating_rule
 import rigidimpact.solve.rules.simultaneous as simultaneous_rule
 from rigidimpact.analyses.contacts import (
     pymunk_rough_cluster,
@@ -353,7 +354,7 @@ def test_where_the_newton_method_stops_short_the_rule_refuses_in_one_line(monkey
         raise NoSolution("the semismooth Newton method stopped at a residual of "
                              "1.0e-03 after 400 steps")
 
-    monkeypatch.setattr(simultaneous_rule, "coulomb_newton", stops)
+    monkeypatch.setattr(floating_rule, "coulomb_newton", stops)
     with pytest.raises(ri.InputError, match="stopped at a residual of 1.0e-03"):
         rough_cluster(2, 2).simultaneous()
 

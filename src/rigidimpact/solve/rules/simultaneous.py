@@ -28,7 +28,7 @@ from rigidimpact.solve.conditions import (
     exact_solve,
     tidied,
 )
-from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual, least_norm_rough
+from rigidimpact.solve.coulomb import coulomb_newton
 from rigidimpact.solve.lcp import (
     NoSolution,
     confirm,
@@ -43,7 +43,13 @@ from rigidimpact.solve.lcp import (
 )
 from rigidimpact.solve.problem import MAX_ENUMERATED, ImpactProblem
 from rigidimpact.solve.rules.base import Rule
-from rigidimpact.solve.rules.sequential import _own_step
+from rigidimpact.solve.rules.floating import (
+    STATE,
+    float_problem,
+    frictional_newton,
+    frictional_pyramid,
+    one_acting,
+)
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -107,8 +113,6 @@ MAX_STATES_WORK = 200_000
 MAX_FRICTION_LEMKE = 400
 MAX_FRICTION_EXACT_LEMKE = 40
 
-_STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
-          "slide-": "slides", "mixed": "differs between the solutions"}
 
 
 @dataclass(frozen=True)
@@ -191,7 +195,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     (:func:`_frictional_lcp`).
     """
     if len(problem.contacts) == 1:  # one contact: its own exact answer, under any law
-        return _one_acting(problem, 0, [sp.Integer(0)])
+        return one_acting(problem, 0, [sp.Integer(0)])
     restitution, tangential = zip(*(t.laws for t in problem.contacts), strict=True)
     n = len(problem.contacts)
     v_n = problem.scaled_velocity_before
@@ -205,7 +209,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         # one contact closes: its own exact impact, under its own laws, if that leaves
         # every other contact opening (the answer every rule gives for one acting
         # contact); otherwise one line saying so
-        return _one_acting(problem, closing[0], [sp.Integer(0)] * n)
+        return one_acting(problem, closing[0], [sp.Integer(0)] * n)
     if late:
         raise InputError(f"{late[0]}.law", "with friction the simultaneous rule takes "
                          "Newton's law at every contact (the sequential rule takes "
@@ -219,13 +223,13 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     if problem.tangents == 2:  # in space: Coulomb's circular cone, in floating point
         across = sp.SparseMatrix([list(problem.contact_rows(i)[j, :]) for i in range(n)
                                   for j in (1, 2)])
-        solve = _frictional_newton if problem.facets is None else _frictional_pyramid
+        solve = frictional_newton if problem.facets is None else frictional_pyramid
         return solve(problem, sp.SparseMatrix.vstack(sp.SparseMatrix(problem.scaled_J),
                                                      across),
                      v_n, _sparse_times(across, problem.u_before), mu, target, tangential)
     v_t = _sparse_times(problem.scaled_J_t, problem.u_before)
     if problem.facets is not None:  # one tangent's pyramid, + and -: Coulomb's law
-        return _frictional_pyramid(problem, sp.SparseMatrix.vstack(
+        return frictional_pyramid(problem, sp.SparseMatrix.vstack(
             sp.SparseMatrix(problem.scaled_J), sp.SparseMatrix(problem.scaled_J_t)),
             v_n, v_t, mu, target, tangential)
     states = [("off",) + law.velocity_states for law in tangential]
@@ -261,7 +265,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     if len(acting) == 1 and len(next(iter(acting))) == 1:
         (k,), = acting
         if tangential[k].solved_by_regimes:  # one contact acts: its own exact answer
-            return _one_acting(problem, k, target)
+            return one_acting(problem, k, target)
     impulses, pattern = found[0]
     motions = [(problem.u_before + problem.M_inverse * rows.T * f).applyfunc(tidy)
                for f, _ in found]
@@ -283,15 +287,15 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     elif len(found) > 1:
         notes += (f"the simultaneous rule with friction has {len(found)} solutions here, "
                  "with different motions after; shown: " + ", ".join(
-                     _STATE[s] for s in pattern) + "; others: " + "; ".join(
-                     ", ".join(_STATE[s] for s in p) for _, p in found[1:]),)
+                     STATE[s] for s in pattern) + "; others: " + "; ".join(
+                     ", ".join(STATE[s] for s in p) for _, p in found[1:]),)
     normal = impulses[:n, 0]
     return problem.outcome("simultaneous", (), u,
                    problem.named(normal), tuple(t.name for t, p in
                                               zip(problem.contacts, normal, strict=True)
                                               if p > 0),
                    tangential=problem.named(impulses[n:, 0]),
-                   courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                   courses=tuple(f"{t.name}: {STATE[s]}" for t, s in
                                  zip(problem.contacts, pattern, strict=True)),
                    notes=notes)
 
@@ -341,12 +345,12 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     data = [*v_n, *v_t, *target, *(m for m in mu if m is not None)]
     if n > MAX_FRICTION_LEMKE or rows.free_symbols or problem.M_inverse.free_symbols or not all(
             sp.sympify(x).is_Rational for x in data):
-        return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
+        return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     try:
         J = rows.to_DM().convert_to(QQ)
         Minv = problem.M_inverse.to_DM().convert_to(QQ)
     except Exception:  # noqa: BLE001 - an irrational entry: not in the rationals
-        return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
+        return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
 
     # every entry an element of QQ (python-flint's fmpq where installed, as W's own
@@ -420,7 +424,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     z, how = None, ("found in floating point by a semismooth Newton method and confirmed "
                     "in exact arithmetic")
     try:  # the sparse Newton method's answer, in the problem's four unknowns a contact
-        J_f, Minv_f, W_f, b_f, cone_f, u0_f = _float_problem(problem, rows, v_n, v_t, mu,
+        J_f, Minv_f, W_f, b_f, cone_f, u0_f = float_problem(problem, rows, v_n, v_t, mu,
                                                              target, tangential)
         lam = coulomb_newton(W_f, b_f, cone_f)[0]
         slip_f = (J_f @ (u0_f + Minv_f @ (J_f.T @ lam)))[n:]
@@ -439,7 +443,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
         how = "found in floating point by Lemke's method and confirmed in exact arithmetic"
     if z is None:
         if n > MAX_FRICTION_EXACT_LEMKE:  # too large for the exact tableau
-            return _frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
+            return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
         try:
             z = lemke([[_fraction(row.get(j, 0)) for j in range(size)] for row in M],
                       [_fraction(x) for x in q])
@@ -459,7 +463,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     along = sp.Matrix([_rational(P[n + i]) for i in range(n)])
     acting = [i for i in range(n) if P[i] > 0]
     if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
-        return _one_acting(problem, acting[0], list(target))
+        return one_acting(problem, acting[0], list(target))
     slip = [slip_dm[n + i, 0].element for i in range(n)]
     states = ["off" if P[i] == 0 else "on" if not tangential[i].grips else
               "stick" if slip[i] == 0 else "slide+" if slip[i] > 0 else "slide-"
@@ -470,224 +474,9 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
     return problem.outcome("simultaneous", (), u, problem.named(normal),
                             tuple(problem.contacts[i].name for i in acting),
                             tangential=problem.named(along),
-                            courses=tuple(f"{t.name}: {_STATE[s]}" for t, s in
+                            courses=tuple(f"{t.name}: {STATE[s]}" for t, s in
                                           zip(problem.contacts, states, strict=True)),
                             notes=(note,), method="lemke")
-
-
-def _float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t: sp.Matrix,
-                   mu: Sequence[Any], target: Sequence[sp.Expr], tangential: Sequence[Any]
-                   ) -> tuple[Any, Any, Any, np.ndarray, np.ndarray, np.ndarray]:
-    """The frictional problem in float64: J (normal rows, then tangential) and M^-1 as
-    SciPy sparse matrices, W, the velocities b before (normal ones less their targets,
-    then the slips), each contact's cone (inf: it sticks; 0: smooth) and u before."""
-    import scipy.sparse as sps
-
-    n = len(problem.contacts)
-    entries = rows.row_list()
-    J = sps.csr_matrix(([float(x) for _, _, x in entries],
-                        ([i for i, _, _ in entries], [j for _, j, _ in entries])),
-                       shape=rows.shape)
-    if problem.dense:
-        Minv = sps.csr_matrix(np.array(problem.M_inverse.evalf(), dtype=float))
-    else:
-        Minv = sps.diags([float(x) for x in problem.inverse_inertia]).tocsr()
-    W = (J @ Minv @ J.T).tocsr()
-    b = np.array([float(v_n[i] - target[i]) for i in range(n)]
-                 + [float(x) for x in v_t])
-    cone = np.array([np.inf if m is None and law.grips else
-                     0.0 if m is None or not law.grips else float(m)
-                     for m, law in zip(mu, tangential, strict=True)])
-    return J, Minv, W, b, cone, np.array([float(x) for x in problem.u_before])
-
-
-def _frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
-                       v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
-                       tangential: Sequence[Any]) -> Solution:
-    """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
-    cluster): the same conditions as :func:`_frictional_lcp`, in floating point, by a
-    damped semismooth Newton method on Alart and Curnier's function
-    (:func:`rigidimpact.solve.coulomb.coulomb_newton`), one sparse factorisation a step. The
-    answer is in floats with its residual in a note, and the certificate checks it at
-    50 digits like every answer; where the method stops short it refuses in one line."""
-    n = len(problem.contacts)
-    if rows.free_symbols or problem.M_inverse.free_symbols or any(
-            sp.sympify(x).free_symbols for x in (*v_n, *v_t, *target)):
-        raise InputError("contacts", f"{n} frictional contacts acting together are "
-                         "solved for numbers; these hold symbols")
-    J, Minv, W, b, cone, u0 = _float_problem(problem, rows, v_n, v_t, mu, target, tangential)
-    try:
-        lam, steps = coulomb_newton(W, b, cone)
-    except NoSolution as exc:
-        raise InputError("impact.rule", f"{n} frictional contacts acting together: {exc}, "
-                         "so no answer is given; try the sequential rule") from None
-    u = u0 + Minv @ (J.T @ lam)
-    error = coulomb_residual(W, b, cone, lam)
-    t = problem.tangents  # one tangent a contact in the plane, two in space
-    slip = (J @ u)[n:].reshape(n, t)
-    friction = lam[n:].reshape(n, t)
-    big = max(1.0, float(np.abs(lam).max()))
-    on = lam[:n] > 1e-12 * big
-    inside = np.linalg.norm(friction, axis=1) < cone * lam[:n] - 1e-9 * big
-    acting = [i for i in range(n) if on[i]]
-    if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
-        return _one_acting(problem, acting[0], list(target))  # its own answer, any rule
-    states = ["off" if not on[i] else "on" if not tangential[i].grips else
-              "stick" if inside[i] or not np.isfinite(cone[i]) else
-              "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
-
-    shared = ""
-    if not problem.dense:  # the least-norm impulses with this motion, if others fit it
-        least = least_norm_rough(J, 1.0 / Minv.diagonal(), u - u0, lam, cone, slip.ravel())
-        if least is not None and np.abs(least - lam).max() > 1e-9 * big:
-            lam, shared = least, (
-                "; other impulses give the same motion after (more contact conditions "
-                "than the bodies' freedoms): shown are the least-norm ones with these "
-                "contact states")
-            u = u0 + Minv @ (J.T @ lam)
-            error = max(error, coulomb_residual(W, b, cone, lam))
-
-    note = (f"{n} frictional contacts: solved in floating point by a damped semismooth "
-            f"Newton method on Alart and Curnier's function ({(1 + t) * n} unknowns, "
-            f"{steps} steps{', the circular cone' if t == 2 else ''}), residual "
-            f"{error:.1e} of the largest closing speed; it gives one answer, and with "
-            "friction others may exist" + shared)
-    return _in_floats(problem, u, lam, on, states, note, "newton")
-
-
-def _in_floats(problem: ImpactProblem, u: np.ndarray, lam: np.ndarray, on: np.ndarray,
-               states: Sequence[str], note: str, method: str) -> Solution:
-    """The rule's outcome from impulses found in floating point (`lam`: the normal
-    ones, then each contact's one or two tangential ones; `on`: which push), each
-    number a 17-digit Float, for the certificate to check at 50 digits."""
-    n, t = len(problem.contacts), problem.tangents
-
-    def number(x: float) -> sp.Float:
-        return sp.Float(float(x), 17)
-
-    friction = lam[n:].reshape(n, t)
-    normal = sp.Matrix([number(x) if on[i] else sp.Integer(0)
-                        for i, x in enumerate(lam[:n])])
-    along = sp.Matrix([number(friction[i, 0]) if on[i] else sp.Integer(0)
-                       for i in range(n)])
-    more: dict[str, Any] = {"tangent_impulses": {
-        c.name: (along[i], number(friction[i, 1]) if on[i] else sp.Integer(0))
-        for i, c in enumerate(problem.contacts)}} if t == 2 else {}
-    return problem.outcome("simultaneous", (), sp.Matrix([number(x) for x in u]),
-                           problem.named(normal), tuple(c.name for i, c in
-                                                        enumerate(problem.contacts)
-                                                        if on[i]),
-                           tangential=problem.named(along),
-                           courses=tuple(f"{c.name}: {_STATE[s]}" for c, s in
-                                         zip(problem.contacts, states, strict=True)),
-                           notes=(note,), method=method, **more)
-
-
-def _frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
-                        v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
-                        tangential: Sequence[Any]) -> Solution:
-    """The same conditions as :func:`_frictional_newton` with each contact's cone
-    replaced by the inscribed pyramid of ``problem.facets`` edges ``d_j`` in its tangent
-    plane (along t1, then every 360/facets degrees; one tangent has the two edges + and
-    -): Stewart and Trinkle's formulation. Each contact's unknowns are its normal
-    impulse p, an impulse p_j >= 0 along each edge and a slack s (the slip speed after
-    as the pyramid sees it)::
-
-        w_p = v_n+ - target >= 0     with p
-        w_j = s + d_j . v_t+ >= 0    with p_j
-        w_s = mu p - sum_j p_j >= 0  with s
-
-    solved by Lemke's method in floating point; the certificate checks the answer as it
-    checks every other. The pyramid is an accuracy choice: exact where the slip after is
-    along an edge, otherwise its friction is short of the cone's by up to
-    1 - cos(180/facets degrees)."""
-    n, t, m = len(problem.contacts), problem.tangents, problem.facets or 2
-    stuck = [c.name for c, law, c_mu in zip(problem.contacts, tangential, mu, strict=True)
-             if c_mu is None and law.grips]
-    if stuck:
-        raise InputError(f"{stuck[0]}.tangential", "a sticking contact has no cone to make "
-                         "a pyramid of: use coulomb with a friction coefficient, or no "
-                         "facets")
-    J, Minv, W, b, cone, u0 = _float_problem(problem, rows, v_n, v_t, mu, target, tangential)
-    W = W.toarray()
-    if t == 1:
-        D = np.array([[1.0], [-1.0]])
-    else:
-        angles = np.arange(m) * 2 * np.pi / m
-        D = np.stack([np.cos(angles), np.sin(angles)], axis=1)
-        D[np.abs(D) < 1e-15] = 0.0
-    e = len(D)  # edges a contact
-    size = n * (e + 2)
-    B = np.zeros((n + n * t, size))  # the impulse (normal ones, then tangential) = B z
-    for i in range(n):
-        B[i, i] = 1.0
-        B[n + i * t:n + (i + 1) * t, n + i * e:n + (i + 1) * e] = D.T
-    WB = W @ B
-    M, q = np.zeros((size, size)), np.zeros(size)
-    for i in range(n):
-        M[i], q[i] = WB[i], b[i]
-        across = slice(n + i * t, n + (i + 1) * t)
-        for j in range(e):
-            r = n + i * e + j
-            M[r] = D[j] @ WB[across]
-            M[r, n + n * e + i] = 1.0
-            q[r] = D[j] @ b[across]
-        last = n + n * e + i
-        M[last, i] = cone[i]
-        M[last, n + i * e:n + (i + 1) * e] = -1.0
-    z = lemke_float(M, q)
-    if z is None:  # with friction the matrix is not copositive-plus: no proof of none
-        raise InputError("impact.rule", f"Coulomb's cone as a pyramid of {m} edges: "
-                         "Lemke's method ended on a ray, which with friction says neither "
-                         "that an answer exists nor that none does; leave out facets (the "
-                         "circular cone itself), or try the sequential rule")
-    lam = B @ z
-    u = u0 + Minv @ (J.T @ lam)
-    big = max(1.0, float(np.abs(lam).max()), float(np.abs(u0).max()))
-    on = lam[:n] > 1e-12 * big
-    if on.sum() == 1 and tangential[int(np.argmax(on))].solved_by_regimes:
-        return _one_acting(problem, int(np.argmax(on)), list(target))  # its own answer
-    slip = (J @ u)[n:].reshape(n, t)
-    still = np.linalg.norm(slip, axis=1) <= 1e-9 * big
-    states = ["off" if not on[i] else "on" if cone[i] == 0 else "stick" if still[i] else
-              "slide+" if slip[i, 0] > 0 else "slide-" for i in range(n)]
-
-    note = (f"{n} contacts act together (the simultaneous rule, Newton's law at the "
-            f"velocity level), Coulomb's cone as a pyramid of {m} edges (an accuracy "
-            "choice: exact where a slip is along an edge), solved by Lemke's method in "
-            "floating point; it gives one answer, and with friction or more contacts than "
-            "freedoms others may exist")
-    return _in_floats(problem, u, lam, on, states, note, "pyramid")
-
-
-def _one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
-    """Only contact k acts: its frictional impact alone by Routh's method (the answer
-    for one contact under every rule), if that leaves every other contact opening
-    at least as fast as its law asks; otherwise one line saying so."""
-    P, course, u, _ = _own_step(problem, k, problem.u_before)
-    normal, along = P[0], P[1]
-    after = problem.closings(u)
-    blocked = [t.name for i, t in enumerate(problem.contacts)
-               if i != k and after[i] < target[i]]
-    name = problem.contacts[k].name
-    if blocked:
-        raise InputError("impact.rule", f"only {name} acts at the velocity level, but "
-                         f"its exact (Routh) impulse leaves {', '.join(blocked)} "
-                         "closing: the simultaneous rule has no consistent answer here; "
-                         "try the sequential rule")
-    zeros = sp.zeros(len(problem.contacts), 1)
-    normals, tangentials = zeros.copy(), zeros.copy()
-    normals[k], tangentials[k] = normal, along
-    zero = sp.Integer(0)
-    more: dict[str, Any] = {"tangent_impulses": {  # in space: its second tangent too
-        t.name: (along, P[2]) if i == k else (zero, zero)
-        for i, t in enumerate(problem.contacts)}} if problem.tangents == 2 else {}
-    return problem.outcome("simultaneous", (), u,
-                   problem.named(normals), (name,),
-                   tangential=problem.named(tangentials) if problem.frictional else {},
-                   courses=tuple(f"{t.name}: {course}" if i == k else
-                                 f"{t.name}: {_STATE['off']}"
-                                 for i, t in enumerate(problem.contacts)), **more)
 
 
 def _friction_pattern(problem: ImpactProblem, pattern, W, v_n, v_t, target,
@@ -978,8 +767,8 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
                                                        + problem.scaled_J_t.T * tangential)
                      ).applyfunc(tidy)
                 more: dict[str, Any] = {"tangential": problem.named(tangential),
-                        "courses": tuple(f"{t.name}: " + (_STATE["stick"] if i in active
-                                                          else _STATE["off"])
+                        "courses": tuple(f"{t.name}: " + (STATE["stick"] if i in active
+                                                          else STATE["off"])
                                          for i, t in enumerate(problem.contacts))}
                 if free:
                     more["notes"] = (f"the motion after is unique but the impulses are "
