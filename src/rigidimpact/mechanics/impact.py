@@ -272,8 +272,8 @@ class SystemImpact:
         out = tangential.impulse(W, v, restitution)
         P, course = out.impulse, "sticks" if tangential.name == "stick" else out.course
         after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
-        return self._in_plane(after, P, {c.name: course}, exact=all(
-            x.is_Rational or not x.is_Float for x in P))
+        return self._in_plane(after, P, {c.name: course}, exact=out.exact and all(
+            x.is_Rational or not x.is_Float for x in P), notes=tuple(out.notes))
 
     def _in_plane(self, after: sp.Matrix, P: sp.Matrix, courses: dict[str, str],
                   rule: str = "simultaneous", exact: bool = True,
