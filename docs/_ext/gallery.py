@@ -47,7 +47,7 @@ def _latex_blocks(derivation: Any) -> list[str]:
 
 def _figure(path: Path, target: Path) -> str | None:
     """Draw the scene's run to `target`; None, or why there is no figure."""
-    from rigidimpact.cli import _plot_outcome, _plot_space
+    from rigidimpact.figures import plot_outcome, plot_space
     from rigidimpact.errors import InputError
     from rigidimpact.scenes.scene import Scene
     from rigidimpact.scenes.space import load_any
@@ -59,10 +59,10 @@ def _figure(path: Path, target: Path) -> str | None:
         if scene.simulate.get("until", "separation") == "separation" and \
                 "impacts" not in scene.simulate:
             return "a 3-D scene whose run ends at the impact (nothing moves to draw)"
-        _plot_space(scene, run_space(scene), target)
+        plot_space(scene, run_space(scene), target)
         return None
     try:
-        _plot_outcome(scene, run(scene), target)
+        plot_outcome(scene, run(scene), target)
     except InputError as refusal:
         return str(refusal)
     return None
