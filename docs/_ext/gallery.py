@@ -47,8 +47,8 @@ def _latex_blocks(derivation: Any) -> list[str]:
 
 def _figure(path: Path, target: Path) -> str | None:
     """Draw the scene's run to `target`; None, or why there is no figure."""
-    from rigidimpact.figures import plot_outcome, plot_space
     from rigidimpact.errors import InputError
+    from rigidimpact.figures import plot_outcome, plot_space
     from rigidimpact.scenes.scene import Scene
     from rigidimpact.scenes.space import load_any
     from rigidimpact.simulate import run
