@@ -590,3 +590,53 @@ def test_both_ends_sticking_as_a_mechanics_system_match_the_built_in_shapes():
     assert list(ours.speeds_after) == [r["rod.vx"], r["rod.vy"], r["rod.omega"]]
     assert [ours.impulses[n] for n in ("left", "right")] == \
         [r["left.normal_impulse"], r["right.normal_impulse"]]
+
+
+def _rod_both_ways(rng):
+    """A seeded flat rod landing on both ends: as a KanesMethod system and as the
+    built-in shapes, with one law at both ends and a rule (the same data each way)."""
+    R = sp.Rational
+    e = R(rng.randint(0, 4), 4)
+    tangential = rng.choice(["smooth", "coulomb", "coulomb", "stick"])
+    mu = R(rng.randint(1, 8), 8) if tangential == "coulomb" else None
+    law = rng.choice(["newton", "newton", "poisson", "energetic"]) \
+        if tangential != "stick" else "newton"
+    v = (R(rng.randint(-8, 8), 4), R(rng.randint(-8, -1), 4), R(rng.randint(-8, 8), 4))
+    rule = rng.choice([ri.Simultaneous(), ri.Sequential(("left", "right")), ri.Driven()])
+    hit, q, u = _flat_rod(e, tangential, mu, law)
+    rod = ri.Body.rigid(1, R(1, 3), (0, 0), v[:2], v[2], "rod")
+    contacts = tuple(ri.Contact((0, -1), e, tangential, law, name=name,
+                                bodies=("rod", "floor"), point=(x, 0), friction=mu)
+                     for name, x in (("left", -1), ("right", 1)))
+    return _at(hit, q, u, v), ri.Collision((rod, ri.Body.fixed("floor")), contacts), rule
+
+
+def _answer(solve):
+    try:
+        return solve()
+    except ri.InputError as refusal:
+        return f"refused: {refusal.field}"
+
+
+@pytest.mark.parametrize("count", [24, pytest.param(120, marks=pytest.mark.slow)])
+def test_a_seeded_rod_gets_one_answer_as_a_system_and_as_built_in_shapes(count):
+    # every rule, law and tangential law: the two sources give the same speeds, or both
+    # refuse. Found by this search and mended: an energetic law with one contact acting
+    # was refused by the bridge only; the driven rule's integrated answer was refused by
+    # the bridge's exact tolerance; a sequential run cut at the certificate's own line
+    # (e = 0, ringing) was refused by the built-in shapes' certificate
+    rng = random.Random(44)
+    compared = 0
+    for _ in range(count):
+        system, shapes, rule = _rod_both_ways(rng)
+        ours = _answer(lambda: system.solve(rule))
+        theirs = _answer(lambda: shapes.solve(rule)[0])
+        assert isinstance(ours, str) == isinstance(theirs, str), (rule.name, ours, theirs)
+        if isinstance(ours, str):
+            continue
+        r = theirs.results()
+        for mine, other in zip(ours.speeds_after, (r["rod.vx"], r["rod.vy"], r["rod.omega"]),
+                               strict=True):
+            assert abs(float(mine - other)) < 1e-9, (rule.name, ours.speeds_after, r)
+        compared += 1
+    assert compared >= count // 2

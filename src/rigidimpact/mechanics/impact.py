@@ -590,8 +590,10 @@ class SystemImpact:
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
         checks = certify_checks(self, back(after), P, rule)
-        if checks is not None and rule == "compliant":  # integrated in floating point:
-            checks.pop("_tolerance")  # the rule's own tolerance, not the exact paths'
+        integrated = rule == "compliant" or rule == "driven" and any(
+            sp.sympify(x).has(sp.Float) for x in (*after, *P))
+        if checks is not None and integrated:  # followed in floating point: the rule's
+            checks.pop("_tolerance")  # own tolerance (its integrator's), not the exact paths'
         solution = Solution(
             before=(), after=(), impulses=normal, tangential=along,
             contacts=tuple(c.laws for c in self.contacts),
@@ -919,9 +921,10 @@ class _AsCollision(RowsProblem):
         # (Newton's law at each acting contact, smooth or sticking); otherwise the
         # rule's impulses are what is printed
         # (one contact: its own impact under every rule, its own laws printed)
-        own = len(self.contacts) == 1 or rule == "simultaneous" and \
-            not self.acts_by_impulse() and all(
-                courses[c.name] in ("acts", "released", "sticks") for c in self.contacts)
+        own = len(self.contacts) == 1 or rule == "simultaneous" and all(
+            c.laws[0].together == "velocity" and courses[c.name] in ("acts", "released",
+                                                                     "sticks")
+            for c in self.contacts)
         for c in self.contacts:  # a contact that stuck prints its no-slip law
             if courses[c.name] == "sticks" or (courses[c.name] == "acts" and
                                                c.laws[1].unknown_tangential):

@@ -40,8 +40,12 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 
 
 # a sequence of one-at-a-time impacts can go on forever while converging (inelastic
-# collapse); it is cut where every closing speed left is this small next to the first
-SETTLED = sp.Rational(1, 10**40)
+# collapse); it is cut where every closing speed left is this small next to the first.
+# A hundredth of what the certificate lets a contact still close (1e-40 of its own
+# scale, the largest speed, spin or impulse): the two sizes differ by the contacts'
+# row lengths and lever arms, and a run cut at the certificate's own line was refused
+# by it (a rod ringing on a floor at e = 0, 1.8e-40)
+SETTLED = sp.Rational(1, 10**42)
 
 
 MAX_ORDERS = 720  # every order of up to six contacts
