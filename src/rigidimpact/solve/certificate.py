@@ -60,6 +60,7 @@ import sympy as sp
 from sympy.polys.domains import QQ
 
 from rigidimpact.errors import InputError
+from rigidimpact.laws.cone import tangents
 
 __all__ = ["residuals", "friction_residuals", "path_residuals", "assess", "as_sympy",
            "PHYSICAL_LIMITS", "FLOAT_TOLERANCE", "random_points", "coefficient_ranges",
@@ -79,8 +80,42 @@ def _perp(r: Sequence[Any]) -> tuple[Any, Any]:
     return -r[1], r[0]
 
 
-def _cross(a: Sequence[Any], b: Sequence[Any]) -> Any:
-    return a[0] * b[1] - a[1] * b[0]
+def _cross(a: Sequence[Any], b: Sequence[Any]) -> list[Any]:
+    """``a x b``: its one component (z) in the plane, three in space."""
+    if len(a) == 2:
+        return [a[0] * b[1] - a[1] * b[0]]
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _turn(w: Sequence[Any], r: Sequence[Any]) -> list[Any]:
+    """``w x r``, the velocity a spin `w` (z alone in the plane) gives an arm `r`."""
+    if len(w) == 1:
+        return [-w[0] * r[1], w[0] * r[0]]
+    return _cross(w, r)
+
+
+def _dot(a: Sequence[Any], b: Sequence[Any]) -> Any:
+    total = a[0] * b[0]
+    for x, y in zip(a[1:], b[1:], strict=True):
+        total += x * y
+    return total
+
+
+def _spatial(bodies: Sequence[Any]) -> bool:
+    """Whether the bodies are in space (three components a position)."""
+    return any(len(b.position) == 3 for b in bodies)
+
+
+def _spin(state: Any) -> list[Any]:
+    """A body's spin as components: z alone in the plane, three in space."""
+    return list(state.spin) if isinstance(state.spin, sp.MatrixBase) else [state.spin]
+
+
+def _inertia(body: Any) -> list[list[Any]]:
+    """A body's central inertia as a matrix: 1 x 1 in the plane, 3 x 3 in space."""
+    if isinstance(body.inertia, sp.MatrixBase):
+        return [[body.inertia[i, j] for j in range(3)] for i in range(3)]
+    return [[body.inertia]]
 
 
 def _arithmetic(numbers: Sequence[Any]) -> str:
@@ -94,6 +129,13 @@ def _arithmetic(numbers: Sequence[Any]) -> str:
     return "mp" if "mp" in kinds else "exact"
 
 
+def _components(value: Any) -> list[Any]:
+    """A tangential impulse as its components: one in the plane, (t1, t2) in space."""
+    if isinstance(value, (tuple, list, sp.MatrixBase)):
+        return list(value)
+    return [value]
+
+
 def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[Any],
               impulses: Mapping[str, Any], tangential: Mapping[str, Any], rule: str,
               acted: Sequence[str], locked: Sequence[str] = (), joints: Sequence[Any] = (),
@@ -101,34 +143,48 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
               conditions: Sequence[Any] = (),
               path: Sequence[tuple[Any, Any]] = ()) -> dict[str, Any]:
     """Each condition's residual (see the module's notes) as a number (exact, or an
-    mpmath number) or, with symbols left, a SymPy expression. `locked` names the
-    contacts whose impact ended locked at rest (Routh's method where the touching points
-    have one degree of freedom and the restitution impulse would drive them together):
-    their law is a normal velocity of zero after, not restitution's. `joints` and their
-    `joint_impulses` (x, y, given to the second body) enter the momentum balances, and
-    each joint's two points must move together after (``JOINT.holds``). `path`, for one
-    contact's own impact, is its impulse path (the corners ``(P_n, P_t)`` from (0, 0) to
-    the end, straight between them; empty for a straight path): each straight piece is
-    checked against friction's law and the end against the restitution law's
-    (``CONTACT.path`` and ``CONTACT.restitution``, see :func:`path_residuals`)."""
+    mpmath number) or, with symbols left, a SymPy expression.
+
+    The same conditions in the plane and in space: `before` and `after` are the bodies
+    (planar :class:`~rigidimpact.model.bodies.Body`, or
+    :class:`~rigidimpact.model.space.Body3`), `tangential` each contact's tangential
+    impulse (a number in the plane, its components along the tangents (t1, t2) in
+    space). `locked` names the contacts whose impact ended locked at rest (Routh's
+    method where the touching points have one degree of freedom and the restitution
+    impulse would drive them together): their law is a normal velocity of zero after,
+    not restitution's. `joints` and their `joint_impulses` (given to the second body;
+    a hinge in space adds its two moments across its axis) enter the momentum
+    balances, and each joint's two points must move together after (``JOINT.holds``).
+    `path`, for one contact's own impact in the plane, is its impulse path (the corners
+    ``(P_n, P_t)`` from (0, 0) to the end, straight between them; empty for a straight
+    path): each straight piece is checked against friction's law and the end against
+    the restitution law's (``CONTACT.path`` and ``CONTACT.restitution``, see
+    :func:`path_residuals`). A smooth or sticking contact's path is straight, in space
+    as in the plane."""
     joint_impulses = joint_impulses or {}
     bodies = {b.name: b for b in before}
     later = {b.name: b for b in after}
+    spatial = _spatial(before)
     data: list[Any] = []
     for b in before:
         if b.support == "fixed":
             continue
         a = later[b.name]
-        data += [b.mass, b.inertia, *b.position, *b.velocity, b.spin, *a.velocity, a.spin]
+        data += [b.mass, *(x for row in _inertia(b) for x in row), *b.position,
+                 *b.velocity, *_spin(b), *a.velocity, *_spin(a)]
         if b.support == "pivot":
             data += list(b.pivot)
     for j in joints:
         data += [*j.point, *joint_impulses[j.name]]
+        if j.axis is not None:  # a hinge's moments act across its axis
+            data += [x for t in tangents(list(j.axis))[1:] for x in t]
     for c in contacts:
-        data += [*c.point, *c.normal, impulses[c.name], tangential.get(c.name, 0),
-                 c.restitution]
+        data += [*c.point, *(c.frame if spatial else c.normal), impulses[c.name],
+                 *_components(tangential.get(c.name, 0)), c.restitution]
         if c.laws[1].cone() is not None:
             data.append(c.laws[1].cone())
+        if getattr(c.laws[1], "beta", None) is not None:
+            data.append(c.laws[1].beta)
     for corner in path:
         data += list(corner)
     how = _arithmetic(data)
@@ -136,8 +192,11 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
         return _at_points(before, after, contacts, impulses, tangential, rule, locked,
                           joints, joint_impulses, conditions)
     floats = any(sp.sympify(x).has(sp.Float) for x in data)
-    if how == "exact" and all(sp.sqrt(c.normal[0] ** 2 + c.normal[1] ** 2).is_Rational
-                              for c in contacts):
+    if spatial and how == "exact" and not all(x.is_Rational for c in contacts
+                                              for x in c.frame):
+        how = "mp"  # a frame's square roots: at 50 digits
+    if how == "exact" and (spatial or all(
+            sp.sqrt(c.normal[0] ** 2 + c.normal[1] ** 2).is_Rational for c in contacts)):
         # every number rational: in SymPy's QQ (python-flint's or gmpy's where present)
         def num(x: Any) -> Any:
             x = sp.sympify(x)
@@ -156,6 +215,8 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
         known: dict[Any, Any] = {}
 
         def num(x: Any) -> Any:
+            if isinstance(x, mpmath.mpf):
+                return x
             if x not in known:
                 known[x] = mpmath.mpf(sp.N(x, digits + 10)._to_mpmath(mpmath.mp.prec))
             return known[x]
@@ -173,17 +234,31 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
                                            contacts[0].laws[1].name == "stick")
         if len(contacts) == 1 and not joints and not locked and (path or straight):
             (c,) = contacts
-            end = (impulses[c.name], tangential.get(c.name, 0))
-            found.update(path_residuals(bodies, c, path or ((0, 0), end), num, root,
-                                        how == "exact", end))
+            end = (impulses[c.name], *_components(tangential.get(c.name, 0)))
+            found.update(path_residuals(bodies, c, path or ((0,) * len(end), end), num,
+                                        root, how == "exact", end))
     found["_floats"] = floats
     return found
+
+
+def _frame(contact: Any, num: Any, root: Any, spatial: bool) -> list[list[Any]]:
+    """The contact's unit normal and tangents, in the residuals' arithmetic: in the
+    plane from its normal (the tangent turned +90 degrees), in space its frame's rows."""
+    if spatial:
+        return [[num(x) for x in contact.frame.row(i)] for i in range(3)]
+    n = [num(x) for x in contact.normal]
+    length = root(n[0] * n[0] + n[1] * n[1])
+    n = [n[0] / length, n[1] / length]
+    return [n, list(_perp(n))]
 
 
 def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, root,
                how, locked, joints, joint_impulses) -> dict[str, Any]:
     zero = num(0)
-    received: dict[str, list[Any]] = {name: [zero, zero, zero] for name in bodies}
+    spatial = _spatial(list(bodies.values()))
+    dimension = 3 if spatial else 2
+    received: dict[str, list[Any]] = {
+        name: [zero] * (6 if spatial else 3) for name in bodies}
     out: dict[str, Any] = {}
     # friction's direction is a law of each contact's whole impact where the contact is
     # loaded throughout: one contact's own impact (Routh's, whatever the rule's name), and
@@ -193,57 +268,75 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     # friction follows its own springs: their laws hold step by step, not in the totals
     whole_impact = len(contacts) == 1 or rule == "simultaneous"
     approaching = False  # whether some contact approached before: an impact to check
-    speed = None if how == "exact" else _scale(bodies, later, impulses, num, zero)
+    speed = None if how == "exact" else _scale(bodies, later, impulses, tangential, num,
+                                               zero)
 
-    def velocity(body: Any, state: Any, point: Sequence[Any]) -> tuple[Any, Any]:
+    def velocity(body: Any, state: Any, point: Sequence[Any]) -> list[Any]:
         if body.support == "fixed":
-            return zero, zero
-        r = [num(point[k]) - num(body.position[k]) for k in range(2)]
-        w = num(state.spin)
-        turn = _perp(r)
-        return num(state.velocity[0]) + w * turn[0], num(state.velocity[1]) + w * turn[1]
+            return [zero] * dimension
+        r = [num(point[k]) - num(body.position[k]) for k in range(dimension)]
+        turn = _turn([num(w) for w in _spin(state)], r)
+        return [num(state.velocity[k]) + turn[k] for k in range(dimension)]
 
-    def receive(first: str, second: str, at: Sequence[Any], push: list[Any]) -> None:
-        """An impulse `push` at `at`, given to `second` and taken from `first`: into each
-        movable body's linear and angular momentum (about its pivot or centre)."""
+    def receive(first: str, second: str, at: Sequence[Any], push: list[Any],
+                couple: Sequence[Any] = ()) -> None:
+        """An impulse `push` at `at` (and a `couple`, a hinge's moments), given to
+        `second` and taken from `first`: into each movable body's linear and angular
+        momentum (about its pivot or centre)."""
         point = [num(x) for x in at]
         for name, sign in ((second, 1), (first, -1)):
             body = bodies[name]
             if body.support == "fixed":
                 continue
             axis = body.pivot if body.support == "pivot" else body.position
-            arm = [point[k] - num(axis[k]) for k in range(2)]
-            received[name][0] += sign * push[0]
-            received[name][1] += sign * push[1]
-            received[name][2] += sign * _cross(arm, push)
+            arm = [point[k] - num(axis[k]) for k in range(dimension)]
+            moment = _cross(arm, push)
+            for k in range(dimension):
+                received[name][k] += sign * push[k]
+            for k, x in enumerate(moment):
+                received[name][dimension + k] += sign * (x + (couple[k] if couple else 0))
+
+    def relative(states: Mapping[str, Any], first: str, second: str, point: Sequence[Any],
+                 frame: Sequence[Sequence[Any]]) -> list[Any]:
+        """The second touching point's velocity less the first's, along each of
+        `frame`'s rows."""
+        a = velocity(bodies[first], states[first], point)
+        b = velocity(bodies[second], states[second], point)
+        d = [y - x for x, y in zip(a, b, strict=True)]
+        return [_dot(d, row) for row in frame]
 
     for c in contacts:
         first, second = c.bodies if c.bodies else tuple(bodies)[:2]
-        n = [num(x) for x in c.normal]
-        length = root(n[0] * n[0] + n[1] * n[1])
-        n = [n[0] / length, n[1] / length]
-        t = _perp(n)
-        p_n, p_t = num(impulses[c.name]), num(tangential.get(c.name, 0))
-        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
+        frame = _frame(c, num, root, spatial)
+        p_n = num(impulses[c.name])
+        p_t = [num(x) for x in _components(tangential.get(c.name, 0))]
+        if len(p_t) < len(frame) - 1:  # a planar answer's tangential of a 3-D contact
+            p_t += [zero] * (len(frame) - 1 - len(p_t))
+        push = [p_n * frame[0][k] + sum((p * row[k] for p, row in zip(p_t, frame[1:],
+                                                                      strict=True)), zero)
+                for k in range(dimension)]
         receive(first, second, c.point, push)
 
-        (v_before, slip_before), (v_after, slip) = (
-            _relative(velocity, bodies, states, first, second, c.point, n, t)
-            for states in (bodies, later))
+        (v_before, *slip_before), (v_after, *slip) = (
+            relative(states, first, second, c.point, frame) for states in (bodies, later))
         approaching = approaching or v_before < 0
         restitution, friction = c.laws
         out[f"{c.name}.pushes"] = max(zero, -p_n)
         out[f"{c.name}.opens"] = max(zero, -v_after)
         mu = friction.cone()
+        beta = getattr(friction, "beta", None)
         if not friction.grips:
-            out[f"{c.name}.smooth"] = abs(p_t)
+            out[f"{c.name}.smooth"] = max(abs(x) for x in p_t)
         elif mu is not None:
-            out[f"{c.name}.cone"] = max(zero, abs(p_t) - num(mu) * p_n)
+            out[f"{c.name}.cone"] = _beyond(p_t, num(mu) * p_n, how == "exact", zero)
         if friction.unknown_tangential and c.name in acted:
-            out[f"{c.name}.sticks"] = abs(slip)
+            out[f"{c.name}.sticks"] = max(abs(x) for x in slip)
+        if mu is None and beta is not None and friction.grips:  # Walton's, no cone
+            out[f"{c.name}.rough"] = max(abs(a + num(beta) * b)
+                                         for a, b in zip(slip, slip_before, strict=True))
         if mu is not None and friction.grips and p_n > 0 and whole_impact:
-            out.update(friction_residuals(c.name, friction, num, p_n, [p_t], [slip_before],
-                                          [slip], how == "exact", speed))
+            out.update(friction_residuals(c.name, friction, num, p_n, p_t, slip_before,
+                                          slip, how == "exact", speed))
         if c.name in locked:  # the course's own law: at rest along the normal after
             out[f"{c.name}.restitution"] = abs(v_after)
         elif rule == "simultaneous" and restitution.together == "velocity":
@@ -255,38 +348,72 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             else:
                 out[f"{c.name}.released"] = max(zero, target - v_after)
             out[f"{c.name}.complementarity"] = abs(p_n * (v_after - target))
+        elif len(contacts) == 1 and not restitution.splits_on_compression:
+            # a kinematic law's end is a velocity, whatever the path
+            out[f"{c.name}.restitution"] = abs(
+                v_after - num(restitution.leaving(as_sympy(min(v_before, zero)))))
     for j in joints:  # a hinge between two bodies: its impulse, any sign; no gap after
-        receive(j.first, j.second, j.point, [num(x) for x in joint_impulses[j.name]])
+        parts = [num(x) for x in joint_impulses[j.name]]
+        across = _hinge_axes(j, num) if j.axis is not None else []
+        couple = [sum((m * t[k] for m, t in zip(parts[3:], across, strict=True)), zero)
+                  for k in range(3)] if across else []
+        receive(j.first, j.second, j.point, parts[:dimension], couple)
         gap = [a - b for a, b in zip(velocity(bodies[j.second], later[j.second], j.point),
                                      velocity(bodies[j.first], later[j.first], j.point),
                                      strict=True)]
-        out[f"{j.name}.holds"] = max(abs(gap[0]), abs(gap[1]))
+        turning = [zero] * len(across)
+        for name, sign in ((j.second, 1), (j.first, -1)):
+            if bodies[name].support == "fixed":
+                continue
+            w = [num(x) for x in _spin(later[name])]
+            turning = [x + sign * _dot(w, t) for x, t in zip(turning, across, strict=True)]
+        out[f"{j.name}.holds"] = max(abs(x) for x in (*gap, *turning))
     kinetic = [zero, zero]
     for name, body in bodies.items():
         if body.support == "fixed":
             continue
         after = later[name]
-        m, inertia = num(body.mass), num(body.inertia)
-        dv = [num(after.velocity[k]) - num(body.velocity[k]) for k in range(2)]
-        dw = num(after.spin) - num(body.spin)
+        m = num(body.mass)
+        inertia = [[num(x) for x in row] for row in _inertia(body)]
+        dv = [num(after.velocity[k]) - num(body.velocity[k]) for k in range(dimension)]
+        dw = [num(a) - num(b) for a, b in zip(_spin(after), _spin(body), strict=True)]
+        spun = [_dot(row, dw) for row in inertia]  # I dw
+        got = received[name]
         if body.support != "pivot":
-            out[f"{name}.momentum_x"] = abs(m * dv[0] - received[name][0])
-            out[f"{name}.momentum_y"] = abs(m * dv[1] - received[name][1])
-            out[f"{name}.angular_momentum"] = abs(inertia * dw - received[name][2])
+            for k, axis in enumerate("xyz"[:dimension]):
+                out[f"{name}.momentum_{axis}"] = abs(m * dv[k] - got[k])
+            if spatial:
+                for k, axis in enumerate("xyz"):
+                    out[f"{name}.angular_momentum_{axis}"] = abs(spun[k] - got[3 + k])
+            else:
+                out[f"{name}.angular_momentum"] = abs(spun[0] - got[2])
         else:  # about the pivot: I_c dw + m (R - pivot) x dV
             arm = [num(body.position[k]) - num(body.pivot[k]) for k in range(2)]
-            out[f"{name}.angular_momentum"] = abs(inertia * dw + m * _cross(arm, dv)
-                                                  - received[name][2])
+            out[f"{name}.angular_momentum"] = abs(spun[0] + m * _cross(arm, dv)[0]
+                                                  - got[2])
         for k, state in enumerate((body, after)):
-            v = [num(state.velocity[0]), num(state.velocity[1])]
-            w = num(state.spin)
-            kinetic[k] += (m * (v[0] ** 2 + v[1] ** 2) + inertia * w * w) / 2
+            v = [num(x) for x in state.velocity]
+            w = [num(x) for x in _spin(state)]
+            kinetic[k] += (m * _dot(v, v) + _dot(w, [_dot(row, w) for row in inertia])) / 2
     out["energy"] = max(zero, kinetic[1] - kinetic[0])
-    out["_scale"] = _scale(bodies, later, impulses, num, zero)
+    out["_scale"] = _scale(bodies, later, impulses, tangential, num, zero)
     out["_kinetic"] = kinetic[0]
     out["_exact"] = how == "exact"
     out["_approaching"] = approaching
     return out
+
+
+def _beyond(p_t: Sequence[Any], limit: Any, exact: bool, zero: Any) -> Any:
+    """How far a tangential impulse lies outside Coulomb's cone of radius `limit`:
+    ``max(0, |P_t| - limit)``, one tangent or two."""
+    size = abs(p_t[0]) if len(p_t) == 1 else _root(_dot(p_t, p_t), exact)
+    return max(zero, size - limit)
+
+
+def _hinge_axes(joint: Any, num: Any) -> list[list[Any]]:
+    """The two directions across a hinge's axis its moments act along, as its rows
+    are built (:func:`rigidimpact.laws.cone.tangents`)."""
+    return [[num(x) for x in t] for t in tangents(list(joint.axis))[1:]]
 
 
 SYMBOLIC_POINTS = 3  # seeded random rational points a closed form is checked at
@@ -318,19 +445,22 @@ def _at_points(before, after, contacts, impulses, tangential, rule, locked, join
     says how many points were checked."""
     symbols: set[sp.Symbol] = set()
     for b in before:
-        symbols |= sp.Tuple(b.mass, b.inertia, *b.position, *b.velocity, b.spin,
+        symbols |= sp.Tuple(b.mass, *(x for row in _inertia(b) for x in row),
+                            *b.position, *b.velocity, *_spin(b),
                             *(b.pivot if b.support == "pivot" else ())).free_symbols
     for b in after:
-        symbols |= sp.Tuple(*b.velocity, b.spin).free_symbols
+        symbols |= sp.Tuple(*b.velocity, *_spin(b)).free_symbols
     ranges = coefficient_ranges(contacts)
     for c in contacts:
         symbols |= sp.Tuple(*c.point, *c.normal, impulses[c.name],
-                            tangential.get(c.name, 0), c.restitution).free_symbols
+                            *_components(tangential.get(c.name, 0)),
+                            c.restitution).free_symbols
         for x in (c.friction, c.tangential_restitution):
             if x is not None:
                 symbols |= sp.sympify(x).free_symbols
     for j in joints:
-        symbols |= sp.Tuple(*j.point, *joint_impulses[j.name]).free_symbols
+        symbols |= sp.Tuple(*j.point, *joint_impulses[j.name],
+                            *(j.axis if j.axis is not None else ())).free_symbols
     for c in conditions:
         symbols |= sp.sympify(c).free_symbols
     worst: dict[str, Any] = {}
@@ -400,10 +530,12 @@ def _at_point(point, before, after, contacts, impulses, tangential, rule, locked
     after = tuple(b.at(point) for b in after)
     contacts = tuple(c.at(point) for c in contacts)
     pushes = {c.name: sp.sympify(impulses[c.name]).xreplace(point) for c in contacts}
-    along = {c.name: sp.sympify(tangential.get(c.name, 0)).xreplace(point)
-             for c in contacts}
-    if not all(x.is_number for x in (*pushes.values(), *along.values())):
+    along = {c.name: [sp.sympify(x).xreplace(point)
+                      for x in _components(tangential.get(c.name, 0))] for c in contacts}
+    if not all(x.is_number for x in (*pushes.values(), *(y for v in along.values()
+                                                          for y in v))):
         return None
+    along = {name: v if len(v) > 1 else v[0] for name, v in along.items()}
     found = residuals(before, after, contacts, pushes, along, rule,
                       tuple(c.name for c in contacts if pushes[c.name] > 0), locked,
                       tuple(j.at(point) for j in joints),
@@ -452,11 +584,12 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
 
 
 def path_residuals(bodies: Mapping[str, Any], contact: Any,
-                   path: Sequence[tuple[Any, Any]], num: Any, root: Any,
-                   exact: bool, end: tuple[Any, Any]) -> dict[str, Any]:
+                   path: Sequence[tuple[Any, ...]], num: Any, root: Any,
+                   exact: bool, end: tuple[Any, ...]) -> dict[str, Any]:
     """One contact's own impact along its impulse path, from the bodies before and the
     path alone (the bodies' own response to each corner's impulse: a free body's
-    ``m dv = P``, ``I dw = r x P``; a pivoted one's turn about its pivot).
+    ``m dv = P``, ``I dw = r x P``; a pivoted one's turn about its pivot). Each corner
+    is ``(P_n, P_t)`` in the plane, ``(P_n, P_t1, P_t2)`` in space.
 
     - ``CONTACT.path``: each straight piece of a Coulomb contact's path either slides
       (on the cone's edge, ``|dP_t| = mu dP_n``, against a slip of one sign along the
@@ -469,51 +602,57 @@ def path_residuals(bodies: Mapping[str, Any], contact: Any,
     """
     zero = num(0)
     first, second = contact.bodies if contact.bodies else tuple(bodies)[:2]
-    n = [num(x) for x in contact.normal]
-    length = root(n[0] * n[0] + n[1] * n[1])
-    n = [n[0] / length, n[1] / length]
-    t = _perp(n)
+    spatial = _spatial(list(bodies.values()))
+    dimension = 3 if spatial else 2
+    frame = _frame(contact, num, root, spatial)
     point = [num(x) for x in contact.point]
 
-    def slide(name: str, sign: int, push: list[Any]) -> tuple[Any, Any]:
+    def slide(name: str, sign: int, push: list[Any]) -> list[Any]:
         """The body's point velocity at the contact after `push` (given to `second`)."""
         body = bodies[name]
         if body.support == "fixed":
-            return zero, zero
-        m, inertia = num(body.mass), num(body.inertia)
+            return [zero] * dimension
+        m = num(body.mass)
         v = [num(x) for x in body.velocity]
-        w = num(body.spin)
+        w = [num(x) for x in _spin(body)]
         centre = [num(x) for x in body.position]
         if body.support == "pivot":
+            inertia = num(body.inertia)
             pivot = [num(x) for x in body.pivot]
             arm, c = ([point[k] - pivot[k] for k in range(2)],
                       [centre[k] - pivot[k] for k in range(2)])
-            w += sign * _cross(arm, push) / (inertia + m * (c[0] * c[0] + c[1] * c[1]))
-            turn = _perp(arm)
-            return w * turn[0], w * turn[1]
-        r = [point[k] - centre[k] for k in range(2)]
-        if inertia != 0:
-            w += sign * _cross(r, push) / inertia
-        turn = _perp(r)
-        return (v[0] + sign * push[0] / m + w * turn[0],
-                v[1] + sign * push[1] / m + w * turn[1])
+            w[0] += sign * _cross(arm, push)[0] / (inertia + m * _dot(c, c))
+            return _turn(w, arm)
+        r = [point[k] - centre[k] for k in range(dimension)]
+        moment = _cross(r, push)
+        if spatial:  # I^-1 (r x P), solved in the residuals' arithmetic
+            inertia = sp.Matrix(body.inertia)
+            inverse = body.inertia_inverse if body.inertia_inverse is not None else \
+                inertia.inv()
+            w = [w[i] + sign * _dot([num(x) for x in sp.Matrix(inverse).row(i)], moment)
+                 for i in range(3)]
+        elif num(body.inertia) != 0:
+            w[0] += sign * moment[0] / num(body.inertia)
+        turn = _turn(w, r)
+        return [v[k] + sign * push[k] / m + turn[k] for k in range(dimension)]
 
-    def relative(p_n: Any, p_t: Any) -> tuple[Any, Any]:
-        push = [p_n * n[0] + p_t * t[0], p_n * n[1] + p_t * t[1]]
+    def relative(corner: Sequence[Any]) -> list[Any]:
+        push = [sum((p * row[k] for p, row in zip(corner, frame, strict=True)), zero)
+                for k in range(dimension)]
         a, b = slide(first, -1, push), slide(second, 1, push)
-        d = (b[0] - a[0], b[1] - a[1])
-        return d[0] * n[0] + d[1] * n[1], d[0] * t[0] + d[1] * t[1]
+        d = [y - x for x, y in zip(a, b, strict=True)]
+        return [_dot(d, row) for row in frame]
 
-    corners = [(num(a), num(b)) for a, b in path]
-    states = [relative(*corner) for corner in corners]
+    corners = [[num(x) for x in corner] for corner in path]
+    states = [relative(corner) for corner in corners]
     restitution, friction = contact.laws
     out: dict[str, Any] = {}
-    worst = max(abs(corners[-1][0] - num(end[0])), abs(corners[-1][1] - num(end[1])),
-                abs(corners[0][0]), abs(corners[0][1]))
+    worst = max(*(abs(x - num(y)) for x, y in zip(corners[-1], end, strict=True)),
+                *(abs(x) for x in corners[0]))
     mu = friction.cone()
-    coulomb = mu is not None and getattr(friction, "beta", None) is None
-    for (p0, t0), (p1, t1), (_, s0), (_, s1) in zip(corners, corners[1:], states,
-                                                    states[1:], strict=False):
+    coulomb = mu is not None and getattr(friction, "beta", None) is None and not spatial
+    for (p0, t0), (p1, t1), (_, s0), (_, s1) in zip(
+            corners, corners[1:], states, states[1:], strict=False) if not spatial else ():
         dn, dt = p1 - p0, t1 - t0
         if len(corners) > 2:  # the normal impulse never falls (a straight path's sign
             worst = max(worst, -dn)  # is CONTACT.pushes, a limit of the model)
@@ -531,18 +670,23 @@ def path_residuals(bodies: Mapping[str, Any], contact: Any,
     out[f"{contact.name}.path"] = worst
     if hasattr(restitution, "end_residual") and states[0][0] < 0:
         out[f"{contact.name}.restitution"] = restitution.end_residual(
-            [(p, v) for (p, _), (v, _) in zip(corners, states, strict=True)], num, as_sympy)
+            [(corner[0], state[0]) for corner, state in zip(corners, states, strict=True)],
+            num, as_sympy)
     return out
 
 
 def _root(x: Any, exact: bool) -> Any:
-    """A square root in the residual's own arithmetic."""
+    """A square root in the residual's own arithmetic; in rationals, a rational within
+    1e-60 where the root is irrational (a cone's size: it decides no comparison a
+    rational's root could tie, and only sizes a violation)."""
     if isinstance(x, mpmath.mpf):
         return mpmath.sqrt(x)
     if not exact or isinstance(x, sp.Basic):
         return sp.sqrt(x)
     value = sp.sqrt(QQ.to_sympy(x))
-    return QQ(int(value.p), int(value.q)) if value.is_Rational else value
+    if not value.is_Rational:
+        value = sp.Rational(sp.N(value, 70))
+    return QQ(int(value.p), int(value.q))
 
 
 def as_sympy(value: Any) -> sp.Expr:
@@ -555,19 +699,13 @@ def as_sympy(value: Any) -> sp.Expr:
         return sp.sympify(value)
 
 
-def _relative(velocity, bodies, states, first, second, point, n, t) -> tuple[Any, Any]:
-    """The second touching point's velocity less the first's, along n and t."""
-    a = velocity(bodies[first], states[first], point)
-    b = velocity(bodies[second], states[second], point)
-    d = (b[0] - a[0], b[1] - a[1])
-    return d[0] * n[0] + d[1] * n[1], d[0] * t[0] + d[1] * t[1]
-
-
-def _scale(bodies, later, impulses, num, zero) -> Any:
-    """The size residuals are measured against: the largest speed, spin or impulse."""
-    sizes = [abs(num(x)) for b in bodies.values() if b.support != "fixed"
-             for x in (*b.velocity, b.spin)]
-    sizes += [abs(num(x)) for x in impulses.values()]
+def _scale(bodies, later, impulses, tangential, num, zero) -> Any:
+    """The size residuals are measured against: the largest speed or spin (before or
+    after) or impulse component."""
+    sizes = [abs(num(x)) for states in (bodies, later) for name, b in states.items()
+             if bodies[name].support != "fixed" for x in (*b.velocity, *_spin(b))]
+    sizes += [abs(num(x)) for name, p in impulses.items()
+              for x in (p, *_components(tangential.get(name, 0)))]
     return max([zero, *sizes])
 
 

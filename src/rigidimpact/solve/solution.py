@@ -140,7 +140,8 @@ class Solution:
     @cached_property
     def _certificate(self) -> dict[str, Any]:
         if self.given_checks is not None:
-            return {**self.given_checks, "_exact": False, "_floats": True}
+            # a model's own residuals: floating point unless they say otherwise
+            return {"_exact": False, "_floats": True, **self.given_checks}
         if self.speeds_after is not None or not self.contacts:
             return {}  # a mechanics system's: its own coordinates
         locked = {c.split(":")[0] for c in self.courses if "lock" in c}

@@ -52,13 +52,7 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.lazy import deferred
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
-from rigidimpact.solve.certificate import (
-    FLOAT_TOLERANCE,
-    SYMBOLIC_POINTS,
-    coefficient_ranges,
-    friction_residuals,
-    random_points,
-)
+from rigidimpact.solve.certificate import residuals
 from rigidimpact.solve.problem import RowsProblem, check_facets
 from rigidimpact.solve.rules.compliant import compliant
 from rigidimpact.solve.rules.driven import driven
@@ -71,10 +65,8 @@ if TYPE_CHECKING:
 else:
     np = deferred("numpy")
 
-__all__ = ["SpaceCollision", "solve_space", "CHECK_DIGITS"]
+__all__ = ["SpaceCollision", "solve_space"]
 
-CHECK_DIGITS = 50  # the residuals of an exact answer are computed at this precision
-EXACT_TOLERANCE = 1e-30  # relative: an exact answer's residuals at 50 digits are ~1e-48
 # the rules several 3-D contacts take (the compliant rule is not built in 3-D)
 RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
 TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
@@ -330,8 +322,9 @@ class SpaceCollision:
         tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
         regime = course
         pinned = self.joint_impulses(J.T * P)
-        checks = self._checks(c, J, P, u_after, before, lost, course,
-                              exact=out.exact and self.tolerance is None, pinned=pinned)
+        checks = self._certificate((c,), {c.name: P}, u_after, pinned, "simultaneous",
+                                   (c.name,), None if out.exact and self.tolerance is None
+                                   else self.tolerance or 1e-10)
         solution = Solution(
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
@@ -343,133 +336,36 @@ class SpaceCollision:
             joint_impulses=pinned)
         return solution if checks is None else certified(solution)
 
-    def _checks(self, c: Contact, J: sp.Matrix, P: sp.Matrix, u_after: sp.Matrix,
-                before: sp.Expr, lost: sp.Expr, course: str, exact: bool,
-                pinned: Mapping[str, Sequence[Any]] | None = None) -> dict[str, Any] | None:
-        """The residuals of the laws from the bodies' momenta, apart from the solver:
-        each body's linear and angular momentum against the impulse it received, the
-        push, the contact opening after, the cone (or no slip after for a sticking
-        contact), Newton's law where it is the contact's, and energy created."""
-        numbers = [*P, *u_after, *self.u_before, *(x for b in self.free for x in
-                                                   (b.mass, *b.inertia, *b.position))]
-        if not all(sp.sympify(x).is_number for x in numbers):
-            return self._checks_at_points(c, P, u_after, course, exact, pinned or {})
-
-        def num(x: Any) -> sp.Float:
-            return sp.N(x, CHECK_DIGITS)
-
-        out = self._momenta((c,), {c.name: P}, self.u_before, u_after, pinned or {}, num)
-        v_before, v_after = J * self.u_before, J * u_after
-        out[f"{c.name}.pushes"] = max(0, -num(P[0]))
-        out[f"{c.name}.opens"] = max(0, -num(v_after[0]))
-        if c.tangential == "smooth":
-            out[f"{c.name}.smooth"] = max(abs(num(P[1])), abs(num(P[2])))
-        elif c.tangential == "stick":
-            out[f"{c.name}.sticks"] = max(abs(num(v_after[1])), abs(num(v_after[2])))
-        elif c.friction is not None:
-            size = sp.sqrt(num(P[1]) ** 2 + num(P[2]) ** 2)
-            out[f"{c.name}.cone"] = max(0, size - num(c.friction) * num(P[0]))
-            if num(P[0]) > 0:  # friction's direction and end, as in the plane
-                out.update(friction_residuals(
-                    c.name, c.laws[1], num, num(P[0]), [num(P[1]), num(P[2])],
-                    [num(v_before[1]), num(v_before[2])],
-                    [num(v_after[1]), num(v_after[2])], exact=False,
-                    speed=max(abs(num(x)) for x in (*self.u_before, *u_after, *P))))
-        if c.tangential == "rough" and c.friction is None:
-            beta = c.tangential_restitution
-            out[f"{c.name}.rough"] = max(abs(num(v_after[i] + beta * v_before[i]))
-                                         for i in (1, 2))
-        if not c.laws[0].splits_on_compression:  # a kinematic law (Newton's, a user's):
-            # its end is a velocity, whatever the path
-            out[f"{c.name}.restitution"] = abs(num(v_after[0])
-                                               - num(c.laws[0].leaving(v_before[0])))
-        out["energy"] = max(0, -num(lost))
-        sizes = [abs(num(x)) for x in (*self.u_before, *u_after, *P)]
-        out["_scale"] = max(sizes)
-        out["_kinetic"] = num(before)
-        floats = any(sp.sympify(x).has(sp.Float) for x in numbers)
-        out["_tolerance"] = max(1e-8, 1000 * (self.tolerance or 1e-10)) if not exact else \
-            FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
-        return out
-
-    def _checks_at_points(self, c: Contact, P: sp.Matrix, u_after: sp.Matrix,
-                          course: str, exact: bool, pinned: Mapping[str, Sequence[Any]]
-                          ) -> dict[str, Any] | None:
-        """A closed form with symbols, checked as the plane checks one: the same
-        residuals (:meth:`_checks`) at seeded random rational points of its symbols
-        (:func:`~rigidimpact.solve.certificate.random_points`: each coefficient within
-        its range, each symbol of its sign), kept where the contact approaches; a
-        Piecewise takes the course that holds there. Each residual is the worst over
-        the points, relative to that point's scale (the energy: to its kinetic
-        energy). None where no point of the symbols is an impact."""
-        symbols: set[sp.Symbol] = set()
-        for x in (*P, *u_after, *self.u_before, *c.point, *c.normal, c.restitution,
-                  *(x for b in self.free for x in (b.mass, *b.inertia, *b.position)),
-                  *(y for j in self.joints for y in (*j.point, *(j.axis or ())))):
-            symbols |= sp.sympify(x).free_symbols
-        for x in (c.friction, c.tangential_restitution):
-            if x is not None:
-                symbols |= sp.sympify(x).free_symbols
-        worst: dict[str, Any] = {}
-        checked, tolerance = 0, 0.0
-        for point in random_points(symbols, coefficient_ranges((c,))):
-            if checked == SYMBOLIC_POINTS:
-                break
-            try:
-                here = self.at(point)
-                (touch,) = (x for x in here.contacts if x.name == c.name)
-                J = here.rows(touch)
-                if not (J * here.u_before)[0] < 0:
-                    continue  # no impact at this point: nothing to check
-                at = (P.xreplace(point), u_after.xreplace(point))
-                if not all(x.is_number for m in at for x in m):
-                    continue
-                moved = [b.moved(at[1][6 * k:6 * k + 6, 0]) for k, b in enumerate(here.free)]
-                before = sum((b.kinetic_energy for b in here.free), sp.Integer(0))
-                lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-                found = here._checks(touch, J, at[0], at[1], before, lost, course, exact, {
-                    name: tuple(sp.sympify(x).xreplace(point) for x in parts)
-                    for name, parts in pinned.items()})
-            except (InputError, ZeroDivisionError, TypeError, ValueError):
-                continue  # not a collision there (a body of no mass, a sphere touched
-                # off its surface, ...)
-            if found is None:
-                continue
-            checked += 1
-            tolerance = max(tolerance, float(found.get("_tolerance", 0)))
-            scale, kinetic = found["_scale"] or 1, found["_kinetic"] or 1
-            for key, value in found.items():
-                if not key.startswith("_"):
-                    worst[key] = max(worst.get(key, 0), value / (kinetic if key == "energy"
-                                                                 else scale))
-        if not checked:
+    def _certificate(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
+                     u_after: Any, pinned: Mapping[str, Sequence[Any]], rule: str,
+                     acted: Sequence[str], integrated: float | None
+                     ) -> dict[str, Any] | None:
+        """The one certificate (:func:`rigidimpact.solve.certificate.residuals`), the
+        plane's, on the bodies before and after and each acting contact's impulse in
+        its frame (n, t1, t2): momentum and angular momentum, no pull, no
+        penetration, the cone and friction's direction, each law's end, the joints,
+        the energy; a closed form with symbols at seeded random rational points. An
+        `integrated` answer (its integrator's relative tolerance) is held to 1000 times
+        that tolerance; None where no point of a closed form's symbols is an impact."""
+        after = [b if b.support == "fixed" else b.moved(u_after[6 * k:6 * k + 6])
+                 for k, b in self._indexed()]
+        found = residuals(self.bodies, after, acting,
+                          {c.name: P[c.name][0] for c in acting},
+                          {c.name: tuple(P[c.name][1:]) for c in acting}, rule, acted,
+                          joints=self.joints, joint_impulses=pinned)
+        if not found:
             return None
-        return {**worst, "_scale": 1, "_kinetic": 1, "_tolerance": tolerance,
-                "_points": checked, "_symbolic": True}
+        found.setdefault("_exact", False)
+        if integrated is not None:
+            found["_tolerance"] = max(1e-8, 1000 * integrated)
+        return found
 
-    def _momenta(self, acting: Sequence[Contact], impulses: Mapping[str, Any], u: Any,
-                 u_after: Any, pinned: Mapping[str, Sequence[Any]], num: Any
-                 ) -> dict[str, Any]:
-        """Each free body's change of linear and angular momentum (about its centre)
-        less the impulses it received (each contact's, from its frame, and the joints'),
-        and each joint holding after (:meth:`_joint_checks`)."""
-        out: dict[str, Any] = self._joint_checks(pinned, u_after, num)
-        held = self._held(pinned)
-        for k, body in enumerate(self.free):
-            du = sp.Matrix(u_after[6 * k:6 * k + 6, 0]) - sp.Matrix(u[6 * k:6 * k + 6, 0])
-            linear = body.mass * du[:3, 0] - held[6 * k:6 * k + 3, 0]
-            angular = sp.Matrix(body.inertia) * du[3:, 0] - held[6 * k + 3:6 * k + 6, 0]
-            for c in acting:
-                sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
-                if sign:  # on the second body, in the world frame
-                    impulse = sp.Matrix(c.frame).T * sp.Matrix(impulses[c.name])
-                    arm = sp.Matrix(c.point) - sp.Matrix(body.position)
-                    linear -= sign * impulse
-                    angular -= sign * arm.cross(impulse)
-            for axis, x in zip("xyz", linear, strict=True):
-                out[f"{body.name}.momentum_{axis}"] = abs(num(x))
-            for axis, x in zip("xyz", angular, strict=True):
-                out[f"{body.name}.angular_momentum_{axis}"] = abs(num(x))
+    def _indexed(self) -> list[tuple[int, Body3]]:
+        """Each body with its place among the free bodies' speeds (-1 if fixed)."""
+        out, k = [], 0
+        for b in self.bodies:
+            out.append((-1 if b.support == "fixed" else k, b))
+            k += b.support != "fixed"
         return out
 
     def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
@@ -481,29 +377,6 @@ class SpaceCollision:
         generalized = sum((rows[c.name].T @ np.array([float(x) for x in P[c.name]])
                            for c in acting), np.zeros(6 * len(self.free)))
         return self.joint_impulses(sp.Matrix([sp.Float(x, 30) for x in generalized]))
-
-    def _held(self, pinned: Mapping[str, Sequence[Any]]) -> sp.Matrix:
-        """The joints' generalized impulse on the free bodies, ``G^T lambda``: each
-        body's linear impulse and its moment about the centre, six rows a body."""
-        if not self.joints:
-            return sp.zeros(6 * len(self.free), 1)
-        lam = sp.Matrix([x for j in self.joints for x in pinned[j.name]])
-        return self.G.T * lam
-
-    def _joint_checks(self, pinned: Mapping[str, Sequence[Any]], u_after: Any,
-                      num: Any) -> dict[str, Any]:
-        """``JOINT.holds``: after the impact each joint's two points (and a hinge's turn
-        across its axis) still move together."""
-        out: dict[str, Any] = {}
-        if not self.joints:
-            return out
-        gap = self.G * sp.Matrix(list(u_after))
-        row = 0
-        for j in self.joints:
-            size = 3 if j.axis is None else 5
-            out[f"{j.name}.holds"] = max(abs(num(x)) for x in gap[row:row + size, 0])
-            row += size
-        return out
 
     def _every_contact(self, solved: Solution) -> Solution:
         """The answer with every contact in the scene's order, a contact that took no part
@@ -640,57 +513,6 @@ class SpaceCollision:
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
             given_checks=checks))
 
-    def _driven_checks(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
-                       u: Any, u_after: Any, before: sp.Expr, lost: sp.Expr,
-                       tolerance: float | None, newton: bool = False) -> dict[str, Any]:
-        """Residuals of the laws from the bodies' momenta and the contacts' impulses,
-        apart from the solver: momentum, no pull, the cone, each contact opening (or
-        not penetrating), the joints, the energy, and with `newton` (the simultaneous
-        rule under a kinematic law) each contact's restitution: an acting one leaves as
-        its law asks, a released one at least that fast. Computed at 50 digits; an
-        exact answer (`tolerance` None) is held to rounding, an integrated one to its
-        integrator's tolerance."""
-        def num(x: Any) -> sp.Float:
-            return sp.N(x, CHECK_DIGITS)
-
-        u0 = sp.Matrix([num(x) for x in u])
-        u1 = sp.Matrix([num(x) for x in u_after])
-        impulses = {c.name: sp.Matrix([num(x) for x in P[c.name]]) for c in acting}
-        J = {c.name: self.rows(c).applyfunc(num) for c in acting}
-        pinned = self.joint_impulses(sum((J[c.name].T * impulses[c.name] for c in acting),
-                                         sp.zeros(6 * len(self.free), 1))) \
-            if self.joints else {}
-        out = self._momenta(acting, impulses, u0, u1, pinned, num)
-        for c in acting:
-            Pn, Pt1, Pt2 = impulses[c.name]
-            closing, leaving = (J[c.name] * u0)[0], (J[c.name] * u1)[0]
-            out[f"{c.name}.pushes"] = max(0, -Pn)
-            out[f"{c.name}.opens"] = max(0, -leaving)
-            out[f"{c.name}.cone"] = max(0, sp.sqrt(Pt1 ** 2 + Pt2 ** 2)
-                                        - num(c.friction or 0) * Pn)
-            if newton:  # the simultaneous rule: each contact's laws at the velocity level
-                asked = num(c.laws[0].leaving(min(closing, 0)))
-                out[f"{c.name}.restitution"] = abs(leaving - asked) if Pn > 0 else \
-                    max(0, asked - leaving)
-                size = max(1, *(abs(x) for x in (*u0, *u1)))
-                out[f"{c.name}.complementarity"] = abs(Pn * (leaving - asked)) / size
-                if c.friction is not None and Pn > 0:  # friction against the slip after
-                    v0, v1 = J[c.name] * u0, J[c.name] * u1
-                    out.update(friction_residuals(
-                        c.name, c.laws[1], num, Pn, [Pt1, Pt2], [v0[1], v0[2]],
-                        [v1[1], v1[2]], exact=False,
-                        speed=max(size, *(abs(x) for x in impulses[c.name]))))
-        out["energy"] = max(0, -num(lost))
-        out["_scale"] = max(abs(x) for x in (*u0, *u1, *(x for p in impulses.values()
-                                                          for x in p)))
-        out["_kinetic"] = num(before)
-        floats = any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
-                     for x in (*u_after, *(x for p in P.values() for x in p)))
-        out["_tolerance"] = max(1e-8, 1000 * tolerance) if tolerance is not None else \
-            FLOAT_TOLERANCE if floats else EXACT_TOLERANCE
-        return {k: v if k == "_tolerance" else sp.Float(v, 17) if tolerance is not None
-                else v for k, v in out.items()}
-
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols."""
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
@@ -704,7 +526,7 @@ class _SpaceProblem(RowsProblem):
     """A 3-D collision as the one problem of rows every rule reads: its six speeds a
     free body, its projected M^-1 and each contact's normal row (the smooth contacts
     the planar rules solve in space). What a rule makes of it comes back as the 3-D
-    Solution, checked by the bodies' own momenta (:meth:`SpaceCollision._driven_checks`)."""
+    Solution, checked by the one certificate (:meth:`SpaceCollision._certificate`)."""
 
     space: Any = None
     smooth_message: str = ""
@@ -745,12 +567,11 @@ class _SpaceProblem(RowsProblem):
         moved = [b.moved(u_after[6 * j:6 * j + 6, 0]) for j, b in enumerate(space.free)]
         before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
         lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
-        # a law of the velocities after at every contact (not asked of a problem whose
-        # laws cannot act together: one contact acting alone took its own impact)
-        newton = rule == "simultaneous" and all(c.laws[0].together == "velocity"
-                                                for c in self.contacts)
-        checks = space._driven_checks(list(self.contacts), P, space.u_before, u_after,
-                                      before, lost, None if exact else 1e-10, newton=newton)
+        pinned = space.joint_impulses(sum(
+            (space.rows(c).T * sp.Matrix(P[c.name]) for c in self.contacts),
+            sp.zeros(6 * len(space.free), 1))) if space.joints else {}
+        checks = space._certificate(list(self.contacts), P, u_after, pinned, rule, acted,
+                                    None if exact else 1e-10)
         courses = tuple(more.get("courses") or (
             f"{c.name}: {'acts' if c.name in acted else 'released'}" for c in self.contacts))
         notes = list(more.get("notes", ()))
