@@ -118,6 +118,21 @@ def _inertia(body: Any) -> list[list[Any]]:
     return [[body.inertia]]
 
 
+class _Lists:
+    """Each vector's components as a list, read once per certificate (a body's velocity
+    and position enter each of its contacts, and reading a SymPy matrix's entries one
+    by one is the certificate's largest cost on a thousand contacts)."""
+
+    def __init__(self) -> None:
+        self.read: dict[int, tuple[Any, list[Any]]] = {}
+
+    def __call__(self, vector: Any) -> list[Any]:
+        found = self.read.get(id(vector))
+        if found is None:
+            found = self.read[id(vector)] = (vector, list(vector))
+        return found[1]
+
+
 def _arithmetic(numbers: Sequence[Any]) -> str:
     """"exact" (rationals), "mp" (numbers with floats or irrationals), or "symbolic"."""
     kinds = set()
@@ -165,13 +180,14 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     bodies = {b.name: b for b in before}
     later = {b.name: b for b in after}
     spatial = _spatial(before)
+    flat = _Lists()
     data: list[Any] = []
     for b in before:
         if b.support == "fixed":
             continue
         a = later[b.name]
-        data += [b.mass, *(x for row in _inertia(b) for x in row), *b.position,
-                 *b.velocity, *_spin(b), *a.velocity, *_spin(a)]
+        data += [b.mass, *(x for row in _inertia(b) for x in row), *flat(b.position),
+                 *flat(b.velocity), *_spin(b), *flat(a.velocity), *_spin(a)]
         if b.support == "pivot":
             data += list(b.pivot)
     for j in joints:
@@ -179,7 +195,7 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
         if j.axis is not None:  # a hinge's moments act across its axis
             data += [x for t in tangents(list(j.axis))[1:] for x in t]
     for c in contacts:
-        data += [*c.point, *(c.frame if spatial else c.normal), impulses[c.name],
+        data += [*flat(c.point), *(c.frame if spatial else flat(c.normal)), impulses[c.name],
                  *_components(tangential.get(c.name, 0)), c.restitution]
         if c.laws[1].cone() is not None:
             data.append(c.laws[1].cone())
@@ -196,11 +212,21 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
                                               for x in c.frame):
         how = "mp"  # a frame's square roots: at 50 digits
     if how == "exact" and (spatial or all(
-            sp.sqrt(c.normal[0] ** 2 + c.normal[1] ** 2).is_Rational for c in contacts)):
-        # every number rational: in SymPy's QQ (python-flint's or gmpy's where present)
+            sp.sqrt(sum(x * x for x in flat(c.normal))).is_Rational for c in contacts)):
+        # every number rational: in SymPy's QQ (python-flint's or gmpy's where present),
+        # each converted once (a body's numbers enter each of its contacts)
+        rationals: dict[Any, Any] = {}
+
         def num(x: Any) -> Any:
-            x = sp.sympify(x)
-            return QQ(int(x.p), int(x.q))
+            try:
+                return rationals[x]
+            except KeyError:
+                y = sp.sympify(x)
+                rationals[x] = value = QQ(int(y.p), int(y.q))
+                return value
+            except TypeError:  # not hashable
+                y = sp.sympify(x)
+                return QQ(int(y.p), int(y.q))
 
         def root(x: Any) -> Any:
             value = sp.sqrt(QQ.to_sympy(x))
@@ -229,7 +255,7 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     digits = DIGITS + _span(data) if how == "mp" else DIGITS
     with mpmath.workdps(digits):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
-                           root, how, locked, joints, joint_impulses)
+                           root, how, locked, joints, joint_impulses, flat)
         straight = len(contacts) == 1 and (not contacts[0].laws[1].grips or
                                            contacts[0].laws[1].name == "stick")
         if len(contacts) == 1 and not joints and not locked and (path or straight):
@@ -241,19 +267,20 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     return found
 
 
-def _frame(contact: Any, num: Any, root: Any, spatial: bool) -> list[list[Any]]:
+def _frame(contact: Any, num: Any, root: Any, spatial: bool,
+           flat: Any = list) -> list[list[Any]]:
     """The contact's unit normal and tangents, in the residuals' arithmetic: in the
     plane from its normal (the tangent turned +90 degrees), in space its frame's rows."""
     if spatial:
         return [[num(x) for x in contact.frame.row(i)] for i in range(3)]
-    n = [num(x) for x in contact.normal]
+    n = [num(x) for x in flat(contact.normal)]
     length = root(n[0] * n[0] + n[1] * n[1])
     n = [n[0] / length, n[1] / length]
     return [n, list(_perp(n))]
 
 
 def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, root,
-               how, locked, joints, joint_impulses) -> dict[str, Any]:
+               how, locked, joints, joint_impulses, flat) -> dict[str, Any]:
     zero = num(0)
     spatial = _spatial(list(bodies.values()))
     dimension = 3 if spatial else 2
@@ -269,27 +296,40 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     whole_impact = len(contacts) == 1 or rule == "simultaneous"
     approaching = False  # whether some contact approached before: an impact to check
     speed = None if how == "exact" else _scale(bodies, later, impulses, tangential, num,
-                                               zero)
+                                               zero, flat)
+
+    seen: dict[int, tuple[list[Any], list[Any], list[Any]]] = {}
+
+    def motion(state: Any) -> tuple[list[Any], list[Any], list[Any]]:
+        """A body's velocity, spin and position in the residuals' arithmetic, each
+        converted once (a body enters each of its contacts)."""
+        key = id(state)
+        if key not in seen:
+            seen[key] = ([num(x) for x in flat(state.velocity)],
+                         [num(x) for x in _spin(state)],
+                         [num(x) for x in flat(state.position)])
+        return seen[key]
 
     def velocity(body: Any, state: Any, point: Sequence[Any]) -> list[Any]:
         if body.support == "fixed":
             return [zero] * dimension
-        r = [num(point[k]) - num(body.position[k]) for k in range(dimension)]
-        turn = _turn([num(w) for w in _spin(state)], r)
-        return [num(state.velocity[k]) + turn[k] for k in range(dimension)]
+        v, w, centre = motion(state)
+        r = [point[k] - centre[k] for k in range(dimension)]
+        turn = _turn(w, r)
+        return [v[k] + turn[k] for k in range(dimension)]
 
     def receive(first: str, second: str, at: Sequence[Any], push: list[Any],
                 couple: Sequence[Any] = ()) -> None:
         """An impulse `push` at `at` (and a `couple`, a hinge's moments), given to
         `second` and taken from `first`: into each movable body's linear and angular
         momentum (about its pivot or centre)."""
-        point = [num(x) for x in at]
         for name, sign in ((second, 1), (first, -1)):
             body = bodies[name]
             if body.support == "fixed":
                 continue
-            axis = body.pivot if body.support == "pivot" else body.position
-            arm = [point[k] - num(axis[k]) for k in range(dimension)]
+            axis = [num(x) for x in body.pivot] if body.support == "pivot" else \
+                motion(body)[2]
+            arm = [at[k] - axis[k] for k in range(dimension)]
             moment = _cross(arm, push)
             for k in range(dimension):
                 received[name][k] += sign * push[k]
@@ -307,7 +347,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
 
     for c in contacts:
         first, second = c.bodies if c.bodies else tuple(bodies)[:2]
-        frame = _frame(c, num, root, spatial)
+        frame = _frame(c, num, root, spatial, flat)
         p_n = num(impulses[c.name])
         p_t = [num(x) for x in _components(tangential.get(c.name, 0))]
         if len(p_t) < len(frame) - 1:  # a planar answer's tangential of a 3-D contact
@@ -315,10 +355,11 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         push = [p_n * frame[0][k] + sum((p * row[k] for p, row in zip(p_t, frame[1:],
                                                                       strict=True)), zero)
                 for k in range(dimension)]
-        receive(first, second, c.point, push)
+        at = [num(x) for x in flat(c.point)]
+        receive(first, second, at, push)
 
         (v_before, *slip_before), (v_after, *slip) = (
-            relative(states, first, second, c.point, frame) for states in (bodies, later))
+            relative(states, first, second, at, frame) for states in (bodies, later))
         approaching = approaching or v_before < 0
         restitution, friction = c.laws
         out[f"{c.name}.pushes"] = max(zero, -p_n)
@@ -357,15 +398,16 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         across = _hinge_axes(j, num) if j.axis is not None else []
         couple = [sum((m * t[k] for m, t in zip(parts[3:], across, strict=True)), zero)
                   for k in range(3)] if across else []
-        receive(j.first, j.second, j.point, parts[:dimension], couple)
-        gap = [a - b for a, b in zip(velocity(bodies[j.second], later[j.second], j.point),
-                                     velocity(bodies[j.first], later[j.first], j.point),
+        at = [num(x) for x in j.point]
+        receive(j.first, j.second, at, parts[:dimension], couple)
+        gap = [a - b for a, b in zip(velocity(bodies[j.second], later[j.second], at),
+                                     velocity(bodies[j.first], later[j.first], at),
                                      strict=True)]
         turning = [zero] * len(across)
         for name, sign in ((j.second, 1), (j.first, -1)):
             if bodies[name].support == "fixed":
                 continue
-            w = [num(x) for x in _spin(later[name])]
+            w = motion(later[name])[1]
             turning = [x + sign * _dot(w, t) for x, t in zip(turning, across, strict=True)]
         out[f"{j.name}.holds"] = max(abs(x) for x in (*gap, *turning))
     kinetic = [zero, zero]
@@ -375,8 +417,9 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         after = later[name]
         m = num(body.mass)
         inertia = [[num(x) for x in row] for row in _inertia(body)]
-        dv = [num(after.velocity[k]) - num(body.velocity[k]) for k in range(dimension)]
-        dw = [num(a) - num(b) for a, b in zip(_spin(after), _spin(body), strict=True)]
+        (v0, w0, centre), (v1, w1, _) = motion(body), motion(after)
+        dv = [a - b for a, b in zip(v1, v0, strict=True)]
+        dw = [a - b for a, b in zip(w1, w0, strict=True)]
         spun = [_dot(row, dw) for row in inertia]  # I dw
         got = received[name]
         if body.support != "pivot":
@@ -388,15 +431,13 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
             else:
                 out[f"{name}.angular_momentum"] = abs(spun[0] - got[2])
         else:  # about the pivot: I_c dw + m (R - pivot) x dV
-            arm = [num(body.position[k]) - num(body.pivot[k]) for k in range(2)]
+            arm = [centre[k] - num(body.pivot[k]) for k in range(2)]
             out[f"{name}.angular_momentum"] = abs(spun[0] + m * _cross(arm, dv)[0]
                                                   - got[2])
-        for k, state in enumerate((body, after)):
-            v = [num(x) for x in state.velocity]
-            w = [num(x) for x in _spin(state)]
+        for k, (v, w) in enumerate(((v0, w0), (v1, w1))):
             kinetic[k] += (m * _dot(v, v) + _dot(w, [_dot(row, w) for row in inertia])) / 2
     out["energy"] = max(zero, kinetic[1] - kinetic[0])
-    out["_scale"] = _scale(bodies, later, impulses, tangential, num, zero)
+    out["_scale"] = _scale(bodies, later, impulses, tangential, num, zero, flat)
     out["_kinetic"] = kinetic[0]
     out["_exact"] = how == "exact"
     out["_approaching"] = approaching
@@ -699,11 +740,11 @@ def as_sympy(value: Any) -> sp.Expr:
         return sp.sympify(value)
 
 
-def _scale(bodies, later, impulses, tangential, num, zero) -> Any:
+def _scale(bodies, later, impulses, tangential, num, zero, flat=list) -> Any:
     """The size residuals are measured against: the largest speed or spin (before or
     after) or impulse component."""
     sizes = [abs(num(x)) for states in (bodies, later) for name, b in states.items()
-             if bodies[name].support != "fixed" for x in (*b.velocity, *_spin(b))]
+             if bodies[name].support != "fixed" for x in (*flat(b.velocity), *_spin(b))]
     sizes += [abs(num(x)) for name, p in impulses.items()
               for x in (p, *_components(tangential.get(name, 0)))]
     return max([zero, *sizes])
