@@ -1,19 +1,28 @@
 """Every Solution checks itself: the residual of each law it must obey, computed from the
 bodies before and after and the impulses alone, apart from the path that solved it.
 
+One certificate serves the plane and space: the same conditions, computed by the same
+code, for planar bodies (a spin about z, one tangent a contact) and for 3-D bodies (a
+spin vector and an inertia tensor, two tangents a contact, hinges whose impulses include
+moments). A planar answer written in space gets the same residuals (the tests hold the
+two side by side).
+
 The conditions, each a residual that is zero when it holds (a violation's size, never
 negative):
 
-- ``BODY.momentum_x``, ``BODY.momentum_y``: a free body's change of linear momentum less
-  the impulses it received (a pivoted body's linear balance holds by definition: its
-  pivot's reaction is that remainder);
-- ``BODY.angular_momentum``: its change of angular momentum about its centre (a pivoted
-  body: about its pivot) less the moments of those impulses;
+- ``BODY.momentum_x``, ``BODY.momentum_y`` (and ``BODY.momentum_z`` in space): a free
+  body's change of linear momentum less the impulses it received (a pivoted body's
+  linear balance holds by definition: its pivot's reaction is that remainder);
+- ``BODY.angular_momentum`` (in space ``BODY.angular_momentum_x``, ``_y``, ``_z``): its
+  change of angular momentum about its centre (a pivoted body: about its pivot) less
+  the moments of those impulses (and of a hinge's moments);
 - ``CONTACT.pushes``: no pull, ``max(0, -P_n)``;
 - ``CONTACT.opens``: no penetration after, ``max(0, -v_n+)`` (v_n the normal velocity of
   the second touching point relative to the first);
 - ``CONTACT.cone``: Coulomb's cone, ``max(0, |P_t| - mu P_n)``; ``CONTACT.smooth``: a
   smooth contact's ``|P_t|``; ``CONTACT.sticks``: a sticking contact's slip after;
+  ``CONTACT.rough``: Walton's law with no cone, the slip after against ``-beta`` times
+  the slip before;
 - friction's direction and end (one contact's impact, or the simultaneous rule):
   ``CONTACT.against_slip`` (on the cone's edge, friction never acts along the slip
   after, or past Walton's target), ``CONTACT.slides`` (inside a Coulomb cone, the
@@ -23,7 +32,10 @@ negative):
   ``CONTACT.restitution`` (an acting contact leaves at ``-e`` times its closing speed),
   ``CONTACT.released`` (a released one at least that fast) and
   ``CONTACT.complementarity`` (``P_n`` times the difference);
-- one contact's own impact, along its impulse path (:func:`path_residuals`):
+- one contact's own impact under a kinematic law (Newton's, or a user's): its normal
+  velocity after, ``CONTACT.restitution``, whatever the path;
+- one contact's own impact, along its impulse path (:func:`path_residuals`; in space,
+  a smooth or sticking contact's straight path):
   ``CONTACT.path`` (each straight piece slides on Coulomb's cone against a slip of one
   sign, or sticks) and ``CONTACT.restitution`` (the restitution law's own end: Newton's
   velocity, Poisson's impulse ratio, the energetic work ratio);
