@@ -40,12 +40,11 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 
 
 # a sequence of one-at-a-time impacts can go on forever while converging (inelastic
-# collapse); it is cut where every closing speed left is this small next to the first.
-# A hundredth of what the certificate lets a contact still close (1e-40 of its own
-# scale, the largest speed, spin or impulse): the two sizes differ by the contacts'
-# row lengths and lever arms, and a run cut at the certificate's own line was refused
-# by it (a rod ringing on a floor at e = 0, 1.8e-40)
-SETTLED = sp.Rational(1, 10**42)
+# collapse); it is cut where every contact's normal velocity left closing is this small
+# next to the largest speed or spin before, the certificate's own line on its own scale
+# (certificate.SETTLED: a contact may still close at 1e-40 of the largest speed, spin or
+# impulse), so a run the rule ends is never one its check refuses
+SETTLED = sp.Rational(1, 10**40)
 
 
 MAX_ORDERS = 720  # every order of up to six contacts
@@ -167,9 +166,12 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
         # before, not 1e-40
         return sp.Float(1e-12) if integrated else SETTLED
 
+    # the certificate's scale: the largest speed or spin before; a contact's closing
+    # speed in the rules' rows is its normal velocity times its row's scale
+    speeds = max(abs(v) for v in problem.u_before)
     count, steps = sequential_passes([index[name] for name in order],
                                      lambda k: problem.closing(k, u), checked,
-                                     max(abs(v) for v in problem.scaled_velocity_before),
+                                     lambda k: speeds * problem.row_scale[k],
                                      settled=settled)
     total, tangential = sp.zeros(len(index), 1), sp.zeros(len(index), 1)
     for k, impulse, along, _ in steps:
@@ -413,12 +415,12 @@ def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solut
 
 def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
                       step: Callable[[int, sp.Expr], tuple[sp.Expr, sp.Expr, str | None]],
-                      scale: sp.Expr,
+                      scale: sp.Expr | Callable[[int], sp.Expr],
                       settled: sp.Expr | Callable[[], sp.Expr] = SETTLED
                       ) -> tuple[int, list[tuple[int, sp.Expr, sp.Expr, str | None]]]:
     """The sequential rule's passes, for any model: contact by contact in `order`, each
     contact still closing (``closing(k) < 0``, beyond `settled` times `scale`; `settled`
-    may be a function, asked at each contact) takes its
+    may be a function, asked at each contact, and `scale` one of the contact) takes its
     own impact (``step(k, closing)``: its normal and tangential impulse and its course,
     the model's velocities moved by the step), repeated until a pass in which none acts.
     Returns the passes in which some contact acted and every step taken.
@@ -451,7 +453,9 @@ def sequential_passes(order: Sequence[int], closing: Callable[[int], sp.Expr],
         count, acted = count + 1, False
         for k in order:
             now = closing(k)
-            if now >= 0 or -now <= (settled() if callable(settled) else settled) * scale:
+            line = (settled() if callable(settled) else settled) * \
+                (scale(k) if callable(scale) else scale)
+            if now >= 0 or -now <= line:
                 continue
             if len(steps) == most:
                 raise endless()
