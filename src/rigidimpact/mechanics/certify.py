@@ -17,6 +17,7 @@ import sympy as sp
 import sympy.physics.mechanics as me
 
 from rigidimpact.errors import InputError
+from rigidimpact.solve.certificate import contact_residuals
 
 __all__ = ["checks", "FLOAT_DIGITS", "CHECK_TOLERANCE", "SETTLING", "wide"]
 
@@ -41,15 +42,14 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
     """The residuals of the laws, apart from the path that solved them and from the
     M and J it solved with: the system's own bodies and points (:func:`_own`) give
     the generalized momentum balance (``dT/du`` after less before, less each contact
-    impulse's generalized impulse ``P . dv/du``), each contact's normal velocity
-    after (none closing beyond the sequential rule's settling) and slip, the
-    restitution law's end where the velocities fix it (Newton's law at one contact,
-    whatever the path; a law acting at the velocity level under the simultaneous
-    rule: the acting contacts leave at its target, the released ones at least as
-    fast), and the energy; the impulses give the push-only condition and Coulomb's
-    cone. A system
-    built without its bodies is checked with M and J themselves. None with symbols
-    left (the closed forms are checked in the tests)."""
+    impulse's generalized impulse ``P . dv/du``), each contact's velocity before and
+    after in its frame, and the energy. Each contact's laws are the built-in shapes'
+    certificate's own (:func:`rigidimpact.solve.certificate.contact_residuals`): no
+    pull, no closing after (beyond the sequential rule's settling), the cone or
+    smoothness or sticking, friction's direction and end, the restitution law's end
+    where the velocities fix it. A system built without its bodies is checked with M
+    and J themselves; a closed form (symbols left) at seeded random rational points
+    (:func:`_at_points`)."""
     numbers = [*u_after, *P, *system.u_before, *system.M, *system.J]
     if not all(sp.sympify(x).is_number for x in numbers):
         return _at_points(system, u_after, P, rule)
@@ -67,26 +67,18 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
         scale = max([abs(x) for x in v0] + [abs(x) for x in p] + [mpmath.mpf(1e-300)])
         out: dict[str, Any] = {"momentum": max(abs(x) for x in balance)}
         for i, c in enumerate(system.contacts):
-            tangential = c.laws.laws[1]
             k = width * i
-            out[f"{c.name}.pushes"] = max(0, -p[k])
-            out[f"{c.name}.opens"] = max(0, -v[k] - SETTLING * scale)
-            mu = tangential.cone()
-            size = mpmath.sqrt(sum(p[k + j] ** 2 for j in range(1, width)))
-            if not tangential.grips:
-                out[f"{c.name}.smooth"] = size
-            elif mu is not None:
-                out[f"{c.name}.cone"] = max(0, size - num(mu) * p[k])
-            if tangential.unknown_tangential and p[k] > 0:
-                out[f"{c.name}.sticks"] = max(abs(v[k + j]) for j in range(1, width))
-            restitution = c.laws.laws[0]
-            one = len(system.contacts) == 1 and restitution.name == "newton"
-            if one or (rule == "simultaneous" and restitution.together == "velocity"):
-                target = num(restitution.leaving(sp.Float(min(v0[k], 0), FLOAT_DIGITS)))
-                if one or p[k] > 0:
-                    out[f"{c.name}.restitution"] = abs(v[k] - target)
-                else:
-                    out[f"{c.name}.released"] = max(0, target - v[k])
+            # each contact's laws, stated once for every model (the built-in shapes'
+            # certificate's own): from its impulse and its relative velocity before
+            # and after, in its frame (normal, then its tangents)
+            out.update(contact_residuals(
+                c.name, c.laws.laws, p[k], [p[k + j] for j in range(1, width)],
+                [v0[k + j] for j in range(width)], [v[k + j] for j in range(width)], num,
+                exact=False, speed=scale, acted=p[k] > 0,
+                whole_impact=len(system.contacts) == 1 or rule == "simultaneous",
+                rule=rule, alone=len(system.contacts) == 1))
+            # a sequential run is cut where no contact closes faster than its settling
+            out[f"{c.name}.opens"] = max(0, out[f"{c.name}.opens"] - SETTLING * scale)
         out["energy"] = max(0, kinetic[1] - kinetic[0])
         out["_scale"] = scale
         out["_kinetic"] = kinetic[0]

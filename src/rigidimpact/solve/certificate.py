@@ -74,9 +74,9 @@ from sympy.polys.domains import QQ
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
 
-__all__ = ["residuals", "friction_residuals", "path_residuals", "assess", "as_sympy",
-           "PHYSICAL_LIMITS", "FLOAT_TOLERANCE", "random_points", "coefficient_ranges",
-           "SYMBOLIC_POINTS"]
+__all__ = ["residuals", "contact_residuals", "friction_residuals", "path_residuals",
+           "assess", "as_sympy", "PHYSICAL_LIMITS", "FLOAT_TOLERANCE", "random_points",
+           "coefficient_ranges", "SYMBOLIC_POINTS"]
 
 DIGITS = 50
 # a floating-point answer (a large problem's, or a compliant integration's) is trusted
@@ -370,41 +370,14 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
         at = [num(x) for x in flat(c.point)]
         receive(first, second, at, push)
 
-        (v_before, *slip_before), (v_after, *slip) = (
-            relative(states, first, second, at, frame) for states in (bodies, later))
-        approaching = approaching or v_before < 0
-        restitution, friction = c.laws
-        out[f"{c.name}.pushes"] = max(zero, -p_n)
-        out[f"{c.name}.opens"] = max(zero, -v_after)
-        mu = friction.cone()
-        beta = getattr(friction, "beta", None)
-        if not friction.grips:
-            out[f"{c.name}.smooth"] = max(abs(x) for x in p_t)
-        elif mu is not None:
-            out[f"{c.name}.cone"] = _beyond(p_t, num(mu) * p_n, how == "exact", zero)
-        if friction.unknown_tangential and c.name in acted:
-            out[f"{c.name}.sticks"] = max(abs(x) for x in slip)
-        if mu is None and beta is not None and friction.grips:  # Walton's, no cone
-            out[f"{c.name}.rough"] = max(abs(a + num(beta) * b)
-                                         for a, b in zip(slip, slip_before, strict=True))
-        if mu is not None and friction.grips and p_n > 0 and whole_impact:
-            out.update(friction_residuals(c.name, friction, num, p_n, p_t, slip_before,
-                                          slip, how == "exact", speed))
-        if c.name in locked:  # the course's own law: at rest along the normal after
-            out[f"{c.name}.restitution"] = abs(v_after)
-        elif rule == "simultaneous" and restitution.together == "velocity":
-            # the law's own normal velocity after, from the closing one (a new law is
-            # one class: the check asks it, as the rule does)
-            target = num(restitution.leaving(as_sympy(min(v_before, zero))))
-            if c.name in acted:
-                out[f"{c.name}.restitution"] = abs(v_after - target)
-            else:
-                out[f"{c.name}.released"] = max(zero, target - v_after)
-            out[f"{c.name}.complementarity"] = abs(p_n * (v_after - target))
-        elif len(contacts) == 1 and not restitution.splits_on_compression:
-            # a kinematic law's end is a velocity, whatever the path
-            out[f"{c.name}.restitution"] = abs(
-                v_after - num(restitution.leaving(as_sympy(min(v_before, zero)))))
+        earlier, now = (relative(states, first, second, at, frame)
+                        for states in (bodies, later))
+        approaching = approaching or earlier[0] < 0
+        out.update(contact_residuals(
+            c.name, c.laws, p_n, p_t, earlier, now, num,
+            exact=how == "exact", speed=speed, acted=c.name in acted,
+            whole_impact=whole_impact, locked=c.name in locked, rule=rule,
+            alone=len(contacts) == 1))
     for j in joints:  # a hinge between two bodies: its impulse, any sign; no gap after
         parts = [num(x) for x in joint_impulses[j.name]]
         across = _hinge_axes(j, num) if j.axis is not None else []
@@ -453,6 +426,56 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     out["_kinetic"] = kinetic[0]
     out["_exact"] = how == "exact"
     out["_approaching"] = approaching
+    return out
+
+
+def contact_residuals(name: str, laws: tuple[Any, Any], p_n: Any, p_t: Sequence[Any],
+                      before: Sequence[Any], after: Sequence[Any], num: Any, exact: bool,
+                      speed: Any, acted: bool, whole_impact: bool, rule: str,
+                      alone: bool, locked: bool = False) -> dict[str, Any]:
+    """One contact's conditions, from its impulse (normal `p_n`, tangential `p_t`: one
+    component in the plane, two in space) and its relative velocity before and after
+    in its frame (``[v_n, slip...]``), in the caller's arithmetic: the one statement of
+    a contact's laws for every model (planar and 3-D bodies, and a mechanics system's
+    points). `acted`: the contact took part (a rule's acting set); `whole_impact`:
+    friction's direction is a law of the totals (one contact's own impact, or the
+    simultaneous rule); `alone`: the contact is the impact's only one; `locked`: its
+    impact ended locked at rest (Routh's one-freedom course)."""
+    restitution, friction = laws
+    zero = num(0)
+    v_before, slip_before = before[0], list(before[1:])
+    v_after, slip = after[0], list(after[1:])
+    out: dict[str, Any] = {f"{name}.pushes": max(zero, -p_n),
+                           f"{name}.opens": max(zero, -v_after)}
+    mu = friction.cone()
+    beta = getattr(friction, "beta", None)
+    if not friction.grips:
+        out[f"{name}.smooth"] = max(abs(x) for x in p_t)
+    elif mu is not None:
+        out[f"{name}.cone"] = _beyond(p_t, num(mu) * p_n, exact, zero)
+    if friction.unknown_tangential and acted:
+        out[f"{name}.sticks"] = max(abs(x) for x in slip)
+    if mu is None and beta is not None and friction.grips:  # Walton's, no cone
+        out[f"{name}.rough"] = max(abs(a + num(beta) * b)
+                                   for a, b in zip(slip, slip_before, strict=True))
+    if mu is not None and friction.grips and p_n > 0 and whole_impact:
+        out.update(friction_residuals(name, friction, num, p_n, p_t, slip_before, slip,
+                                      exact, speed))
+    if locked:  # the course's own law: at rest along the normal after
+        out[f"{name}.restitution"] = abs(v_after)
+    elif rule == "simultaneous" and restitution.together == "velocity":
+        # the law's own normal velocity after, from the closing one (a new law is
+        # one class: the check asks it, as the rule does)
+        target = num(restitution.leaving(as_sympy(min(v_before, zero))))
+        if acted:
+            out[f"{name}.restitution"] = abs(v_after - target)
+        else:
+            out[f"{name}.released"] = max(zero, target - v_after)
+        out[f"{name}.complementarity"] = abs(p_n * (v_after - target))
+    elif alone and not restitution.splits_on_compression:
+        # a kinematic law's end is a velocity, whatever the path
+        out[f"{name}.restitution"] = abs(
+            v_after - num(restitution.leaving(as_sympy(min(v_before, zero)))))
     return out
 
 

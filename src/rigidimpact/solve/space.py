@@ -482,7 +482,7 @@ class SpaceCollision:
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
                  notes: Sequence[str], energy: tuple[Any, Any],
-                 checks: Mapping[str, Any]) -> Solution:
+                 checks: Mapping[str, Any], **rule: Any) -> Solution:
         """The one Solution of several 3-D contacts solved together (exactly, or in
         floating point), certified by its own residuals."""
         before, lost = energy
@@ -511,7 +511,7 @@ class SpaceCollision:
                                         else lost / before), notes=tuple(notes),
             speeds_before=self.speeds, speeds_after=speeds_after,
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            given_checks=checks))
+            given_checks=checks, **rule))  # assessed under its own rule
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols."""
@@ -581,10 +581,9 @@ class _SpaceProblem(RowsProblem):
         elif exact and rule == "simultaneous":
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
-        solution = space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
-                                  notes, (before, lost), checks)
-        return replace(solution, rule=rule, order=tuple(order), passes=passes,
-                       method=more.get("method", ""))
+        return space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
+                              notes, (before, lost), checks, rule=rule, order=tuple(order),
+                              passes=passes, method=more.get("method", ""))
 
 
 def _touches_its_surface(body: Body3, contact: Contact) -> None:
