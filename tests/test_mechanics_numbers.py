@@ -351,3 +351,25 @@ def test_a_closed_form_is_checked_at_random_points_by_the_systems_own_kinematics
     # caught by the bob's own momentum
     with pytest.raises(ri.InputError, match="fails its own check.*momentum"):
         replace(hit, J=sp.ImmutableMatrix(2 * sp.Matrix(hit.J))).solve()
+
+
+def test_the_certificate_checks_friction_against_the_slip_in_a_mechanics_system():
+    # the tip sliding on the wall throughout (mu = 1/20, q2 = -6/5): its answer holds
+    # every law;
+    # the same impulse with friction turned round, the speeds moved to match it (the
+    # momentum balance, the cone and the normal law still hold), drives the slip after
+    # instead of opposing it. The contact's laws are the built-in shapes' own statement
+    # (certificate.contact_residuals), which now catches it here too.
+    from rigidimpact.mechanics.certify import checks
+
+    hit = _tip(tangential="coulomb", friction=sp.Rational(1, 20)).at(
+        {**V, q2: -sp.Rational(6, 5)})
+    right = hit.solve()
+    assert right.regime == "slip"
+    P = sp.Matrix([right.impulses["tip"], right.tangential["tip"]])
+    assert checks(hit, sp.Matrix(right.speeds_after), P)["tip.against_slip"] < 1e-40
+    turned = sp.Matrix([P[0], -P[1]])
+    moved = sp.Matrix(hit.u_before) + sp.Matrix(hit.M).inv() * sp.Matrix(hit.J).T * turned
+    found = checks(hit, moved, turned)
+    assert found["momentum"] < 1e-40 and found["tip.cone"] < 1e-40
+    assert found["tip.against_slip"] > 1e-3

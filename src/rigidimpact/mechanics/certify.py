@@ -9,7 +9,6 @@ Each function takes the :class:`~rigidimpact.mechanics.impact.SystemImpact` it c
 
 from __future__ import annotations
 
-import random
 from typing import Any
 
 import mpmath
@@ -17,7 +16,12 @@ import sympy as sp
 import sympy.physics.mechanics as me
 
 from rigidimpact.errors import InputError
-from rigidimpact.solve.certificate import contact_residuals
+from rigidimpact.solve.certificate import (
+    SYMBOLIC_POINTS,
+    coefficient_ranges,
+    contact_residuals,
+    random_points,
+)
 
 __all__ = ["checks", "FLOAT_DIGITS", "CHECK_TOLERANCE", "SETTLING", "wide"]
 
@@ -26,8 +30,6 @@ FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
 # wrong answer: the exact paths give zero, the floating ones about 1e-45
 CHECK_TOLERANCE = 1e-30
 SETTLING = 1e-12  # the sequential rule's passes end once no contact closes faster
-SYMBOLIC_POINTS = 3  # seeded random rational points a closed form is checked at
-SYMBOLIC_TRIES = 12  # points drawn to find them (a point with no impact is no check)
 
 
 def wide(x: Any) -> sp.Expr:
@@ -97,26 +99,17 @@ def _at_points(system: Any, u_after: sp.Matrix, P: sp.Matrix, rule: str) -> dict
     laws = sp.Tuple(*(x for c in system.contacts for x in (
         c.laws.restitution, c.laws.friction or 0, c.laws.tangential_restitution or 0)))
     data = sp.Tuple(*system.M, *system.J, *system.u_before, *u_after, *P, laws)
-    constants = sorted(data.free_symbols - {me.dynamicsymbols._t}, key=str)
-    ranges = {c.laws.restitution: (0, 1) for c in system.contacts} | {
-        c.laws.friction: (0, 2) for c in system.contacts if c.laws.friction is not None}
-    functions = sorted({*system.q, *system.u} & data.atoms(sp.Function), key=str)
-    rng = random.Random(44)
+    constants = set(data.free_symbols - {me.dynamicsymbols._t})
+    functions = {*system.q, *system.u} & data.atoms(sp.Function)
+    # the certificate's one draw: each coefficient within its range, each coordinate
+    # and speed in [-3/2, 3/2], every other symbol of its sign
+    ranges = {**coefficient_ranges([c.laws for c in system.contacts]),
+              **{f: (-sp.Rational(3, 2), sp.Rational(3, 2)) for f in functions}}
     worst: dict[str, Any] = {}
     checked = 0
-    for _ in range(SYMBOLIC_TRIES):
+    for point in random_points(constants | functions, ranges):
         if checked == SYMBOLIC_POINTS:
             break
-        point: dict[Any, Any] = {}
-        for x in constants:
-            low, high = ranges.get(x, (0, 3) if x.is_positive or x.is_nonnegative
-                                   else (-3, 3))
-            value = sp.Rational(rng.randint(low * 311, high * 311), 311)
-            if x.is_positive and value <= 0:
-                value = sp.Rational(rng.randint(1, 3 * 311), 311)
-            point[x] = value
-        for f in functions:
-            point[f] = sp.Rational(rng.randint(-466, 466), 311)
         try:
             here = system.at({k: v for k, v in point.items() if k not in system.u} |
                            {u: point.get(u, b) for u, b in

@@ -580,8 +580,8 @@ def coefficient_ranges(contacts: Sequence[Any]) -> dict[sp.Symbol, tuple[int, in
     return ranges
 
 
-def random_points(symbols: set[sp.Symbol], ranges: Mapping[sp.Symbol, tuple[int, int]]
-                  ) -> Iterator[dict[sp.Symbol, sp.Rational]]:
+def random_points(symbols: set[Any], ranges: Mapping[Any, tuple[Any, Any]]
+                  ) -> Iterator[dict[Any, sp.Rational]]:
     """SYMBOLIC_TRIES seeded random rational points of `symbols` (the same on every
     machine): each within its range, or else in [-3, 3] ([0, 3] where it is positive or
     nonnegative), and of its sign."""
@@ -591,7 +591,7 @@ def random_points(symbols: set[sp.Symbol], ranges: Mapping[sp.Symbol, tuple[int,
         for s in sorted(symbols, key=str):
             low, high = ranges.get(s, (-3, 3) if not (s.is_positive or s.is_nonnegative)
                                    else (0, 3))
-            x = sp.Rational(rng.randint(low * 311, high * 311), 311)
+            x = sp.Rational(rng.randint(int(low * 311), int(high * 311)), 311)
             if s.is_positive and x <= 0 or s.is_negative and x >= 0:
                 x = sp.Rational(rng.randint(1, 3 * 311), 311) * (-1 if s.is_negative else 1)
             point[s] = x
