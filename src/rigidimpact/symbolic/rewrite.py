@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from rigidimpact.symbolic.flint_poly import flint_polynomials
+
 __all__ = ["tidy", "recognise", "solve_linear", "polynomial_roots"]
 
 
@@ -81,6 +83,13 @@ def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
 
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
+    # SymPy's factorisation, its polynomials of several variables factored by FLINT
+    # (the same factors, in compiled code: flint_poly's notes)
+    with flint_polynomials():
+        return _tidied(expr)
+
+
+def _tidied(expr: sp.Expr) -> sp.Expr:
     # ``factor`` puts the expression over one denominator and factors both sides, so
     # common factors cancel without a separate (and as costly) ``cancel`` first
     best = _positive_lead(sp.factor(expr))
