@@ -74,7 +74,10 @@ def symbolic_zero(expr: sp.Expr) -> bool:
     expr = sp.sympify(expr)
     if sp.expand(expr) == 0:  # cancels term by term: a proof of zero, found cheaply
         return True
-    return sp.cancel(sp.together(_rational_trig(expr))) == 0
+    # one fraction p / q: it is zero exactly where its numerator expands to zero (no
+    # gcd needed to decide it)
+    numerator, _ = sp.fraction(sp.together(_rational_trig(expr)))
+    return sp.expand(numerator) == 0
 
 
 def _sample(sym: sp.Symbol, rng: random.Random) -> sp.Rational:
