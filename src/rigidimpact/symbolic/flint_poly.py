@@ -11,8 +11,7 @@ the main one); a gcd with a positive leading coefficient and the two exact cofac
 the answer is SymPy's to the last term (the tests hold the two side by side on seeded
 random polynomials), and SymPy's own code sorts and assembles it.
 :func:`flint_polynomials` puts the two in for the duration of a block and puts SymPy's
-back after; without python-flint's multivariate polynomials (before 0.6) it changes
-nothing.
+back after.
 
 Examples
 --------
@@ -37,10 +36,7 @@ from sympy.polys.factortools import _sort_factors
 
 __all__ = ["flint_polynomials", "zz_factor", "zz_gcd"]
 
-try:
-    from flint import fmpz_mpoly_ctx
-except ImportError:  # pragma: no cover - python-flint without multivariate polynomials
-    fmpz_mpoly_ctx = None
+from flint import fmpz_mpoly_ctx
 
 _SYMPY = {"factor": factortools.dmp_zz_factor, "gcd": euclidtools.dmp_zz_heu_gcd}
 
@@ -63,7 +59,7 @@ def zz_factor(f: Any, u: int, K: Any) -> tuple[Any, list[tuple[Any, int]]]:
     irreducible factors with their multiplicities (dense, u + 1 variables), in the
     order SymPy sorts them to (Wang's algorithm finds them in no fixed order; every
     caller sorts them)."""
-    if not u or fmpz_mpoly_ctx is None:
+    if not u:  # one variable: SymPy's own
         return _SYMPY["factor"](f, u, K)
     ctx = _context(u)
     poly = _to_flint(f, u, K, ctx)
@@ -78,7 +74,7 @@ def zz_gcd(f: Any, g: Any, u: int, K: Any) -> tuple[Any, Any, Any]:
     """``dmp_zz_heu_gcd(f, g, u, K)``'s answer by FLINT: the gcd of `f` and `g` in
     ``K[X]`` (ZZ) with a positive leading coefficient, and the cofactors ``f / h`` and
     ``g / h``."""
-    if not u or fmpz_mpoly_ctx is None:
+    if not u:
         return _SYMPY["gcd"](f, g, u, K)
     ctx = _context(u)
     a, b = _to_flint(f, u, K, ctx), _to_flint(g, u, K, ctx)
@@ -93,7 +89,7 @@ def flint_polynomials() -> Iterator[None]:
     """Within the block, SymPy factors polynomials of several variables over the
     integers by :func:`zz_factor` and takes their gcds by :func:`zz_gcd`; SymPy's own
     routines are put back after."""
-    if fmpz_mpoly_ctx is None or factortools.dmp_zz_factor is zz_factor:
+    if factortools.dmp_zz_factor is zz_factor:  # within a block already
         yield
         return
     factortools.dmp_zz_factor, euclidtools.dmp_zz_heu_gcd = zz_factor, zz_gcd
