@@ -65,6 +65,7 @@ from __future__ import annotations
 
 import random
 from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import mpmath
@@ -598,12 +599,52 @@ def random_points(symbols: set[Any], ranges: Mapping[Any, tuple[Any, Any]]
         yield point
 
 
+@dataclass(frozen=True)
+class _BodyAt:
+    """A body's data at one point of its symbols: what the residuals read of a body,
+    numbers put in (a planar body or a 3-D one), without building and validating the
+    body again at every point."""
+
+    name: str
+    support: str
+    mass: Any
+    inertia: Any
+    position: Any
+    velocity: Any
+    spin: Any
+    pivot: Any = None
+    inertia_inverse: Any = None  # a 3-D body's, where it was formed
+
+    @classmethod
+    def of(cls, body: Any, point: Mapping[Any, Any]) -> _BodyAt:
+        def put(x: Any) -> Any:
+            return None if x is None else sp.sympify(x).xreplace(point)
+
+        return cls(body.name, body.support, put(body.mass), put(body.inertia),
+                   put(body.position), put(body.velocity), put(body.spin),
+                   put(getattr(body, "pivot", None)),
+                   put(getattr(body, "inertia_inverse", None)))
+
+    @property
+    def physical(self) -> bool:
+        """A positive mass and a moment of inertia of no sign against it (the plane's),
+        where they are numbers: a point of the symbols where the body is a body."""
+        if self.support == "fixed":
+            return True
+        if self.mass.is_number and not self.mass > 0:
+            return False
+        return not (isinstance(self.inertia, sp.Expr) and self.inertia.is_number
+                    and self.inertia < 0)
+
+
 def _at_point(point, before, after, contacts, impulses, tangential, rule, locked, joints,
               joint_impulses) -> dict[str, Any] | None:
     """The residuals at one point of the symbols, or None where no contact approaches
     there (no impact to check)."""
-    before = tuple(b.at(point) for b in before)
-    after = tuple(b.at(point) for b in after)
+    before = tuple(_BodyAt.of(b, point) for b in before)
+    after = tuple(_BodyAt.of(b, point) for b in after)
+    if not all(b.physical for b in before):
+        return None  # a body of no mass (or less) there: no impact to check
     contacts = tuple(c.at(point) for c in contacts)
     pushes = {c.name: sp.sympify(impulses[c.name]).xreplace(point) for c in contacts}
     along = {c.name: [sp.sympify(x).xreplace(point)
