@@ -347,26 +347,17 @@ class SpaceCollision:
         the energy; a closed form with symbols at seeded random rational points. An
         `integrated` answer (its integrator's relative tolerance) is held to 1000 times
         that tolerance; None where no point of a closed form's symbols is an impact."""
-        after = [b if b.support == "fixed" else b.moved(u_after[6 * k:6 * k + 6])
-                 for k, b in self._indexed()]
+        moved = {b.name: b.moved(u_after[6 * k:6 * k + 6]) for k, b in enumerate(self.free)}
+        after = [moved.get(b.name, b) for b in self.bodies]
         found = residuals(self.bodies, after, acting,
                           {c.name: P[c.name][0] for c in acting},
                           {c.name: tuple(P[c.name][1:]) for c in acting}, rule, acted,
                           joints=self.joints, joint_impulses=pinned)
         if not found:
             return None
-        found.setdefault("_exact", False)
         if integrated is not None:
             found["_tolerance"] = max(1e-8, 1000 * integrated)
         return found
-
-    def _indexed(self) -> list[tuple[int, Body3]]:
-        """Each body with its place among the free bodies' speeds (-1 if fixed)."""
-        out, k = [], 0
-        for b in self.bodies:
-            out.append((-1 if b.support == "fixed" else k, b))
-            k += b.support != "fixed"
-        return out
 
     def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
                 P: Mapping[str, Sequence[Any]]) -> dict[str, tuple[sp.Expr, ...]]:
