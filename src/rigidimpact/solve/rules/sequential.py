@@ -16,6 +16,7 @@ from typing import ClassVar
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.solve.certificate import SETTLED as CERTIFICATE_SETTLED
 from rigidimpact.solve.conditions import (
     case_conditions,
     tidied,
@@ -44,7 +45,7 @@ MAX_PASSES = 1000  # sequential passes before the rule is declared endless
 # next to the largest speed or spin before, the certificate's own line on its own scale
 # (certificate.SETTLED: a contact may still close at 1e-40 of the largest speed, spin or
 # impulse), so a run the rule ends is never one its check refuses
-SETTLED = sp.Rational(1, 10**40)
+SETTLED = sp.Rational(repr(CERTIFICATE_SETTLED))
 
 
 MAX_ORDERS = 720  # every order of up to six contacts
