@@ -373,3 +373,31 @@ def test_the_certificate_checks_friction_against_the_slip_in_a_mechanics_system(
     found = checks(hit, moved, turned)
     assert found["momentum"] < 1e-40 and found["tip.cone"] < 1e-40
     assert found["tip.against_slip"] > 1e-3
+
+
+def test_a_mechanics_contact_still_closing_after_is_caught_at_any_rule_but_sequential():
+    # the plastic tip (e = 0) with its impulse short by a part in 10^14: the momentum
+    # balance holds, the tip still closes at 1e-14 of its speed before. The built-in
+    # shapes' certificate allows a closing speed only to the sequential rule, within
+    # that rule's settling line (1e-40 of the largest speed); the system's certificate
+    # allowed 1e-12 of it to every rule, and printed this answer.
+    from rigidimpact.mechanics.certify import checks
+    from rigidimpact.solve.certificate import assess
+
+    hit = _tip(restitution=0).at(V)
+    right = hit.solve()
+    assert abs(right.tangential["tip"]) < 1e-45  # smooth
+    P = sp.Matrix([right.impulses["tip"], 0])
+    assert checks(hit, sp.Matrix(right.speeds_after), P)["tip.opens"] < 1e-45
+    short = P * (1 - sp.Rational(1, 10 ** 14))
+    moved = sp.Matrix(hit.u_before) + sp.Matrix(hit.M).inv() * sp.Matrix(hit.J).T * short
+    found = checks(hit, moved, short)
+    assert found["momentum"] < 1e-40
+    closing = -(sp.Matrix(hit.J) * moved)[0]
+    assert 0 < closing < 1e-13 * found["_scale"]
+    assert found["tip.opens"] == pytest.approx(float(closing), rel=1e-9)
+    for rule in ("simultaneous", "driven"):
+        assert any(f.startswith("tip.opens") for f in assess(found, rule, right.contacts)[1])
+    assert not any(f.startswith("tip.opens") for f in assess(
+        {**found, "tip.opens": found["_scale"] * sp.Float(1e-41)}, "sequential",
+        right.contacts)[1])

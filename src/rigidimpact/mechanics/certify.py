@@ -23,13 +23,12 @@ from rigidimpact.solve.certificate import (
     random_points,
 )
 
-__all__ = ["checks", "FLOAT_DIGITS", "CHECK_TOLERANCE", "SETTLING", "wide"]
+__all__ = ["checks", "FLOAT_DIGITS", "CHECK_TOLERANCE", "wide"]
 
 FLOAT_DIGITS = 50  # numbers out of the rationals are solved at this precision
 # a residual of the checks beyond this (relative to the largest speed or impulse) is a
 # wrong answer: the exact paths give zero, the floating ones about 1e-45
 CHECK_TOLERANCE = 1e-30
-SETTLING = 1e-12  # the sequential rule's passes end once no contact closes faster
 
 
 def wide(x: Any) -> sp.Expr:
@@ -47,11 +46,11 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
     impulse's generalized impulse ``P . dv/du``), each contact's velocity before and
     after in its frame, and the energy. Each contact's laws are the built-in shapes'
     certificate's own (:func:`rigidimpact.solve.certificate.contact_residuals`): no
-    pull, no closing after (beyond the sequential rule's settling), the cone or
-    smoothness or sticking, friction's direction and end, the restitution law's end
-    where the velocities fix it. A system built without its bodies is checked with M
-    and J themselves; a closed form (symbols left) at seeded random rational points
-    (:func:`_at_points`)."""
+    pull, no closing after (a sequential run within the rule's own settling line, as
+    the built-in shapes'), the cone or smoothness or sticking, friction's direction and
+    end, the restitution law's end where the velocities fix it. A system built without
+    its bodies is checked with M and J themselves; a closed form (symbols left) at
+    seeded random rational points (:func:`_at_points`)."""
     numbers = [*u_after, *P, *system.u_before, *system.M, *system.J]
     if not all(sp.sympify(x).is_number for x in numbers):
         return _at_points(system, u_after, P, rule)
@@ -79,8 +78,6 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
                 exact=False, speed=scale, acted=p[k] > 0,
                 whole_impact=len(system.contacts) == 1 or rule == "simultaneous",
                 rule=rule, alone=len(system.contacts) == 1))
-            # a sequential run is cut where no contact closes faster than its settling
-            out[f"{c.name}.opens"] = max(0, out[f"{c.name}.opens"] - SETTLING * scale)
         out["energy"] = max(0, kinetic[1] - kinetic[0])
         out["_scale"] = scale
         out["_kinetic"] = kinetic[0]
