@@ -77,8 +77,9 @@ def test_the_barbell_W_is_the_papers_denominator():
 
 @pytest.mark.parametrize("case", range(10))
 def test_laws_impose_what_they_print(case):
-    # the solver's conditions are the printed laws at the kicked bodies, and they equal
-    # the contact-space forms v+_n = -e v-_n and v+_t = 0 written with W
+    # the printed laws at the kicked bodies are the contact-space conditions every path
+    # solves with (each law's one face, linear_conditions), written with W:
+    # v+_n = -e v-_n and v+_t = 0
     generator = random.Random(SEED - case)
     first, second = random_pair(generator)
     core = ImpulseProblem((first, second))
@@ -86,10 +87,14 @@ def test_laws_impose_what_they_print(case):
     kicked = core.bodies_after(impulse)
     e = sp.Rational(generator.randint(0, 10), 10)
     v_before, v_after = core.velocity_before, core.velocity_after(impulse)
-    (newton,) = NewtonRestitution(e).conditions((first, second), kicked, impulse)
-    assert sp.expand(newton - (v_after[0] + e * v_before[0])) == 0
-    (stick,) = Stick().conditions((first, second), kicked, impulse)
-    assert sp.expand(stick - v_after[1]) == 0
+    law = NewtonRestitution(e)
+    (newton,) = law.equations((first, second), kicked)
+    assert sp.expand(newton.residual - (v_after[0] + e * v_before[0])) == 0
+    (stick,) = Stick().equations((first, second), kicked)
+    faced = Stick().linear_conditions(v_before, v_after, impulse, law.leaving(v_before[0]))
+    assert sp.expand(stick.residual - v_after[1]) == 0
+    assert [sp.expand(x) for x in faced] == [sp.expand(newton.residual),
+                                             sp.expand(stick.residual)]
 
 
 @pytest.mark.parametrize("case", range(12))

@@ -312,16 +312,20 @@ class ContactImpulse:
 
 
 class ContactLaw:
-    """A law acting at the contact, as printed and as solved.
+    """A law acting at the contact: one face, in contact space, that every path solves
+    with (the two-body derivation, the rules, space, a mechanics system), and its
+    printed form.
 
-    ``equations(before, after)`` are the labelled laws over the unknown motion after;
-    ``conditions(before, kicked, impulse)`` are the residuals the impulse must zero,
-    where `kicked` are the bodies after receiving the impulse, so the solver imposes the
-    printed law itself. A new law is one subclass here and its entry in
-    :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`. A restitution law has one face
-    in contact space, which every path asks in the plane and in space: the normal
-    velocity it asks after a straight impulse path (:meth:`NewtonRestitution.leaving`,
-    from which its printed equation is built), the end of a bent path in closed form
+    A tangential law states its impulse in the contact's frame, with one tangent (the
+    plane) or two (space): as conditions linear in the velocities after and the
+    impulse (:meth:`linear_conditions`), or as the courses of a bent impulse path
+    (:meth:`regimes`, Routh's method). :meth:`impulse` is what every path asks of it.
+    ``equations(before, after)`` print the law over the unknown motion after; by
+    default they are read from :meth:`linear_conditions` itself. A new law is one
+    subclass here and its entry in :data:`RESTITUTION_LAWS` or :data:`TANGENTIAL_LAWS`.
+    A restitution law has one face in contact space too: the normal velocity it asks
+    after a straight impulse path (:meth:`NewtonRestitution.leaving`, from which its
+    printed equation is built), the end of a bent path in closed form
     (``end_of_bent_path``, Routh's method) and in floating point (``end_event``, the
     3-D integrators, one implementation a law in :mod:`rigidimpact.laws.ends`), and
     the check of that end from the path alone (``end_residual``). A kinematic law
@@ -329,7 +333,7 @@ class ContactLaw:
     """
 
     name = ""
-    solved_by_regimes = False  # True: the impulse comes from `regimes`, not `conditions`
+    solved_by_regimes = False  # True: the impulse comes from `regimes`, not linear conditions
     # the states the law allows a contact at the velocity level, where several contacts
     # act together (the simultaneous rule): "on" (pushing, no tangential impulse),
     # "stick" (no slip after), "slide+"/"slide-" (on the friction cone's edge); empty:
@@ -364,16 +368,31 @@ class ContactLaw:
 
     def equations(self, before: tuple[Body, Body],
                   after: tuple[Body, Body]) -> tuple[Equation, ...]:
-        raise NotImplementedError
+        """The law printed over the motion after: each of its tangential conditions
+        (:meth:`linear_conditions`, after the restitution law's row) that the touching
+        points' velocities state alone, at O in the contact's frame. A law whose
+        conditions hold the impulse itself (smooth: no tangential impulse) prints its
+        own form.
+
+        Examples
+        --------
+        >>> a, b = Body.particle(1, (2, 1), "a"), Body.particle(1, (0, 3), "b")
+        >>> [eq.residual for eq in ContactLaw.equations(Stick(), (a, b), (a, b))]
+        [2]
+        """
+        def relative(pair: tuple[Body, Body]) -> sp.Matrix:
+            return sp.Matrix(pair[1].contact_velocity) - sp.Matrix(pair[0].contact_velocity)
+
+        impulse = sp.Matrix([sp.Dummy("P_n"), sp.Dummy("P_t")])
+        v_after = relative(after)
+        rows = self.linear_conditions(relative(before), v_after, impulse, v_after[0])[1:]
+        return tuple(Equation(f"{self.name}: tangential law at O", "", row, sp.Integer(0),
+                              self.name) for row in rows if not row.has(*impulse))
 
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:
         """The courses of the impact, for a law that is not a linear condition."""
         raise NotImplementedError(f"{type(self).__name__} is imposed as linear conditions")
-
-    def conditions(self, before: tuple[Body, Body], kicked: tuple[Body, Body],
-                   impulse: sp.MatrixBase) -> list[sp.Expr]:
-        return [eq.residual for eq in self.equations(before, kicked)]
 
     def impulse(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution, tolerance: float | None = None
@@ -400,15 +419,13 @@ class ContactLaw:
         space, one tangent or two), that a law imposed as linear conditions asks to
         vanish: the normal velocity after the restitution law asks (`leaving`, its
         :meth:`NewtonRestitution.leaving` of ``v_before[0]``) and the tangential
-        conditions. Any solver of W P = v+ - v- may impose them. A law written only
-        as its printed equations has none: it is refused in one line wherever its
-        contact-space face is asked (several contacts, space, a mechanics system),
-        never taken for another law."""
+        conditions. Any solver of W P = v+ - v- may impose them. A law that states
+        neither these nor :meth:`regimes` has no face to solve with: it is refused in
+        one line on every path, never taken for another law."""
         raise InputError(f"{self.name or type(self).__name__}.tangential",
-                         "this law is written only as its printed equations (equations); "
-                         "the rules and 3-D contacts need its contact-space face too "
-                         "(linear_conditions, or regimes): the two-body derivation of "
-                         "one contact takes it as it is")
+                         "this law states no contact-space face (linear_conditions, or "
+                         "regimes), which every path solves with; printed equations "
+                         "alone do not fix an impulse")
 
     def _linear(self, W, v_before, restitution) -> sp.Matrix:
         P = sp.Matrix(sp.symbols(f"p0:{len(v_before)}"))
@@ -586,9 +603,6 @@ class Smooth(ContactLaw):
     def equations(self, before, after):
         return tuple(tangential_momentum(b, a) for b, a in zip(before, after, strict=True)
                      if b.support == "free")
-
-    def conditions(self, before, kicked, impulse):
-        return [impulse[1]]
 
     def linear_conditions(self, v_before, v_after, impulse, leaving) -> list[sp.Expr]:
         return [v_after[0] - leaving, *impulse[1:]]  # the restitution law; no friction
@@ -785,9 +799,6 @@ class Coulomb(ContactLaw):
 
     def equations(self, before, after):
         return ()
-
-    def conditions(self, before, kicked, impulse):
-        return []  # no linear condition: see regimes
 
     def regimes(self, W: sp.MatrixBase, v_before: sp.MatrixBase,
                 restitution: NewtonRestitution) -> tuple:

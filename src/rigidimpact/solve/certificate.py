@@ -22,7 +22,8 @@ negative):
 - ``CONTACT.cone``: Coulomb's cone, ``max(0, |P_t| - mu P_n)``; ``CONTACT.smooth``: a
   smooth contact's ``|P_t|``; ``CONTACT.sticks``: a sticking contact's slip after;
   ``CONTACT.rough``: Walton's law with no cone, the slip after against ``-beta`` times
-  the slip before;
+  the slip before; ``CONTACT.tangential_law``: a user's law that none of these states,
+  its own tangential conditions (its one face, ``linear_conditions``) at the totals;
 - friction's direction and end (one contact's impact, or the simultaneous rule):
   ``CONTACT.against_slip`` (on the cone's edge, friction never acts along the slip
   after, or past Walton's target), ``CONTACT.slides`` (inside a Coulomb cone, the
@@ -459,6 +460,16 @@ def contact_residuals(name: str, laws: tuple[Any, Any], p_n: Any, p_t: Sequence[
     if mu is None and beta is not None and friction.grips:  # Walton's, no cone
         out[f"{name}.rough"] = max(abs(a + num(beta) * b)
                                    for a, b in zip(slip, slip_before, strict=True))
+    elif mu is None and friction.grips and not friction.unknown_tangential and acted \
+            and whole_impact and not friction.solved_by_regimes:
+        # a law none of the above states (a user's): its own tangential conditions,
+        # asked of its one face at the totals
+        def big(xs: Sequence[Any]) -> sp.Matrix:
+            return sp.Matrix([as_sympy(x) for x in xs])
+
+        rows = friction.linear_conditions(big(before), big(after), big([p_n, *p_t]),
+                                          as_sympy(v_after))[1:]
+        out[f"{name}.tangential_law"] = max([zero, *(abs(num(r)) for r in rows)])
     if mu is not None and friction.grips and p_n > 0 and whole_impact:
         out.update(friction_residuals(name, friction, num, p_n, p_t, slip_before, slip,
                                       exact, speed))

@@ -362,27 +362,15 @@ class Impact:
         return certified(self._solve())
 
     def _solve(self) -> Solution:
-        before = self.before
-        core = ImpulseProblem(before)
+        core = ImpulseProblem(self.before)
         if self.contact.frictional:
             return self._solve_frictional(core)
-        impulses = [sp.Dummy("P_n", real=True), sp.Dummy("P_t", real=True)]
-        impulse = sp.Matrix(impulses)
-        kicked = core.bodies_after(impulse)
-        conditions = [c for law in self._contact_laws()
-                      for c in law.conditions(before, kicked, impulse)]
-        matrix, rhs = sp.linear_eq_to_matrix(conditions, impulses)
-        if matrix.det().is_zero:
-            if self.contact.laws[1].grips and sp.cancel(core.W.det()).is_zero:
-                raise InputError("contact.tangential", f"{self.contact.tangential}: the "
-                                 "touching points have one degree of freedom here (a body "
-                                 "that can only turn, against a fixed one), so they cannot "
-                                 "both stop slipping and leave by the restitution law; "
-                                 "tangential = \"coulomb\" follows them (Routh's method)")
-            raise InputError("bodies", "the impact equations are singular for these bodies: "
-                             "the contact laws do not fix the impulse")
-        normal, tangential = (tidy(x) for x in matrix.LUsolve(rhs))
-        return self._solved_by(core, (normal, tangential))
+        # the tangential law's one face, in contact space, as every path asks it (the
+        # rules, space, a mechanics system): its printed equations are what it imposes
+        restitution, tangential = self._contact_laws()
+        found = tangential.impulse(core.W, core.velocity_before, restitution)
+        normal, along = (tidy(x) for x in found.impulse)
+        return self._solved_by(core, (normal, along))
 
     def in_terms_of(self, normal: sp.Symbol) -> dict[sp.Symbol, sp.Expr]:
         """Each unknown motion after a smooth impact written with its normal impulse

@@ -69,7 +69,6 @@ __all__ = ["SpaceCollision", "solve_space"]
 
 # the rules several 3-D contacts take (the compliant rule is not built in 3-D)
 RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
-TANGENTIAL_3D = ("smooth", "stick", "coulomb", "rough")
 
 
 @dataclass(frozen=True)
@@ -124,9 +123,6 @@ class SpaceCollision:
                                  "with three components")
             if c.bodies is None or not set(c.bodies) <= set(names):
                 raise InputError(f"{c.name}.bodies", "must name two of the bodies")
-            if c.tangential not in TANGENTIAL_3D:
-                raise InputError(f"{c.name}.tangential", f"in 3-D: one of "
-                                 f"{', '.join(TANGENTIAL_3D)} so far, not {c.tangential!r}")
             if c.tangential == "stick" and c.law != "newton":
                 raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
             # several contacts acting together (or one driving the rest) take the laws
