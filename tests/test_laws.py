@@ -37,7 +37,8 @@ def test_a_new_law_is_one_class(monkeypatch):
     # centre keeps 1 - 2 (1 + k)/7 = 3/7 of its tangential velocity, the contact
     # point's tangential velocity reverses, and it leaves spinning at -(10/7) v_t / r.
     # The same class, with nothing written for any path, gives that answer through the
-    # two-body derivation, every rule of the several-contact core, and in space
+    # two-body derivation, every rule of the several-contact core, a mechanics system
+    # and in space
     from rigidimpact.model.space import Body3
     from rigidimpact.solve.collision import Collision
     from rigidimpact.solve.rules import Driven, Sequential, Simultaneous
@@ -68,6 +69,29 @@ def test_a_new_law_is_one_class(monkeypatch):
         assert (r["ball.vx"], r["ball.vy"], r["ball.omega"]) == \
             (sp.Rational(3, 7), 1, -sp.Rational(10, 7)), rule
         assert out.checks["floor.tangential_law"] == 0
+
+    # and as a sympy.physics.mechanics system (its contact rows from its own kinematics)
+    import sympy.physics.mechanics as me
+
+    import rigidimpact as ri
+
+    x, y, th = me.dynamicsymbols("x y theta")
+    ux, uy, w = me.dynamicsymbols("u_x u_y w")
+    N = me.ReferenceFrame("N")
+    A = N.orientnew("A", "Axis", [th, N.z])
+    A.set_ang_vel(N, w * N.z)
+    C = me.Point("C")
+    C.set_vel(N, ux * N.x + uy * N.y)
+    below = C.locatenew("P", -N.y)
+    below.v2pt_theory(C, N, A)
+    kane = me.KanesMethod(N, [x, y, th], [ux, uy, w],
+                          [x.diff() - ux, y.diff() - uy, th.diff() - w])
+    kane.kanes_equations([me.RigidBody("ball", C, A, 1, (
+        me.inertia(A, 0, 0, sp.Rational(2, 5)), C))], [])
+    system = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        below, N.y, restitution=1, tangential="reverse", name="floor")], frame=N)
+    out = system.at({x: 0, y: 0, th: 0, ux: 1, uy: -1, w: 0}).solve()
+    assert list(out.speeds_after) == [sp.Rational(3, 7), 1, -sp.Rational(10, 7)]
 
     # and in space, sliding along both tangents: each keeps 3/7 of its velocity
     sphere = Body3.sphere(1, 1, (0, 0, 1), (1, 2, -1), name="ball")
