@@ -101,15 +101,32 @@ def _tidied(expr: sp.Expr) -> sp.Expr:
               if not (radicals and f.args[0].is_number)}
     for angle in sorted(angles, key=sp.default_sort_key):
         s, c = sp.sin(angle), sp.cos(angle)
-        expanded = sp.cancel(best)
+        expanded = _expanded(best)
         for old, new in ((c, s), (s, c)):
             swapped = _pythagoras(expanded, old, new)
             if swapped == expanded:  # no power of `old` to rewrite
                 continue
             candidate = _positive_lead(sp.factor(swapped))
             if sp.count_ops(candidate) < sp.count_ops(best):
-                best, expanded = candidate, sp.cancel(candidate)
+                best, expanded = candidate, _expanded(candidate)
     return best
+
+
+def _expanded(factored: sp.Expr) -> sp.Expr:
+    """A factored fraction with its numerator and denominator multiplied out: each
+    power of sin or cos is then in sight of :func:`_pythagoras`. Its factors are
+    already coprime, so no gcd is needed (``cancel`` would seek one). The rewrite
+    ``cos^2 -> 1 - sin^2`` maps numerator and denominator alike, so what ``factor``
+    makes of the result does not depend on how the fraction was written.
+
+    Examples
+    --------
+    >>> x, t = sp.Symbol("x"), sp.Symbol("t", real=True)
+    >>> _expanded((x + 1) * sp.cos(t) / (x * (x - sp.cos(t))))
+    (x*cos(t) + cos(t))/(x**2 - x*cos(t))
+    """
+    numerator, denominator = sp.fraction(factored)
+    return sp.expand(numerator) / sp.expand(denominator)
 
 
 def _pythagoras(expr: sp.Expr, old: sp.Expr, other: sp.Expr) -> sp.Expr:
