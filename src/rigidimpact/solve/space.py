@@ -355,16 +355,6 @@ class SpaceCollision:
             found["_tolerance"] = max(1e-8, 1000 * integrated)
         return found
 
-    def _pinned(self, acting: Sequence[Contact], rows: Mapping[str, np.ndarray],
-                P: Mapping[str, Sequence[Any]]) -> dict[str, tuple[sp.Expr, ...]]:
-        """The joints' impulses (:meth:`joint_impulses`) of contacts solved in floating
-        point, from their rows and impulses."""
-        if not self.joints:
-            return {}
-        generalized = sum((rows[c.name].T @ np.array([float(x) for x in P[c.name]])
-                           for c in acting), np.zeros(6 * len(self.free)))
-        return self.joint_impulses(sp.Matrix([sp.Float(x, 30) for x in generalized]))
-
     def _every_contact(self, solved: Solution) -> Solution:
         """The answer with every contact in the scene's order, a contact that took no part
         with zero impulses (``impulse`` is the first contact's, as in the plane)."""
@@ -469,25 +459,23 @@ class SpaceCollision:
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
                  notes: Sequence[str], energy: tuple[Any, Any],
-                 checks: Mapping[str, Any], **rule: Any) -> Solution:
+                 checks: Mapping[str, Any], pinned: Mapping[str, Sequence[Any]],
+                 **rule: Any) -> Solution:
         """The one Solution of several 3-D contacts solved together (exactly, or in
-        floating point), certified by its own residuals."""
+        floating point), certified by its own residuals; `pinned`: the joints'
+        impulses the certificate checked, given as they are (in floating point, to
+        17 digits)."""
         before, lost = energy
         exact = not any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
                         for x in (*u_after, *(x for p in P.values() for x in p)))
         if exact:
             speeds_after = sp.ImmutableMatrix(list(u_after))
-            pinned = self.joint_impulses(sum(
-                (self.rows(c).T * sp.Matrix(list(P[c.name])) for c in acting),
-                sp.zeros(6 * len(self.free), 1))) if self.joints else {}
             lost = sp.radsimp(lost)
         else:
             speeds_after = sp.ImmutableMatrix([x if isinstance(x, sp.Float) else
                                                sp.Float(x, 17) for x in u_after])
-            rows = {c.name: np.array(self.rows(c).evalf(30), dtype=float)
-                    for c in acting} if self.joints else {}
-            pinned = {name: tuple(sp.Float(x, 17) for x in parts) for name, parts in
-                      self._pinned(acting, rows, P).items()}
+            pinned = {name: tuple(sp.Float(x, 17) for x in parts)
+                      for name, parts in pinned.items()}
         return certified(Solution(
             joint_impulses=pinned,
             before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
@@ -569,7 +557,8 @@ class _SpaceProblem(RowsProblem):
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
         return space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
-                              notes, (before, lost), checks, rule=rule, order=tuple(order),
+                              notes, (before, lost), checks, pinned, rule=rule,
+                              order=tuple(order),
                               passes=passes, method=more.get("method", ""))
 
 
