@@ -459,7 +459,7 @@ class SpaceCollision:
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
                  notes: Sequence[str], energy: tuple[Any, Any],
-                 checks: Mapping[str, Any], pinned: Mapping[str, Sequence[Any]],
+                 checks: Mapping[str, Any], pinned: Mapping[str, tuple[Any, ...]],
                  **rule: Any) -> Solution:
         """The one Solution of several 3-D contacts solved together (exactly, or in
         floating point), certified by its own residuals; `pinned`: the joints'
