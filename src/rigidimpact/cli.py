@@ -42,11 +42,12 @@ class _Parser(argparse.ArgumentParser):
 def _derivation(target: str):
     """A built-in problem by name, or a scene file by path."""
     from rigidimpact.paper.problems import PROBLEMS, derive
-    from rigidimpact.scenes.space import load_any
 
     if target in PROBLEMS:
         return derive(target)
     if target.endswith(".toml") or Path(target).exists():
+        from rigidimpact.scenes.space import load_any  # a scene's reader, for scenes
+
         return load_any(target).derivation()
     raise InputError("problem", f"unknown problem {target!r}; use one of "
                      f"{', '.join(PROBLEMS)} or a scene file (.toml)")
@@ -113,10 +114,11 @@ def _checks_line(checks: dict[str, Any]) -> str:
 def _random_of(target: str) -> Any:
     """The scene's [random] table and the scene, or (None, None)."""
     from rigidimpact.paper.problems import PROBLEMS
-    from rigidimpact.scenes.space import load_any
 
     if target in PROBLEMS:
         return None, None
+    from rigidimpact.scenes.space import load_any
+
     scene = load_any(target)
     return getattr(scene, "random", None), scene
 
@@ -799,7 +801,8 @@ def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
                      description="Derive, verify and simulate impulsive planar collisions "
                                  "of rigid bodies (after Mungan, Eur. J. Phys. 28, 2007).")
-    parser.add_argument("--version", action="version", version=f"rigidimpact {_version()}")
+    parser.add_argument("--version", action=_Version, nargs=0,
+                        help="show the program's version number and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     p = sub.add_parser("derive", help="derive a collision symbolically")
@@ -896,6 +899,16 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_stability)
     return parser
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, read from the package's metadata only when
+    asked (reading it costs every other command's start)."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> NoReturn:
+        print(f"rigidimpact {_version()}")
+        parser.exit()
 
 
 def _version() -> str:
