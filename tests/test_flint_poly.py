@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import random
 
+import pytest
 import sympy as sp
 from sympy.polys import ZZ
 from sympy.polys.densearith import dmp_mul
@@ -57,3 +58,39 @@ def test_sympys_factor_and_cancel_are_unchanged_within_the_block():
             fast = (sp.factor(expr), sp.cancel(expr))
         assert [str(x) for x in fast] == [str(x) for x in own], expr
     assert sp.polys.factortools.dmp_zz_factor is dmp_zz_factor  # put back after
+
+
+@pytest.mark.parametrize("count", [100, pytest.param(500, marks=pytest.mark.slow)])
+def test_factor_made_in_flint_is_sympys_factor(count):
+    # flint_poly.factor makes the one fraction and its factors in FLINT where the
+    # expression is a rational function of symbols and of sines and cosines of
+    # symbols; SymPy's own factor is the reference, side by side on seeded nested
+    # expressions (sums of fractions, powers, negative powers, signs, common factors,
+    # names that SymPy sorts specially: x, y, t, e, m, M)
+    from rigidimpact.symbolic.flint_poly import _rational_factor, factor
+
+    rng = random.Random(48)
+    t = sp.Symbol("t", real=True)
+    atoms = [*sp.symbols("x y e m M"), sp.Symbol("theta", real=True), sp.sin(t), sp.cos(t)]
+
+    def polynomial():
+        return sp.Add(*(sp.Rational(rng.randint(-6, 6), rng.randint(1, 3)) * sp.Mul(
+            *(rng.choice(atoms) ** rng.randint(0, 2) for _ in range(2)))
+                        for _ in range(rng.randint(1, 3))))
+
+    fast = 0
+    for _ in range(count):
+        expr = polynomial() ** rng.randint(-1, 2) * polynomial() + polynomial() / (
+            polynomial() * rng.choice(atoms)) if rng.random() < 0.7 else \
+            sp.Mul(polynomial(), polynomial()) / polynomial() ** 2
+        if expr.has(sp.zoo, sp.nan):
+            continue
+        fast += _rational_factor(expr) is not None
+        assert factor(expr) == sp.factor(expr), expr
+    assert fast > count * 4 // 5
+    # out of its reach it is SymPy's own: pi, a radical, a float, a sine of a sum
+    x = sp.Symbol("x")
+    for expr in (sp.pi * x + x**2, sp.sqrt(x) + x, 0.5 * x + x**2,
+                 sp.sin(x + 1) ** 2 / (x - 1) + 1, sp.Integer(4)):
+        assert _rational_factor(expr) is None
+        assert factor(expr) == sp.factor(expr)

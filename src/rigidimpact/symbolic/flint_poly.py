@@ -11,7 +11,9 @@ the main one); a gcd with a positive leading coefficient and the two exact cofac
 the answer is SymPy's to the last term (the tests hold the two side by side on seeded
 random polynomials), and SymPy's own code sorts and assembles it.
 :func:`flint_polynomials` puts the two in for the duration of a block and puts SymPy's
-back after.
+back after. :func:`factor` goes further where an expression is a rational function of
+symbols and of their sines and cosines: the one fraction is made in FLINT too, not by
+SymPy's ``together``.
 
 Examples
 --------
@@ -28,15 +30,19 @@ from __future__ import annotations
 
 import contextlib
 from collections.abc import Iterator
+from math import lcm
 from typing import Any
 
+import sympy as sp
+from flint import fmpq, fmpq_mpoly_ctx, fmpz_mpoly_ctx
+from sympy.core.exprtools import _keep_coeff
 from sympy.polys import euclidtools, factortools
 from sympy.polys.densebasic import dmp_from_dict, dmp_to_dict
 from sympy.polys.factortools import _sort_factors
+from sympy.polys.polytools import _factors_product
+from sympy.polys.polyutils import _sort_gens, basic_from_dict
 
-__all__ = ["flint_polynomials", "zz_factor", "zz_gcd"]
-
-from flint import fmpz_mpoly_ctx
+__all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor"]
 
 _SYMPY = {"factor": factortools.dmp_zz_factor, "gcd": euclidtools.dmp_zz_heu_gcd}
 
@@ -98,3 +104,111 @@ def flint_polynomials() -> Iterator[None]:
     finally:
         factortools.dmp_zz_factor, euclidtools.dmp_zz_heu_gcd = (_SYMPY["factor"],
                                                                  _SYMPY["gcd"])
+
+
+def factor(expr: Any) -> Any:
+    """``sympy.factor(expr)``, the same expression, made in FLINT where `expr` is a
+    rational function of symbols and of sines and cosines of symbols with rational
+    coefficients; by SymPy itself otherwise (:func:`_rational_factor` says where).
+
+    SymPy puts `expr` over one denominator (``together``, whose term-by-term gcds cost
+    as much as the factoring) and factors each polynomial it finds. Here the one
+    fraction is made in FLINT's rational polynomials, reduced by one gcd, and its
+    numerator and denominator are factored over the integers; SymPy's own helpers then
+    assemble the answer from the same primitive factors (each with a positive leading
+    coefficient in the lexicographic order of SymPy's sorted generators) and the same
+    rational coefficient. A factorisation into primitive irreducible factors so
+    normalised is unique, so the answer is SymPy's to the last term (a test holds the
+    two side by side).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, y, t = sp.Symbol("x"), sp.Symbol("y"), sp.Symbol("t", real=True)
+    >>> expr = (x**2 - y**2) / (2 * y - 2 * x) + sp.sin(t) ** 2 / (x + y)
+    >>> factor(expr) == sp.factor(expr)
+    True
+    """
+    fast = _rational_factor(sp.sympify(expr))
+    return sp.factor(expr) if fast is None else fast
+
+
+def _rational_factor(expr: Any) -> Any:
+    """The fast path of :func:`factor`, None where it does not apply (a float, a radical,
+    pi, a function other than sin and cos, a sine of anything but a symbol, two
+    generators of one name)."""
+    gens: set[Any] = set()
+    for node in sp.preorder_traversal(expr):
+        if node.is_Symbol:
+            gens.add(node)
+        elif isinstance(node, (sp.sin, sp.cos)):
+            if not node.args[0].is_Symbol:
+                return None
+            gens.add(node)
+        elif node.is_Rational or node.is_Add or node.is_Mul:
+            continue
+        elif node.is_Pow:
+            if not node.exp.is_Integer:
+                return None
+        else:
+            return None
+    if not gens or len({str(g) for g in gens}) < len(gens):
+        return None  # a number, or two names alike (their order is no one's): SymPy's own
+    order = _sort_gens(tuple(gens))
+    ctx = fmpq_mpoly_ctx.get(tuple(f"x{i}" for i in range(len(order))), "lex")
+    one, zero = ctx.from_dict({}) + 1, ctx.from_dict({})
+    place = dict(zip(order, ctx.gens(), strict=True))
+    seen: dict[Any, tuple[Any, Any]] = {}
+
+    def fraction(node: Any) -> tuple[Any, Any]:
+        if node in place:
+            return place[node], one
+        if node in seen:
+            return seen[node]
+        if node.is_Rational:
+            out = (one * fmpq(int(node.p), int(node.q)), one)
+        elif node.is_Add:
+            num, den = zero, one
+            for term in node.args:
+                n, d = fraction(term)
+                num, den = (num + n, den) if d == den else (num * d + n * den, den * d)
+            out = (num, den)
+        elif node.is_Mul:
+            num, den = one, one
+            for factor_ in node.args:
+                n, d = fraction(factor_)
+                num, den = num * n, den * d
+            out = (num, den)
+        else:  # an integer power
+            n, d = fraction(node.base)
+            k = int(node.exp)
+            out = (n ** k, d ** k) if k >= 0 else (d ** -k, n ** -k)
+        seen[node] = out
+        return out
+
+    num, den = fraction(expr)
+    if den == 0:
+        return None
+    if num == 0:
+        return sp.Integer(0)
+    common = num.gcd(den)
+    num, den = num / common, den / common
+    coeff = sp.Integer(1)
+    factors: list[tuple[Any, Any]] = []
+    for part, sign in ((num, 1), (den, -1)):
+        whole, scale = _integral(part)
+        content, found = whole.factor()
+        c = sp.Rational(int(content), 1) / sp.Rational(int(scale.p), int(scale.q))
+        coeff *= c if sign == 1 else 1 / c
+        for f, k in found:
+            rep = {m: sp.Integer(int(v)) for m, v in f.to_dict().items()}
+            factors.append((basic_from_dict(rep, *order), sign * int(k)))
+    return _keep_coeff(coeff, _factors_product(factors))
+
+
+def _integral(p: Any) -> tuple[Any, Any]:
+    """A rational polynomial as an integer one and the scale taken out: ``p = q / s``."""
+    terms = p.to_dict()
+    scale = lcm(*(int(c.q) for c in terms.values()))
+    ctx = fmpz_mpoly_ctx.get(tuple(p.context().names()), "lex")
+    return ctx.from_dict({m: int(c * scale) for m, c in terms.items()}), fmpq(scale)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from rigidimpact.symbolic.flint_poly import flint_polynomials
+from rigidimpact.symbolic.flint_poly import factor, flint_polynomials
 
 __all__ = ["tidy", "recognise", "solve_linear", "polynomial_roots"]
 
@@ -83,8 +83,10 @@ def _shield(expr: sp.Expr) -> tuple[sp.Expr, dict[sp.Dummy, sp.Expr]]:
 
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
-    # SymPy's factorisation, its polynomials of several variables factored by FLINT
-    # (the same factors, in compiled code: flint_poly's notes)
+    # SymPy's factorisation, made in FLINT (the one fraction and its factors) where the
+    # expression is a rational function of symbols and their sines and cosines, and by
+    # SymPy with its polynomials of several variables factored by FLINT elsewhere: the
+    # same answer, in compiled code (flint_poly's notes)
     with flint_polynomials():
         return _tidied(expr)
 
@@ -92,7 +94,7 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 def _tidied(expr: sp.Expr) -> sp.Expr:
     # ``factor`` puts the expression over one denominator and factors both sides, so
     # common factors cancel without a separate (and as costly) ``cancel`` first
-    best = _positive_lead(sp.factor(expr))
+    best = _positive_lead(factor(expr))
     # a numeric angle under a square root (Stronge's law with the data in numbers) makes
     # each trial factorisation cost seconds; such a formula is left as factored
     radicals = any(not p.exp.is_Integer and p.base.has(sp.sin, sp.cos)
@@ -106,7 +108,7 @@ def _tidied(expr: sp.Expr) -> sp.Expr:
             swapped = _pythagoras(expanded, old, new)
             if swapped == expanded:  # no power of `old` to rewrite
                 continue
-            candidate = _positive_lead(sp.factor(swapped))
+            candidate = _positive_lead(factor(swapped))
             if sp.count_ops(candidate) < sp.count_ops(best):
                 best, expanded = candidate, _expanded(candidate)
     return best
