@@ -94,3 +94,36 @@ def test_factor_made_in_flint_is_sympys_factor(count):
                  sp.sin(x + 1) ** 2 / (x - 1) + 1, sp.Integer(4)):
         assert _rational_factor(expr) is None
         assert factor(expr) == sp.factor(expr)
+
+
+def test_a_zero_decided_in_flint_is_decided_as_sympy_decides_it():
+    # verify's symbolic zero: every sine and cosine as a rational function of
+    # tan(angle/2), then the one fraction's numerator; made in FLINT it must say what
+    # SymPy's together and expand say, on differences that vanish (an expression less
+    # its own rewriting, sin^2 + cos^2 = 1 inside) and on ones that do not
+    from rigidimpact.symbolic.compare import _rational_trig, symbolic_zero
+    from rigidimpact.symbolic.flint_poly import rational_zero
+
+    rng = random.Random(49)
+    t = sp.Symbol("t", real=True)
+    x, m, e = sp.symbols("x m e", positive=True)
+    atoms = [x, m, e, sp.sin(t), sp.cos(t)]
+
+    def part():
+        return sp.Add(*(rng.randint(-4, 4) * sp.Mul(*(rng.choice(atoms) ** rng.randint(0, 2)
+                                                      for _ in range(2)))
+                        for _ in range(rng.randint(1, 3)))) + rng.randint(1, 3) * x
+
+    seen = {True: 0, False: 0}
+    for _ in range(60):
+        a, b = part(), part()
+        if sp.expand(b) == 0:
+            continue
+        expr = a / b + (1 - sp.sin(t) ** 2 - sp.cos(t) ** 2) * a
+        other = sp.expand(a) / sp.expand(b)
+        for difference in (expr - other, expr - other + x / b ** 2):
+            rational = _rational_trig(difference)
+            own = sp.expand(sp.fraction(sp.together(rational))[0]) == 0
+            assert rational_zero(rational) is own and symbolic_zero(difference) is own
+            seen[own] += 1
+    assert seen[True] >= 50 and seen[False] >= 50

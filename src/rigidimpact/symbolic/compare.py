@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
+from rigidimpact.symbolic.flint_poly import rational_zero
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Verdict", "agree", "same_equation", "symbolic_zero", "all_of", "DIGITS",
@@ -72,11 +73,15 @@ def symbolic_zero(expr: sp.Expr) -> bool:
     True
     """
     expr = sp.sympify(expr)
+    rational = _rational_trig(expr)
+    # one fraction p / q: it is zero exactly where its numerator is zero (no gcd needed
+    # to decide it), made in FLINT where every atom is a symbol
+    decided = rational_zero(rational)
+    if decided is not None:
+        return decided
     if sp.expand(expr) == 0:  # cancels term by term: a proof of zero, found cheaply
         return True
-    # one fraction p / q: it is zero exactly where its numerator expands to zero (no
-    # gcd needed to decide it)
-    numerator, _ = sp.fraction(sp.together(_rational_trig(expr)))
+    numerator, _ = sp.fraction(sp.together(rational))
     return sp.expand(numerator) == 0
 
 

@@ -42,7 +42,7 @@ from sympy.polys.factortools import _sort_factors
 from sympy.polys.polytools import _factors_product
 from sympy.polys.polyutils import _sort_gens, basic_from_dict
 
-__all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor"]
+__all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor", "rational_zero"]
 
 _SYMPY = {"factor": factortools.dmp_zz_factor, "gcd": euclidtools.dmp_zz_heu_gcd}
 
@@ -137,6 +137,51 @@ def _rational_factor(expr: Any) -> Any:
     """The fast path of :func:`factor`, None where it does not apply (a float, a radical,
     pi, a function other than sin and cos, a sine of anything but a symbol, two
     generators of one name)."""
+    found = _fraction(expr)
+    if found is None:
+        return None
+    order, num, den = found
+    if len({str(g) for g in order}) < len(order):
+        return None  # two names alike (their order is no one's): SymPy's own
+    if num == 0:
+        return sp.Integer(0)
+    common = num.gcd(den)
+    num, den = num / common, den / common
+    coeff = sp.Integer(1)
+    factors: list[tuple[Any, Any]] = []
+    for part, sign in ((num, 1), (den, -1)):
+        whole, scale = _integral(part)
+        content, pieces = whole.factor()
+        c = sp.Rational(int(content), 1) / sp.Rational(int(scale.p), int(scale.q))
+        coeff *= c if sign == 1 else 1 / c
+        for f, k in pieces:
+            rep = {m: sp.Integer(int(v)) for m, v in f.to_dict().items()}
+            factors.append((basic_from_dict(rep, *order), sign * int(k)))
+    return _keep_coeff(coeff, _factors_product(factors))
+
+
+def rational_zero(expr: Any) -> bool | None:
+    """Whether `expr`, a rational function of symbols and of sines and cosines of
+    symbols (each taken as a variable of its own), is identically zero: its one
+    fraction's numerator, made in FLINT, is zero. None where `expr` is not such a
+    function, or a denominator in it vanishes identically.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, y = sp.symbols("x y")
+    >>> rational_zero(1 / (x - y) + 1 / (y - x)), rational_zero(x / y - 1)
+    (True, False)
+    """
+    found = _fraction(sp.sympify(expr))
+    return None if found is None else found[1] == 0
+
+
+def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
+    """`expr` as one fraction of FLINT's rational polynomials, numerator and denominator,
+    in SymPy's sorted generators (each symbol, each sine or cosine of a symbol); None
+    where `expr` holds anything else (a float, a radical, pi, another function, a sine
+    of anything but a symbol), is a number, or divides by an identical zero."""
     gens: set[Any] = set()
     for node in sp.preorder_traversal(expr):
         if node.is_Symbol:
@@ -152,8 +197,8 @@ def _rational_factor(expr: Any) -> Any:
                 return None
         else:
             return None
-    if not gens or len({str(g) for g in gens}) < len(gens):
-        return None  # a number, or two names alike (their order is no one's): SymPy's own
+    if not gens:
+        return None  # a number: SymPy's own
     order = _sort_gens(tuple(gens))
     ctx = fmpq_mpoly_ctx.get(tuple(f"x{i}" for i in range(len(order))), "lex")
     one, zero = ctx.from_dict({}) + 1, ctx.from_dict({})
@@ -187,23 +232,7 @@ def _rational_factor(expr: Any) -> Any:
         return out
 
     num, den = fraction(expr)
-    if den == 0:
-        return None
-    if num == 0:
-        return sp.Integer(0)
-    common = num.gcd(den)
-    num, den = num / common, den / common
-    coeff = sp.Integer(1)
-    factors: list[tuple[Any, Any]] = []
-    for part, sign in ((num, 1), (den, -1)):
-        whole, scale = _integral(part)
-        content, found = whole.factor()
-        c = sp.Rational(int(content), 1) / sp.Rational(int(scale.p), int(scale.q))
-        coeff *= c if sign == 1 else 1 / c
-        for f, k in found:
-            rep = {m: sp.Integer(int(v)) for m, v in f.to_dict().items()}
-            factors.append((basic_from_dict(rep, *order), sign * int(k)))
-    return _keep_coeff(coeff, _factors_product(factors))
+    return None if den == 0 else (order, num, den)
 
 
 def _integral(p: Any) -> tuple[Any, Any]:
