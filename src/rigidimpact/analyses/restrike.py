@@ -240,7 +240,11 @@ def _grid(lo: mpmath.mpf, hi: mpmath.mpf) -> list[mpmath.mpf]:
     """Uniform in the middle, geometric toward both ends (where roots can crowd)."""
     middle = [lo + (hi - lo) * j / GRID for j in range(1, GRID)]
     near = [mpmath.mpf(10) ** (-3 - 9 * j / END_GRID) for j in range(END_GRID + 1)]
-    return sorted(set([lo + x for x in near] + middle + [hi - x for x in near]))
+    if (hi - lo) / GRID <= near[0]:  # the ends' points reach into the middle's
+        return sorted(set([lo + x for x in near] + middle + [hi - x for x in near]))
+    # else in order as made (near falls from 1e-3 to 1e-12, within the middle's first
+    # and last step), so no sort of 2,600 multiprecision numbers is needed
+    return [lo + x for x in reversed(near)] + middle + [hi - x for x in near]
 
 
 def _scale(expr: sp.Expr) -> sp.Expr:
