@@ -108,7 +108,7 @@ def flint_polynomials() -> Iterator[None]:
 
 def factor(expr: Any) -> Any:
     """``sympy.factor(expr)``, the same expression, made in FLINT where `expr` is a
-    rational function of symbols and of sines and cosines of symbols with rational
+    rational function of symbols, pi and sines and cosines of symbols with rational
     coefficients; by SymPy itself otherwise (:func:`_rational_factor` says where).
 
     SymPy puts `expr` over one denominator (``together``, whose term-by-term gcds cost
@@ -135,8 +135,8 @@ def factor(expr: Any) -> Any:
 
 def _rational_factor(expr: Any) -> Any:
     """The fast path of :func:`factor`, None where it does not apply (a float, a radical,
-    pi, a function other than sin and cos, a sine of anything but a symbol, two
-    generators of one name)."""
+    a function other than sin and cos, a sine of anything but a symbol, two generators
+    of one name)."""
     found = _fraction(expr)
     if found is None:
         return None
@@ -180,11 +180,13 @@ def rational_zero(expr: Any) -> bool | None:
 def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
     """`expr` as one fraction of FLINT's rational polynomials, numerator and denominator,
     in SymPy's sorted generators (each symbol, each sine or cosine of a symbol); None
-    where `expr` holds anything else (a float, a radical, pi, another function, a sine
-    of anything but a symbol), is a number, or divides by an identical zero."""
+    where `expr` holds anything else (a float, a radical, another function, a sine of
+    anything but a symbol), is a number, or divides by an identical zero. pi is a
+    variable, as SymPy's factor takes it (it is transcendental: no polynomial with
+    rational coefficients vanishes at it)."""
     gens: set[Any] = set()
     for node in sp.preorder_traversal(expr):
-        if node.is_Symbol:
+        if node.is_Symbol or node is sp.pi:  # pi, transcendental, is SymPy's variable too
             gens.add(node)
         elif isinstance(node, (sp.sin, sp.cos)):
             if not node.args[0].is_Symbol:
