@@ -43,18 +43,24 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import mpmath
-import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.lazy import deferred
 from rigidimpact.paper import problems
 from rigidimpact.paper.published import CRITICAL_ANGLE_EQUATION, F
 from rigidimpact.symbolic.compare import Verdict, agree, symbolic_zero
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.notation import symbol
 from rigidimpact.symbolic.rewrite import polynomial_roots, tidy
+
+if TYPE_CHECKING:
+    import numpy as np
+else:  # the sweeps and frames alone use it: verify and the critical angle need none
+    np = deferred("numpy")
 
 __all__ = ["Restrike", "derive", "Edge", "CriticalAngle", "critical_angle", "windows",
            "restrike_turn", "sweep", "Sweep", "restrike_map", "strobe_frames", "DIGITS"]
