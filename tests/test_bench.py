@@ -83,7 +83,9 @@ def test_the_whole_quick_bench_writes_its_three_files(tmp_path, capsys):
     assert main(["bench", "--quick", "--out", str(out), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     _three_files(out, data)
-    assert {"ladder", "verify_vs_plain", "contacts"} <= set(data)
+    assert {"ladder", "verify_vs_plain", "start_vs_sympy", "contacts"} <= set(data)
+    start = data["start_vs_sympy"]
+    assert start["derive_ratio"] == start["derive_barbell_s"] / start["import_sympy_s"]
 
 
 def _three_files(out, data):

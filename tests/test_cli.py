@@ -241,6 +241,26 @@ def test_a_derivation_and_a_smooth_scene_load_no_numeric_library(command):
     assert done.stderr.strip().splitlines()[-1] == "[]"
 
 
+def test_a_built_in_derivation_reads_no_scene_and_no_package_metadata():
+    # `derive barbell` reads no scene file, so it loads no scene reader; the version
+    # is read from the package's metadata only for --version
+    import os
+    import subprocess
+    import sys
+
+    script = ("import sys\n"
+              "from rigidimpact.cli import main\n"
+              "assert main(['derive', 'barbell']) == 0\n"
+              "print(sorted(m for m in ('importlib.metadata', 'rigidimpact.scenes.space',"
+              " 'rigidimpact.scenes.scene') if m in sys.modules), file=sys.stderr)")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          check=True, env={**os.environ, "RIGIDIMPACT_CACHE": "off"})
+    assert done.stderr.strip().splitlines()[-1] == "[]"
+    shown = subprocess.run([sys.executable, "-m", "rigidimpact", "--version"],
+                           capture_output=True, text=True, check=True).stdout
+    assert shown.startswith("rigidimpact ") and shown.split()[1][0].isdigit()
+
+
 _SHIPPED = Path(__file__).resolve().parents[1] / "derivations"
 
 

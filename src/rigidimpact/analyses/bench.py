@@ -59,7 +59,8 @@ from rigidimpact.symbolic.notation import symbol
 from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
-           "verify_against_plain", "ladder_scene", "FAMILIES", "FLOOR"]
+           "verify_against_plain", "start_against_sympy", "ladder_scene", "FAMILIES",
+           "FLOOR"]
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
@@ -647,6 +648,33 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
             "ratio": times["ours"] / times["plain"]}
 
 
+def start_against_sympy(repeats: int = 3) -> dict[str, float]:
+    """The command line's start against importing SymPy alone: ``rigidimpact --help`` and
+    ``rigidimpact derive barbell`` (derived afresh: its result cache off) beside
+    ``python -c "import sympy"``; medians of fresh processes, timed in turn."""
+    import os
+
+    derive = "from rigidimpact.cli import main; main(['derive', 'barbell'])"
+    helped = ("import contextlib, io\nfrom rigidimpact.cli import main\n"
+              "with contextlib.redirect_stdout(io.StringIO()):\n"
+              "    try:\n        main(['--help'])\n    except SystemExit:\n        pass")
+    kept = os.environ.get("RIGIDIMPACT_CACHE")
+    os.environ["RIGIDIMPACT_CACHE"] = "off"  # the children's: each derives afresh
+    try:
+        times = _interleaved({"derive": lambda: _python(derive),
+                              "help": lambda: _python(helped),
+                              "sympy": lambda: _python("import sympy")}, repeats)
+    finally:
+        if kept is None:
+            del os.environ["RIGIDIMPACT_CACHE"]
+        else:
+            os.environ["RIGIDIMPACT_CACHE"] = kept
+    return {"derive_barbell_s": times["derive"], "help_s": times["help"],
+            "import_sympy_s": times["sympy"],
+            "derive_ratio": times["derive"] / times["sympy"],
+            "help_ratio": times["help"] / times["sympy"]}
+
+
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
               progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
     """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
@@ -704,6 +732,7 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
                                            10.0 if quick else 30.0,
                                            ("smooth",) if quick else ("smooth", "stick"))
         report["verify_vs_plain"] = verify_against_plain(1 if quick else 3)
+        report["start_vs_sympy"] = start_against_sympy(1 if quick else 5)
     if "contacts" in families:
         report["contacts"] = contacts_family(quick)
     return report
@@ -765,6 +794,12 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
         lines += ["", f"`rigidimpact verify` end to end {vp['verify_s']:.2f} s against a plain "
                       f"SymPy barbell script {vp['plain_barbell_s']:.2f} s: ratio "
                       f"{vp['ratio']:.2f}."]
+        st = report["start_vs_sympy"]
+        lines += ["", f"The command line's start against `python -c \"import sympy\"` "
+                      f"({st['import_sympy_s']:.2f} s): `rigidimpact derive barbell`, derived "
+                      f"afresh, {st['derive_barbell_s']:.2f} s (ratio "
+                      f"{st['derive_ratio']:.2f}); `rigidimpact --help` {st['help_s']:.2f} s "
+                      f"(ratio {st['help_ratio']:.2f})."]
     if "contacts" in report:
         family = report["contacts"]
         lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
