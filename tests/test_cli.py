@@ -222,40 +222,39 @@ def test_start_up_imports_only_what_is_needed():
     assert out.strip() == "[]"
 
 
-@pytest.mark.parametrize("command", [["derive", "barbell"],
-                                     ["evaluate", "derivations/newtons-cradle.toml"]])
-def test_a_derivation_and_a_smooth_scene_load_no_numeric_library(command):
-    # the paper's barbell and a smooth scene are exact algebra: the modules they load
-    # name numpy for the numeric paths, but only a stand-in is made until it is used
-    import subprocess
-    import sys
-
-    script = ("import sys\n"
-              "from rigidimpact.cli import main\n"
-              f"assert main({command!r}) == 0\n"
-              "print(sorted(m for m in ('numpy', 'scipy', 'matplotlib', 'numba', 'dask')"
-              " if m in sys.modules), file=sys.stderr)")
-    root = Path(__file__).resolve().parents[1]
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          check=True, cwd=root)
-    assert done.stderr.strip().splitlines()[-1] == "[]"
-
-
-def test_a_built_in_derivation_reads_no_scene_and_no_package_metadata():
-    # `derive barbell` reads no scene file, so it loads no scene reader; the version
-    # is read from the package's metadata only for --version
+def _loaded_by(command: list[str], modules: tuple[str, ...]) -> str:
+    """Which of `modules` a fresh process has loaded once it ran `command` (derived
+    afresh: the result cache off), as the sorted list's text."""
     import os
     import subprocess
     import sys
 
     script = ("import sys\n"
               "from rigidimpact.cli import main\n"
-              "assert main(['derive', 'barbell']) == 0\n"
-              "print(sorted(m for m in ('importlib.metadata', 'rigidimpact.scenes.space',"
-              " 'rigidimpact.scenes.scene') if m in sys.modules), file=sys.stderr)")
+              f"assert main({command!r}) == 0\n"
+              f"print(sorted(m for m in {modules!r} if m in sys.modules), file=sys.stderr)")
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          check=True, env={**os.environ, "RIGIDIMPACT_CACHE": "off"})
-    assert done.stderr.strip().splitlines()[-1] == "[]"
+                          check=True, cwd=Path(__file__).resolve().parents[1],
+                          env={**os.environ, "RIGIDIMPACT_CACHE": "off"})
+    return done.stderr.strip().splitlines()[-1]
+
+
+@pytest.mark.parametrize("command", [["derive", "barbell"],
+                                     ["evaluate", "derivations/newtons-cradle.toml"]])
+def test_a_derivation_and_a_smooth_scene_load_no_numeric_library(command):
+    # the paper's barbell and a smooth scene are exact algebra: the modules they load
+    # name numpy for the numeric paths, but only a stand-in is made until it is used
+    assert _loaded_by(command, ("numpy", "scipy", "matplotlib", "numba", "dask")) == "[]"
+
+
+def test_a_built_in_derivation_reads_no_scene_and_no_package_metadata():
+    # `derive barbell` reads no scene file, so it loads no scene reader; the version
+    # is read from the package's metadata only for --version
+    import subprocess
+    import sys
+
+    assert _loaded_by(["derive", "barbell"], ("importlib.metadata", "rigidimpact.scenes.space",
+                                              "rigidimpact.scenes.scene")) == "[]"
     shown = subprocess.run([sys.executable, "-m", "rigidimpact", "--version"],
                            capture_output=True, text=True, check=True).stdout
     assert shown.startswith("rigidimpact ") and shown.split()[1][0].isdigit()
