@@ -282,7 +282,7 @@ def test_no_window_at_the_fifth_order_root(capsys):
     assert "no re-strike" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("count", [4, pytest.param(30, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("count", [4, pytest.param(15, marks=pytest.mark.slow)])
 def test_the_scan_reads_in_double_precision_only_signs_it_is_sure_of(monkeypatch, count):
     # the scan for the outrace edges reads a grid point in double precision where its
     # sign is sure (away from the ends and from zero) and at 40 digits elsewhere; the
