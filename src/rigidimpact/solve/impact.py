@@ -366,7 +366,8 @@ class Impact:
         if self.contact.frictional:
             return self._solve_frictional(core)
         # the tangential law's one face, in contact space, as every path asks it (the
-        # rules, space, a mechanics system): its printed equations are what it imposes
+        # rules, space, a mechanics system); its printed equations show it, in the
+        # paper's unknowns, and are not solved apart
         restitution, tangential = self._contact_laws()
         found = tangential.impulse(core.W, core.velocity_before, restitution)
         normal, along = (tidy(x) for x in found.impulse)

@@ -67,7 +67,7 @@ else:
 
 __all__ = ["SpaceCollision", "solve_space"]
 
-# the rules several 3-D contacts take (the compliant rule is not built in 3-D)
+# the rules several 3-D contacts take: every rule, as in the plane
 RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
 
 
