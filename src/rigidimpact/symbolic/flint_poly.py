@@ -12,8 +12,8 @@ the answer is SymPy's to the last term (the tests hold the two side by side on s
 random polynomials), and SymPy's own code sorts and assembles it.
 :func:`flint_polynomials` puts the two in for the duration of a block and puts SymPy's
 back after. :func:`factor` goes further where an expression is a rational function of
-symbols and of their sines and cosines: the one fraction is made in FLINT too, not by
-SymPy's ``together``.
+symbols, pi and sines and cosines of symbols: the one fraction is made in FLINT too, not
+by SymPy's ``together``.
 
 Examples
 --------
@@ -113,7 +113,8 @@ def factor(expr: Any) -> Any:
 
     SymPy puts `expr` over one denominator (``together``, whose term-by-term gcds cost
     as much as the factoring) and factors each polynomial it finds. Here the one
-    fraction is made in FLINT's rational polynomials, reduced by one gcd, and its
+    fraction is made in FLINT's rational polynomials (a sum over its terms' least
+    common denominator), reduced by one gcd, and its
     numerator and denominator are factored over the integers; SymPy's own helpers then
     assemble the answer from the same primitive factors (each with a positive leading
     coefficient in the lexicographic order of SymPy's sorted generators) and the same
@@ -214,11 +215,17 @@ def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
             return seen[node]
         if node.is_Rational:
             out = (one * fmpq(int(node.p), int(node.q)), one)
-        elif node.is_Add:
-            num, den = zero, one
+        elif node.is_Add:  # over the least common denominator (the terms' gcds):
+            num, den = zero, one  # a product of them all would swell with every term
             for term in node.args:
                 n, d = fraction(term)
-                num, den = (num + n, den) if d == den else (num * d + n * den, den * d)
+                if d == den:
+                    num = num + n
+                elif d == one:
+                    num = num + n * den
+                else:
+                    common = den.gcd(d)
+                    num, den = num * (d / common) + n * (den / common), den * (d / common)
             out = (num, den)
         elif node.is_Mul:
             num, den = one, one
