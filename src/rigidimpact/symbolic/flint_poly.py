@@ -153,7 +153,7 @@ def _rational_factor(expr: Any) -> Any:
     for part, sign in ((num, 1), (den, -1)):
         whole, scale = _integral(part)
         content, pieces = whole.factor()
-        c = sp.Rational(int(content), 1) / sp.Rational(int(scale.p), int(scale.q))
+        c = sp.Rational(int(content), scale)
         coeff *= c if sign == 1 else 1 / c
         for f, k in pieces:
             rep = {m: sp.Integer(int(v)) for m, v in f.to_dict().items()}
@@ -162,7 +162,7 @@ def _rational_factor(expr: Any) -> Any:
 
 
 def rational_zero(expr: Any) -> bool | None:
-    """Whether `expr`, a rational function of symbols and of sines and cosines of
+    """Whether `expr`, a rational function of symbols, pi and sines and cosines of
     symbols (each taken as a variable of its own), is identically zero: its one
     fraction's numerator, made in FLINT, is zero. None where `expr` is not such a
     function, or a denominator in it vanishes identically.
@@ -244,9 +244,9 @@ def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
     return None if den == 0 else (order, num, den)
 
 
-def _integral(p: Any) -> tuple[Any, Any]:
+def _integral(p: Any) -> tuple[Any, int]:
     """A rational polynomial as an integer one and the scale taken out: ``p = q / s``."""
     terms = p.to_dict()
     scale = lcm(*(int(c.q) for c in terms.values()))
     ctx = fmpz_mpoly_ctx.get(tuple(p.context().names()), "lex")
-    return ctx.from_dict({m: int(c * scale) for m, c in terms.items()}), fmpq(scale)
+    return ctx.from_dict({m: int(c * scale) for m, c in terms.items()}), scale
