@@ -118,13 +118,6 @@ def test_evaluate_refuses_bad_values(capsys, argv, needle):
     assert needle in err and err.count("\n") == 1
 
 
-def test_stability_json(capsys):
-    data = _json(capsys, ["stability", "--json"])
-    assert {"cases", "worst", "rows"} <= set(data)
-    assert {"quantity", "rel_error"} <= set(data["worst"])
-    assert data["worst"]["rel_error"] <= 1e-13
-
-
 def test_critical_angle_json_prints_theta_c_to_30_digits(capsys):
     import mpmath
 

@@ -7,6 +7,7 @@ rough hexagonal clusters."""
 
 from __future__ import annotations
 
+import functools
 import random
 from dataclasses import replace
 
@@ -101,10 +102,13 @@ def _random_cluster(rng: random.Random, k: int) -> Collision:
     return Collision(tuple(bodies), contacts)
 
 
-def _single_answers(seed: int, count: int = 40):
+@functools.cache
+def _single_answers(seed: int, count: int = 40) -> tuple:
     """Seeded random rough fans whose enumeration of states finds exactly one answer
-    with two or more contacts acting, each with that answer."""
+    with two or more contacts acting, each with that answer (enumerated once for the
+    tests that compare with it: a file's tests share one worker)."""
     rng = random.Random(seed)
+    found = []
     for _ in range(count):
         collision = _random_cluster(rng, rng.randint(2, 5))
         try:
@@ -114,7 +118,8 @@ def _single_answers(seed: int, count: int = 40):
         if any("solutions" in note or "not unique" in note or "mixture" in note
                for note in enumerated.notes) or len(enumerated.acted) < 2:
             continue
-        yield collision, enumerated
+        found.append((collision, enumerated))
+    return tuple(found)
 
 
 def test_the_complementarity_problem_finds_what_the_enumeration_finds(monkeypatch):

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from rigidimpact.analyses.stability import BOUND, run_suite
+from rigidimpact.cli import main
 
 # quantities whose exact value has no cancellation: bounded relative to their own value
 WELL_CONDITIONED = {("barbell", "V_x"), ("barbell", "omega_z"), ("barbell", "f"),
@@ -25,6 +28,17 @@ def test_every_quantity_is_within_the_bound_of_its_magnitude(report):
                if r["scaled_error"] > BOUND]
     assert failing == []
     assert report["worst"]["rel_error"] <= BOUND
+
+
+def test_stability_json(report, capsys):
+    # the command line's report is the suite's (here in this file, where the process has
+    # already run the suite once: the command reads the same report)
+    assert main(["stability", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {"cases", "worst", "rows"} <= set(data)
+    assert {"quantity", "rel_error"} <= set(data["worst"])
+    assert data["worst"]["rel_error"] <= 1e-13
+    assert data["cases"] == report["cases"] and len(data["rows"]) == len(report["rows"])
 
 
 def test_quantities_without_cancellation_are_relatively_accurate(report):

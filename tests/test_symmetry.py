@@ -8,6 +8,7 @@ exact), and a scene refused one way is refused the other way too. The compliant 
 
 from __future__ import annotations
 
+import functools
 import random
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -147,8 +148,10 @@ def random_case(rng: random.Random) -> Case:
     return Case(tuple(bodies), tuple(touches), rule, names)
 
 
+@functools.cache
 def answer(text: str, space: bool = False) -> dict | str:
-    """Each result at the scene's numbers, or the field a refusal names."""
+    """Each result at the scene's numbers, or the field a refusal names (one solve a
+    scene: the untransformed case is read by each transformation's test)."""
     try:
         if space:
             return parse_space_scene(text).collision().solve().results()

@@ -175,14 +175,22 @@ class SystemImpact:
 
     def __post_init__(self) -> None:
         if self.J is None:
+            for c in self.contacts:
+                self._check_linear(c)
+            # a gripping contact across a tangent plane has the rows (n, t1, t2): its
+            # (n, t) pair is their first two, simplified once
+            across = {c.name: c.laws.laws[1].grips and self._across(c)
+                      for c in self.contacts}
+            planes = {c.name: self._plane_rows(c) for c in self.contacts
+                      if across[c.name]}
             rows: list[list[sp.Expr]] = []
             for c in self.contacts:
-                rows += list(self._rows(c))
+                rows += planes[c.name][:2] if across[c.name] else list(self._rows(c))
             object.__setattr__(self, "J", sp.ImmutableMatrix(rows))
-            if any(self._across(c) for c in self.contacts if c.laws.laws[1].grips):
+            if planes:
                 plane: list[list[sp.Expr]] = []
                 for c in self.contacts:
-                    plane += self._plane_rows(c)
+                    plane += planes.get(c.name) or self._plane_rows(c)
                 object.__setattr__(self, "J_plane", sp.ImmutableMatrix(plane))
         for i, c in enumerate(self.contacts):
             if all(x == 0 for x in self.J[2 * i:2 * i + 2, :]):
@@ -198,6 +206,19 @@ class SystemImpact:
         return n, self.frame.z.cross(n)
 
     def _rows(self, c: PointContact) -> tuple[list[sp.Expr], list[sp.Expr]]:
+        """The contact's (normal, tangent) rows in the plane of its normal and the
+        frame's z (a gripping contact across a tangent plane takes its first two
+        rows of :meth:`_plane_rows` instead)."""
+        partials = self._partials(c)
+        n, t = self._unit(c)
+        rows = sp.Matrix([[p.dot(n) for p in partials], [p.dot(t) for p in partials]])
+        if self.fold is not None:  # along the independent speeds: v = J_all T u
+            rows = rows * self.fold[1]
+        return ([_no_tan(sp.trigsimp(x)) for x in rows.row(0)],
+                [_no_tan(sp.trigsimp(x)) for x in rows.row(1)])
+
+    def _velocity(self, c: PointContact) -> Any:
+        """The contact point's velocity (relative to the other point's)."""
         try:
             velocity = c.point.vel(self.frame)
             if c.other is not None:
@@ -205,28 +226,23 @@ class SystemImpact:
         except ValueError:
             raise InputError(f"{c.name}.point", f"its velocity in {self.frame} is not "
                              "defined (set_vel or v2pt_theory)") from None
+        return velocity
+
+    def _partials(self, c: PointContact) -> list[Any]:
+        """The contact point's partial velocities."""
         speeds = self.u if self.fold is None else self.fold[0]
-        partials = me.partial_velocity([velocity], list(speeds), self.frame)[0]
-        rest = (velocity - sum((p * s for p, s in zip(partials, speeds, strict=True)),
+        return me.partial_velocity([self._velocity(c)], list(speeds), self.frame)[0]
+
+    def _check_linear(self, c: PointContact) -> None:
+        """Refuse a contact point whose velocity is not linear in the speeds."""
+        speeds = self.u if self.fold is None else self.fold[0]
+        velocity = self._velocity(c)
+        rest = (velocity - sum((p * s for p, s in zip(self._partials(c), speeds,
+                                                          strict=True)),
                                me.Vector(0))).simplify()
         if rest != me.Vector(0) and any(x != 0 for x in rest.to_matrix(self.frame)):
             raise InputError(f"{c.name}.point", "its velocity has a part that is not linear "
                              "in the speeds (a driven or moving constraint): not supported")
-        n, t = self._unit(c)
-        if c.laws.laws[1].grips and self._across(c):  # a tangent plane: t1 of its two
-            n, t, _ = self._plane(c)
-        rows = sp.Matrix([[p.dot(n) for p in partials], [p.dot(t) for p in partials]])
-        if self.fold is not None:  # along the independent speeds: v = J_all T u
-            rows = rows * self.fold[1]
-        return ([_no_tan(sp.trigsimp(x)) for x in rows.row(0)],
-                [_no_tan(sp.trigsimp(x)) for x in rows.row(1)])
-
-    def _partials(self, c: PointContact) -> list[Any]:
-        velocity = c.point.vel(self.frame)
-        if c.other is not None:
-            velocity = velocity - c.other.vel(self.frame)
-        speeds = self.u if self.fold is None else self.fold[0]
-        return me.partial_velocity([velocity], list(speeds), self.frame)[0]
 
     def _across(self, c: PointContact) -> bool:
         """Whether the contact's point can slide in two directions across its normal (a
