@@ -8,6 +8,7 @@ import json
 import math
 import random
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -521,16 +522,50 @@ def test_coulomb_at_several_mechanics_contacts_in_sequence():
 
 
 def test_several_mechanics_contacts_with_symbols_state_when_all_act():
-    # symbols: the case in which both ends act, with the conditions that make it the
-    # rule's answer; at spin 1/2 it is Lemke's answer above (vy = 1, omega = -1/2)
+    # symbols: the case in which both ends approach and act, with the conditions that
+    # make it the rule's answer; at spin 1/2 it is Lemke's answer above (vy = 1,
+    # omega = -1/2). By hand: both ends approach while |s| <= 1, and then both push
+    # ((1 + e)(3 + s)/6 and (1 + e)(3 - s)/6), so the conditions are -1 <= s <= 1
     e, spin = sp.Symbol("e", nonnegative=True), sp.Symbol("s")
     hit, q, u = _flat_rod(e)
     solved = _at(hit, q, u, (0, -1, spin)).solve()
-    assert len(solved.conditions) == 4  # both ends approach, both push
+    assert solved.acted == ("left", "right")
+    for name, by_hand in (("left", (1 + e) * (3 + spin) / 6),
+                          ("right", (1 + e) * (3 - spin) / 6)):
+        assert sp.expand(solved.impulses[name] - by_hand) == 0, name
     values = {e: 1, spin: sp.Rational(1, 2)}
     assert [x.subs(values) for x in solved.speeds_after] == [0, 1, -sp.Rational(1, 2)]
-    assert all(c.subs(values) for c in solved.conditions)
-    assert not all(c.subs({e: 1, spin: 2}) for c in solved.conditions)  # one recedes
+    for s_, holds in ((sp.Rational(1, 2), True), (1, True), (-1, True), (2, False),
+                      (sp.Rational(-11, 10), False)):
+        assert all(bool(c.subs({e: sp.Rational(1, 3), spin: s_}))
+                   for c in solved.conditions) is holds, s_
+
+
+def test_several_mechanics_contacts_with_symbols_have_the_built_in_rods_cases():
+    # the simultaneous rule with symbols is one implementation: the rod as a
+    # sympy.physics.mechanics system and as a built-in shape give the same cases (the
+    # acting ends, the speeds after and the impulses), each under the same conditions,
+    # checked at seeded rational points of e and the spin
+    e, spin = sp.Symbol("e", nonnegative=True), sp.Symbol("s")
+    hit, q, u = _flat_rod(e)
+    ours = _at(hit, q, u, (0, -1, spin)).cases()
+    rod = ri.Body.rigid(1, sp.Rational(1, 3), (0, 0), (0, -1), spin, "rod")
+    ends = tuple(replace(c, restitution=e) for c in _scene("rod-lands-flat").contacts)
+    theirs = ri.Collision((rod, ri.Body.fixed("floor")), ends).simultaneous_cases()
+    assert len(ours) == len(theirs) >= 3
+    rng = random.Random(44)
+    for _ in range(40):
+        point = {e: sp.Rational(rng.randint(0, 8), 8), spin: sp.Rational(rng.randint(-24, 24), 8)}
+        held = [[c for c in cases if all(bool(x.subs(point)) for x in c.conditions)]
+                for cases in (ours, theirs)]
+        assert len(held[0]) >= 1 and len(held[1]) >= 1, point
+        a, b = held[0][0], held[1][0]
+        r = b.results()
+        assert set(a.acted) == set(b.acted), point
+        assert [x.subs(point) for x in a.speeds_after] == \
+            [r[k].subs(point) for k in ("rod.vx", "rod.vy", "rod.omega")], point
+        for name in ("left", "right"):
+            assert a.impulses[name].subs(point) == r[f"{name}.normal_impulse"].subs(point)
 
 
 # ---- a nonholonomic system: dependent speeds folded in ---------------------------------

@@ -71,6 +71,7 @@ from rigidimpact.solve.collision import (
 )
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.problem import RowsProblem
+from rigidimpact.solve.rules.simultaneous import simultaneous_cases
 from rigidimpact.solve.solution import Solution
 
 # a closed form (symbols left) is sought where its work is at most this: the symbols
@@ -377,8 +378,9 @@ class SystemImpact:
         simultaneous rule (the default) under every restitution law, with Coulomb
         friction at the velocity level; the sequential rule in an order, each contact
         its own impact under its own laws. With symbols, the simultaneous rule's case in
-        which every contact acts (smooth or sticking, Newton's law), with the conditions
-        (each normal impulse >= 0) under which it is the answer.
+        which every contact approaches and acts (smooth or sticking, Newton's law), with
+        the conditions (each approaching, each normal impulse >= 0) under which it is
+        the answer; :meth:`cases` gives every case.
         """
         if rule is not None and not isinstance(rule, Rule):
             raise InputError("rule", "must be a rule object (ri.Simultaneous() or "
@@ -421,7 +423,30 @@ class SystemImpact:
                                  "form for several contacts of a mechanics system acting "
                                  "together here: give numbers (SystemImpact.at), or use "
                                  "Newton's")
-        return self._linear()
+        names = {c.name for c in self.contacts}
+        every = [c for c in self.cases() if set(c.acted) == names]
+        if not every:
+            raise InputError("contacts", "no case of the simultaneous rule has every "
+                             "contact acting here: SystemImpact.cases() gives the cases "
+                             "there are, each with its conditions")
+        return every[0]
+
+    def cases(self) -> tuple[Solution, ...]:
+        """The simultaneous rule with symbols (several contacts): one outcome per set
+        of acting contacts and pattern of signs before, each with the conditions under
+        which it is the answer. It is the built-in shapes' own implementation
+        (:func:`rigidimpact.solve.rules.simultaneous.simultaneous_cases`), run on this
+        system's speeds, M and contact rows; at numbers it is the rule's one answer."""
+        if len(self.contacts) < 2:
+            raise InputError("contacts", "the cases are those of several contacts; one "
+                             "contact has its own answer: SystemImpact.solve()")
+        if self.J_plane is not None:
+            raise InputError("rule", "the cases of contacts sliding across tangent planes "
+                             "(3-D) need numbers: SystemImpact.at(...) with q, the speeds "
+                             "and the constants")
+        if any(x.free_symbols for x in (*self.M, *self.J, *self.u_before)):
+            self._linear_system()  # its work's budget: refused past it
+        return simultaneous_cases(_AsCollision.of(self))
 
     def outcomes(self, rule: Rule) -> tuple[Solution, ...]:
         """What `rule` makes of several contacts at numbers: the built-in rules
@@ -440,12 +465,11 @@ class SystemImpact:
                              f"{MAX_ENUMERATED} contacts so far")
         return rule.outcomes(_AsCollision.of(self))
 
-    def _linear(self) -> Solution:
-        """Every law a pair of linear conditions: one linear system in the speeds after
-        and the impulses, ``M u+ - J^T P = M u-`` with each contact's two conditions
-        (every contact acting), solved fraction-free over the
-        polynomials of the stand-ins (no gcd until the end, where each result is
-        reduced once)."""
+    def _linear_system(self) -> tuple[sp.Matrix, sp.Matrix, list[sp.Symbol]]:
+        """``A x = b`` in the speeds after and the impulses, ``M u+ - J^T P = M u-`` with
+        each contact's two linear conditions (every contact acting), each row over one
+        denominator; its symbols (the stand-ins and constants) ordered. Refused where
+        its closed form's work is past :data:`MAX_SYMBOLIC_TERMS`."""
         n, k = len(self.u), len(self.contacts)
         M, J = self._in(self.M), self._in(self.J)
         u = self._in(self.u_before)
@@ -465,10 +489,6 @@ class SystemImpact:
         rows = [sp.fraction(sp.together(sp.expand(r)))[0] for r in rows]
         A, b = sp.linear_eq_to_matrix([sp.expand(r) for r in rows], list(after) + list(P))
         gens = sorted(A.free_symbols | b.free_symbols, key=sp.default_sort_key)
-        if self.digits is not None and not gens:
-            return self._floating(A, b, n, M, u)
-        # numbers alone: the rationals, with the one square root _exact_enough allows
-        # adjoined where the data hold it (sqrt(3) of a 60 degree angle)
         if gens:  # the exact solve's terms: at most the product of the rows' terms
             bound = len(gens) * math.prod(max(1, sum(len(sp.Add.make_args(x))
                                                      for x in A.row(i) if x != 0))
@@ -479,6 +499,21 @@ class SystemImpact:
                                  f"{MAX_SYMBOLIC_TERMS:.0e} (it grows with every speed "
                                  "and symbol): give numbers with SystemImpact.at (q, the "
                                  "speeds and the constants), or fewer symbols")
+        return A, b, gens
+
+    def _linear(self) -> Solution:
+        """One contact under a linear law (smooth or sticking): its law's pair of linear
+        conditions with ``M u+ - J^T P = M u-`` (:meth:`_linear_system`), solved
+        fraction-free over the polynomials of the stand-ins (no gcd until the end,
+        where each result is reduced once)."""
+        n, k = len(self.u), len(self.contacts)
+        M, J = self._in(self.M), self._in(self.J)
+        u = self._in(self.u_before)
+        A, b, gens = self._linear_system()
+        if self.digits is not None and not gens:
+            return self._floating(A, b, n, M, u)
+        # numbers alone: the rationals, with the one square root _exact_enough allows
+        # adjoined where the data hold it (sqrt(3) of a 60 degree angle)
         ring = sp.QQ[tuple(gens)] if gens else construct_domain(
             [*A, *b], extension=True)[0]
         dA, db = (DomainMatrix.from_Matrix(x).convert_to(ring) for x in (A, b))
@@ -512,13 +547,6 @@ class SystemImpact:
         solution = self._map(u_after, impulse, courses, twice / 2)
         if notes:
             solution = replace(solution, notes=notes)
-        if k > 1:  # the case where every contact acts, and when:
-            # each approaching, each pushing
-            closing = self.J * self.u_before
-            conditions = tuple(sp.Le(closing[2 * i], 0) for i in range(k)) + tuple(
-                sp.Ge(p, 0) for p in solution.impulses.values())
-            solution = replace(solution, conditions=tuple(
-                c for c in conditions if c is not sp.true))
         return solution
 
     def _floating(self, A: sp.Matrix, b: sp.Matrix, n: int, M: sp.Matrix,
@@ -950,6 +978,8 @@ class _AsCollision(RowsProblem):
         limits, _ = replace(solution, rule=rule).assessed()
         return replace(solution, rule=rule, order=tuple(order), passes=passes,
                        acted=tuple(acted), notes=solution.notes + more.pop("notes", ()),
+                       conditions=tuple(c for c in more.pop("conditions", ())
+                                        if c is not sp.true),
                        method=more.pop("method", ""),
                        warnings=solution.warnings + tuple(
                            w for w in limits if "still approaches" in w))
