@@ -39,7 +39,7 @@ def wide(x: Any) -> sp.Expr:
 
 
 def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
-            rule: str = "simultaneous") -> dict[str, Any] | None:
+            rule: str = "simultaneous", conditions: Any = ()) -> dict[str, Any] | None:
     """The residuals of the laws, apart from the path that solved them and from the
     M and J it solved with: the system's own bodies and points (:func:`_own`) give
     the generalized momentum balance (``dT/du`` after less before, less each contact
@@ -50,10 +50,11 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
     the built-in shapes'), the cone or smoothness or sticking, friction's direction and
     end, the restitution law's end where the velocities fix it. A system built without
     its bodies is checked with M and J themselves; a closed form (symbols left) at
-    seeded random rational points (:func:`_at_points`)."""
+    seeded random rational points (:func:`_at_points`) where its `conditions` hold
+    (a case of the simultaneous rule with symbols is checked where it is the answer)."""
     numbers = [*u_after, *P, *system.u_before, *system.M, *system.J]
     if not all(sp.sympify(x).is_number for x in numbers):
-        return _at_points(system, u_after, P, rule)
+        return _at_points(system, u_after, P, rule, conditions)
     with mpmath.workdps(FLOAT_DIGITS):
         def num(x: Any) -> Any:
             return mpmath.mpf(sp.N(x, FLOAT_DIGITS + 10)._to_mpmath(mpmath.mp.prec))
@@ -84,12 +85,14 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
         out["_tolerance"] = CHECK_TOLERANCE
     return out
 
-def _at_points(system: Any, u_after: sp.Matrix, P: sp.Matrix, rule: str) -> dict[str, Any] | None:
+def _at_points(system: Any, u_after: sp.Matrix, P: sp.Matrix, rule: str,
+               conditions: Any = ()) -> dict[str, Any] | None:
     """The residuals of a closed form (symbols left), at seeded random rational
     points of its symbols and coordinates where the impact happens: each constant
     within its assumptions (a restitution coefficient in [0, 1], a friction
     coefficient in [0, 2]), each coordinate and speed in [-3/2, 3/2]; the worst of
-    each residual over :data:`SYMBOLIC_POINTS` points, relative to that point's
+    each residual over :data:`SYMBOLIC_POINTS` points where the answer's own
+    `conditions` hold (a case's: its acting set, its signs), relative to that point's
     scale (the energy to its kinetic energy). The system's own kinematics check
     each point (:func:`_own`), apart from the M and J the closed form came from.
     None where no point of the first :data:`SYMBOLIC_TRIES` is an impact."""
@@ -107,9 +110,13 @@ def _at_points(system: Any, u_after: sp.Matrix, P: sp.Matrix, rule: str) -> dict
     for point in random_points(constants | functions, ranges):
         if checked == SYMBOLIC_POINTS:
             break
+        if not all(sp.sympify(c).xreplace(point) is sp.true for c in conditions):
+            continue  # outside the case: another case is the answer here
         try:
+            # a speed's value before: its draw, or the expression given for it (its
+            # symbols drawn too)
             here = system.at({k: v for k, v in point.items() if k not in system.u} |
-                           {u: point.get(u, b) for u, b in
+                           {u: point.get(u, sp.sympify(b).xreplace(point)) for u, b in
                             zip(system.u, system.u_before, strict=True)})
             normals = here.J * here.u_before
             if not any(normals[2 * i] < 0 for i in range(len(system.contacts))):

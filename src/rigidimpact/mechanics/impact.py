@@ -613,7 +613,7 @@ class SystemImpact:
 
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
              energy: sp.Expr, summed: bool = False, how: str | None = None,
-             rule: str = "simultaneous") -> Solution:
+             rule: str = "simultaneous", conditions: Sequence[Any] = ()) -> Solution:
         """The result, from the stand-ins back to q, the speeds and their sines, checked
         against `rule`'s own laws and tolerance."""
         back = self._out
@@ -633,7 +633,7 @@ class SystemImpact:
                          "where the slip reverses: Kane and Levinson's paradox; stick with "
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
-        checks = certify_checks(self, back(after), P, rule)
+        checks = certify_checks(self, back(after), P, rule, conditions)
         integrated = rule == "compliant" or rule == "driven" and any(
             sp.sympify(x).has(sp.Float) for x in (*after, *P))
         if checks is not None and integrated:  # followed in floating point: the rule's
@@ -973,13 +973,14 @@ class _AsCollision(RowsProblem):
             if courses[c.name] == "sticks" or (courses[c.name] == "acts" and
                                                c.laws[1].unknown_tangential):
                 courses[c.name] = "stick"
+        conditions = tuple(c for c in more.pop("conditions", ()) if c is not sp.true)
         solution = system._map(sp.Matrix(u), P, courses, energy, summed=not own,
-                               how=None if own else f"{rule} rule", rule=rule)
+                               how=None if own else f"{rule} rule", rule=rule,
+                               conditions=conditions)
         limits, _ = replace(solution, rule=rule).assessed()
         return replace(solution, rule=rule, order=tuple(order), passes=passes,
                        acted=tuple(acted), notes=solution.notes + more.pop("notes", ()),
-                       conditions=tuple(c for c in more.pop("conditions", ())
-                                        if c is not sp.true),
+                       conditions=conditions,
                        method=more.pop("method", ""),
                        warnings=solution.warnings + tuple(
                            w for w in limits if "still approaches" in w))
