@@ -553,10 +553,11 @@ def test_several_mechanics_contacts_with_symbols_have_the_built_in_rods_cases():
     ends = tuple(replace(c, restitution=e) for c in _scene("rod-lands-flat").contacts)
     theirs = ri.Collision((rod, ri.Body.fixed("floor")), ends).simultaneous_cases()
     assert len(ours) == len(theirs) >= 3
-    # each case is certified where it is the answer (its conditions): the spin given
-    # as an expression of s is drawn with s (it was left a symbol, and the case went
-    # unchecked)
-    for case in ours[:2]:
+    # each case is certified where it is the answer (its conditions), by both
+    # sources: the spin given as an expression of s is drawn with s (it was left a
+    # symbol, and the case went unchecked), and a case that needs a spin past
+    # (3 + e)/(1 - e) is checked where the certificate's second round of points reaches
+    for case in (*ours, *theirs):
         assert case.checks and max(case.checks.values()) < 1e-40, case.conditions
     rng = random.Random(44)
     for _ in range(40):

@@ -401,3 +401,34 @@ def test_a_mechanics_contact_still_closing_after_is_caught_at_any_rule_but_seque
     assert not any(f.startswith("tip.opens") for f in assess(
         {**found, "tip.opens": found["_scale"] * sp.Float(1e-41)}, "sequential",
         right.contacts)[1])
+
+
+# ---- a 3-D contact's rows: sin^2 + cos^2 = 1 by the polynomials' normal form -----------
+
+def test_a_3d_bodys_contact_rows_simplify_as_trigsimp_does():
+    # a body turned by three angles (XYZ): its point's partial velocities along the
+    # floor's normal are polynomials in the angles' sines and cosines. Their remainder
+    # modulo sin^2 + cos^2 - 1 is trigsimp's own answer, term for term, where trigsimp
+    # takes seconds each; along an oblique direction an equal form; a row that is not a
+    # polynomial in them is left to trigsimp
+    from rigidimpact.mechanics.impact import _pythagorean
+
+    N = me.ReferenceFrame("N")
+    a, b, c = me.dynamicsymbols("a b c")
+    B = N.orientnew("B", "Body", [a, b, c], "XYZ")
+    w = me.dynamicsymbols("w_x w_y w_z")
+    B.set_ang_vel(N, w[0] * N.x + w[1] * N.y + w[2] * N.z)
+    centre = me.Point("C")
+    centre.set_vel(N, 0)
+    r = sp.Symbol("r", positive=True)
+    point = centre.locatenew("P", sp.Rational(1, 2) * B.x + r * B.y - sp.Rational(3, 4) * B.z)
+    point.v2pt_theory(centre, N, B)
+    partials = me.partial_velocity([point.vel(N)], list(w), N)[0]
+    x = partials[0].dot(N.z)
+    assert _pythagorean(x) == sp.trigsimp(x)
+    oblique = partials[2].dot((N.x + N.y) / sp.sqrt(2))
+    assert sp.expand(_pythagorean(oblique) - sp.trigsimp(oblique)) == 0
+    # a square left after the reduction, or not a polynomial: trigsimp's own answer
+    for x in (sp.sin(a) ** 2 + r * sp.cos(a) ** 2, sp.sin(a) / (1 + sp.cos(a) ** 2)):
+        assert _pythagorean(x) == sp.trigsimp(x)
+    assert _pythagorean(sp.sin(a) ** 2 * sp.sin(b) + sp.cos(a) ** 2 * sp.sin(b)) == sp.sin(b)

@@ -95,7 +95,8 @@ def _at_points(system: Any, u_after: sp.Matrix, P: sp.Matrix, rule: str,
     `conditions` hold (a case's: its acting set, its signs), relative to that point's
     scale (the energy to its kinetic energy). The system's own kinematics check
     each point (:func:`_own`), apart from the M and J the closed form came from.
-    None where no point of the first :data:`SYMBOLIC_TRIES` is an impact."""
+    None where no point drawn (:func:`~rigidimpact.solve.certificate.random_points`)
+    is an impact."""
     laws = sp.Tuple(*(x for c in system.contacts for x in (
         c.laws.restitution, c.laws.friction or 0, c.laws.tangential_restitution or 0)))
     data = sp.Tuple(*system.M, *system.J, *system.u_before, *u_after, *P, laws)

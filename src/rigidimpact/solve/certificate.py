@@ -594,20 +594,27 @@ def coefficient_ranges(contacts: Sequence[Any]) -> dict[sp.Symbol, tuple[int, in
 
 def random_points(symbols: set[Any], ranges: Mapping[Any, tuple[Any, Any]]
                   ) -> Iterator[dict[Any, sp.Rational]]:
-    """SYMBOLIC_TRIES seeded random rational points of `symbols` (the same on every
-    machine): each within its range, or else in [-3, 3] ([0, 3] where it is positive or
-    nonnegative), and of its sign."""
+    """Seeded random rational points of `symbols` (the same on every machine): each
+    within its range, or else in [-3, 3] ([0, 3] where it is positive or nonnegative),
+    and of its sign; SYMBOLIC_TRIES of them, then SYMBOLIC_TRIES more with the symbols
+    that have no range of their own drawn ten times as far out (a case of the
+    simultaneous rule whose conditions ask for a spin past (3 + e)/(1 - e) is checked
+    there, where the first points all lie outside it)."""
     rng = random.Random(44)
-    for _ in range(SYMBOLIC_TRIES):
-        point = {}
-        for s in sorted(symbols, key=str):
-            low, high = ranges.get(s, (-3, 3) if not (s.is_positive or s.is_nonnegative)
-                                   else (0, 3))
-            x = sp.Rational(rng.randint(int(low * 311), int(high * 311)), 311)
-            if s.is_positive and x <= 0 or s.is_negative and x >= 0:
-                x = sp.Rational(rng.randint(1, 3 * 311), 311) * (-1 if s.is_negative else 1)
-            point[s] = x
-        yield point
+    for spread in (1, 10):
+        for _ in range(SYMBOLIC_TRIES):
+            point = {}
+            for s in sorted(symbols, key=str):
+                far = 3 * spread
+                low, high = ranges.get(s, (-far, far) if not (s.is_positive
+                                                              or s.is_nonnegative)
+                                       else (0, far))
+                x = sp.Rational(rng.randint(int(low * 311), int(high * 311)), 311)
+                if s.is_positive and x <= 0 or s.is_negative and x >= 0:
+                    x = sp.Rational(rng.randint(1, far * 311), 311) * (
+                        -1 if s.is_negative else 1)
+                point[s] = x
+            yield point
 
 
 @dataclass(frozen=True)
