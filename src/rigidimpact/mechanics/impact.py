@@ -378,9 +378,9 @@ class SystemImpact:
         simultaneous rule (the default) under every restitution law, with Coulomb
         friction at the velocity level; the sequential rule in an order, each contact
         its own impact under its own laws. With symbols, the simultaneous rule's case in
-        which every contact approaches and acts (smooth or sticking, Newton's law), with
-        the conditions (each approaching, each normal impulse >= 0) under which it is
-        the answer; :meth:`cases` gives every case.
+        which every contact acts (smooth or sticking, Newton's law), the first of
+        :meth:`cases` (every contact approaching, where the data let them), with the
+        conditions under which it is the answer; :meth:`cases` gives every case.
         """
         if rule is not None and not isinstance(rule, Rule):
             raise InputError("rule", "must be a rule object (ri.Simultaneous() or "
@@ -801,9 +801,10 @@ def _pythagorean(expr: Any) -> sp.Expr:
     direction cosines): its remainder on division by sin(a)^2 + cos(a)^2 - 1 for each
     angle a, sines first (a Groebner basis, so the remainder is the one normal form of
     the expression modulo those identities). Where that remainder is of degree at most
-    one in every sine and cosine it is the expression's simplest polynomial form
-    (``trigsimp`` gives it too, in seconds where this takes milliseconds); elsewhere,
-    and for anything else, ``trigsimp``."""
+    one in every sine and cosine it is kept: on a turned body's rows along its frame's
+    axes it is ``trigsimp``'s own answer, found in milliseconds where ``trigsimp`` takes
+    seconds (along another direction an equal form); elsewhere, and for anything
+    else, ``trigsimp``."""
     expr = sp.expand(sp.sympify(expr))
     angles = sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
     if not angles:
