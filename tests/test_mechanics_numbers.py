@@ -411,7 +411,7 @@ def test_a_3d_bodys_contact_rows_simplify_as_trigsimp_does():
     # modulo sin^2 + cos^2 - 1 is trigsimp's own answer, term for term, where trigsimp
     # takes seconds each; along an oblique direction an equal form; a row that is not a
     # polynomial in them is left to trigsimp
-    from rigidimpact.mechanics.impact import _pythagorean
+    from rigidimpact.symbolic.rewrite import pythagorean as _pythagorean
 
     N = me.ReferenceFrame("N")
     a, b, c = me.dynamicsymbols("a b c")

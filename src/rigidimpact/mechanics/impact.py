@@ -73,6 +73,7 @@ from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.rules.simultaneous import simultaneous_cases
 from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.rewrite import pythagorean
 
 # a closed form (symbols left) is sought where its work is at most this: the symbols
 # times the product of the linear system's rows' terms (a bound on the fraction-free
@@ -252,7 +253,7 @@ class SystemImpact:
         if all(sp.trigsimp(x) == 0 for x in t.to_matrix(self.frame)):
             return True  # the normal along the frame's z: no tangent in the x-y plane
         across = n.cross(t)
-        return any(_pythagorean(p.dot(across)) != 0 for p in self._partials(c))
+        return any(pythagorean(p.dot(across)) != 0 for p in self._partials(c))
 
     def _plane(self, c: PointContact) -> tuple[Any, Any, Any]:
         """The contact's frame (n, t1, t2) as vectors (:func:`rigidimpact.laws.cone.tangents`
@@ -266,7 +267,7 @@ class SystemImpact:
         rows = sp.Matrix([[p.dot(d) for p in partials] for d in self._plane(c)])
         if self.fold is not None:
             rows = rows * self.fold[1]
-        return [[_no_tan(_pythagorean(x)) for x in rows.row(i)] for i in range(3)]
+        return [[_no_tan(pythagorean(x)) for x in rows.row(i)] for i in range(3)]
 
     def _spatial(self) -> Solution:
         """One contact with a tangent plane: its tangential law's one face in contact
@@ -793,36 +794,6 @@ def _exact_enough(numbers: Sequence[Any]) -> bool:
                      and p.exp.is_Rational and not p.exp.is_Integer}
     return len({sp.sqrt(r.base).as_coeff_Mul()[1] for r in radicals
                 if r.exp.q == 2}) <= 1 and all(r.exp.q == 2 for r in radicals)
-
-
-def _pythagorean(expr: Any) -> sp.Expr:
-    """`expr` simplified by sin^2 + cos^2 = 1 alone, fast, where it is a polynomial in
-    the sines and cosines of its angles (a 3-D body's contact rows: products of
-    direction cosines): its remainder on division by sin(a)^2 + cos(a)^2 - 1 for each
-    angle a, sines first (a Groebner basis, so the remainder is the one normal form of
-    the expression modulo those identities). Where that remainder is of degree at most
-    one in every sine and cosine it is kept: on a turned body's rows along its frame's
-    axes it is ``trigsimp``'s own answer, found in milliseconds where ``trigsimp`` takes
-    seconds (along another direction an equal form); elsewhere, and for anything
-    else, ``trigsimp``."""
-    expr = sp.expand(sp.sympify(expr))
-    angles = sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
-    if not angles:
-        return expr
-    gens = [f(a) for a in angles for f in (sp.sin, sp.cos)]
-    try:
-        poly = sp.Poly(expr, *gens)
-    except sp.PolynomialError:
-        return sp.trigsimp(expr)
-    if any(g.free_symbols & set().union(*(a.free_symbols for a in angles))
-           for g in poly.free_symbols_in_domain):
-        return sp.trigsimp(expr)  # an angle's symbol outside its sine and cosine
-    identities = [sp.sin(a) ** 2 + sp.cos(a) ** 2 - 1 for a in angles]
-    _, remainder = sp.reduced(poly.as_expr(), identities, *gens, order="lex")
-    reduced = sp.Poly(remainder, *gens)
-    if any(d > 1 for monomial in reduced.monoms() for d in monomial):
-        return sp.trigsimp(expr)
-    return sp.expand(remainder)
 
 
 def _no_tan(expr: Any) -> sp.Expr:
