@@ -366,3 +366,46 @@ def test_poisson_end_of_a_smooth_contact_in_space_is_checked():
                       {"floor": P}, {"floor": (0, 0)}, "simultaneous", ("floor",))
     assert all(found[k] == 0 for k in ("box.momentum_x", "box.angular_momentum_y"))
     assert found["floor.restitution"] > 0
+
+
+def test_a_closed_form_is_certified_alike_walked_once_or_substituted_by_sympy(monkeypatch):
+    # a symbolic answer is checked at seeded rational points of its symbols; its values
+    # there are found by walking each expression once (symbolic/evaluate.py). SymPy's
+    # own substitution, the way it was done before, is the reference: the same checks,
+    # the same arithmetic (exact or 50 digits) and points, and every residual within
+    # that arithmetic's tolerance both ways
+    from rigidimpact.model.space import Body3
+    from rigidimpact.paper import problems
+    from rigidimpact.solve import certificate
+    from rigidimpact.solve.space import SpaceCollision
+
+    def ball():
+        e, m, v = sp.symbols("e m v", positive=True)
+        body = Body3.sphere(m, 1, (0, 0, 1), (1, sp.Rational(1, 2), -v), (3, -1, 2),
+                            name="ball")
+        floor = ri.Contact(normal=(0, 0, 1), restitution=e, tangential="coulomb",
+                           bodies=("floor", "ball"), point=(0, 0, 0),
+                           friction=sp.Symbol("mu", positive=True))
+        return SpaceCollision((Body3.fixed("floor"), body), (floor,)).solve().given_checks
+
+    def every():
+        planar = [problems.barbell().solution, problems.two_body().solution,
+                  problems.barbell_solution(0, "stick"), problems.discs().solution]
+        return [type(s)._certificate.func(s) for s in planar] + [ball()]
+
+    walked = every()
+
+    def refused(*args, **kwargs):
+        raise certificate.Unsupported("SymPy's way")
+
+    monkeypatch.setattr(certificate, "value_at", refused)
+    substituted = every()
+    for ours, theirs in zip(walked, substituted, strict=True):
+        assert ours["_symbolic"] and ours["_points"] >= 1
+        assert ours.keys() == theirs.keys()
+        for flag in ("_exact", "_floats", "_points"):
+            assert ours[flag] == theirs[flag], flag
+        tolerance = 0 if ours["_exact"] else 1e-35
+        for key in ours:
+            if not key.startswith("_"):
+                assert float(ours[key]) <= tolerance and float(theirs[key]) <= tolerance, key

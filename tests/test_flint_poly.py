@@ -126,5 +126,30 @@ def test_a_zero_decided_in_flint_is_decided_as_sympy_decides_it():
             rational = _rational_trig(difference)
             own = sp.expand(sp.fraction(sp.together(rational))[0]) == 0
             assert rational_zero(rational) is own and symbolic_zero(difference) is own
+            # the same decision with the half-angle forms made as the tree is read
+            assert rational_zero(difference, half_angle=True) is own
             seen[own] += 1
     assert seen[True] >= 50 and seen[False] >= 50
+
+
+def test_a_polynomial_multiplied_out_in_flint_is_sympys_expand():
+    # rewrite's trial of sin^2 = 1 - cos^2 multiplies a factored fraction's parts out in
+    # FLINT; SymPy's expand is the reference, the same expression to the last term
+    from rigidimpact.symbolic.flint_poly import expand_polynomial
+
+    rng = random.Random(50)
+    t = sp.Symbol("t", real=True)
+    atoms = [*sp.symbols("x y e m M"), sp.sin(t), sp.cos(t), sp.pi]
+
+    def polynomial():
+        return sp.Add(*(sp.Rational(rng.randint(-6, 6), rng.randint(1, 3)) * sp.Mul(
+            *(rng.choice(atoms) ** rng.randint(0, 2) for _ in range(2)))
+                        for _ in range(rng.randint(1, 3))))
+
+    for _ in range(150):
+        expr = sp.Mul(*(polynomial() ** rng.randint(1, 3) for _ in range(rng.randint(1, 3))))
+        ours = expand_polynomial(expr)
+        assert ours == sp.expand(expr) and str(ours) == str(sp.expand(expr)), expr
+    x = sp.Symbol("x")
+    for expr in (x / (x + 1), sp.sqrt(x) * (x + 1), 0.5 * (x + 1) ** 2, sp.Integer(3)):
+        assert expand_polynomial(expr) == sp.expand(expr)

@@ -41,6 +41,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.model.impulse import ImpulseProblem
+from rigidimpact.symbolic.flint_poly import rational_zero
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Regime", "regimes", "singular", "diagram", "Diagram", "LAWS", "SLIP", "STICK",
@@ -158,7 +159,13 @@ def singular(W: sp.Matrix) -> bool:
     """Whether W is singular: exactly, or, in floating point (a system solved at 50
     digits), to within the rounding of its entries (a determinant below 1e-35 of the
     product of its diagonal, which is where a rank-one W's lands)."""
-    det = sp.cancel(W.det())
+    # a 2 x 2 W's determinant by its formula; its zero decided in FLINT where the
+    # entries are rational functions of symbols (and of sines and cosines of them)
+    det = W[0, 0] * W[1, 1] - W[0, 1] * W[1, 0] if W.shape == (2, 2) else W.det()
+    zero = None if W.has(sp.Float) else rational_zero(det)
+    if zero is not None:
+        return zero
+    det = sp.cancel(det)
     if det.is_zero:
         return True
     if W.has(sp.Float) and det.is_number and (W[0, 0] * W[1, 1]).is_number:

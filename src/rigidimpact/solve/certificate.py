@@ -64,6 +64,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import random
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
@@ -75,6 +76,7 @@ from sympy.polys.domains import QQ
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
+from rigidimpact.symbolic.evaluate import Unsupported, value_at
 
 __all__ = ["residuals", "contact_residuals", "friction_residuals", "path_residuals",
            "assess", "as_sympy", "PHYSICAL_LIMITS", "FLOAT_TOLERANCE", "random_points",
@@ -122,13 +124,16 @@ def _spatial(bodies: Sequence[Any]) -> bool:
 
 def _spin(state: Any) -> list[Any]:
     """A body's spin as components: z alone in the plane, three in space."""
-    return list(state.spin) if isinstance(state.spin, sp.MatrixBase) else [state.spin]
+    return list(state.spin) if isinstance(state.spin, (sp.MatrixBase, tuple)) \
+        else [state.spin]
 
 
 def _inertia(body: Any) -> list[list[Any]]:
     """A body's central inertia as a matrix: 1 x 1 in the plane, 3 x 3 in space."""
     if isinstance(body.inertia, sp.MatrixBase):
         return [[body.inertia[i, j] for j in range(3)] for i in range(3)]
+    if isinstance(body.inertia, tuple):  # a 3-D body's at a point, mpmath numbers in it
+        return [list(row) for row in body.inertia]
     return [[body.inertia]]
 
 
@@ -221,7 +226,9 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     if how == "symbolic":
         return _at_points(before, after, contacts, impulses, tangential, rule, locked,
                           joints, joint_impulses, conditions)
-    floats = any(sp.sympify(x).has(sp.Float) for x in data)
+    # rounded data (a Float given), not an mpmath number a symbolic answer took at a point
+    floats = any(not isinstance(x, mpmath.mpf) and sp.sympify(x).has(sp.Float)
+                 for x in data)
     if spatial and how == "exact" and not all(x.is_Rational for c in contacts
                                               for x in c.frame):
         how = "mp"  # a frame's square roots: at 50 digits
@@ -518,7 +525,8 @@ def _span(data: Sequence[Any]) -> int:
         except (OverflowError, TypeError):  # past float64's range: SymPy's own number
             value = abs(sp.N(x, 15))
         if value and value != float("inf"):
-            exponents.append(int(mpmath.floor(mpmath.log10(mpmath.mpf(value)))))
+            exponents.append(math.floor(math.log10(value)) if isinstance(value, float)
+                             else int(mpmath.floor(mpmath.log10(mpmath.mpf(value)))))
     return min(2 * (max(exponents) - min(exponents)), 1000) if exponents else 0
 
 
@@ -634,9 +642,18 @@ class _BodyAt:
     inertia_inverse: Any = None  # a 3-D body's, where it was formed
 
     @classmethod
-    def of(cls, body: Any, point: Mapping[Any, Any]) -> _BodyAt:
+    def of(cls, body: Any, point: Mapping[Any, Any], dps: int) -> _BodyAt:
         def put(x: Any) -> Any:
-            return None if x is None else sp.sympify(x).xreplace(point)
+            if x is None:
+                return None
+            if not isinstance(x, sp.MatrixBase):
+                return _put(x, point, dps)
+            values = [_put(y, point, dps) for y in x]
+            if all(isinstance(y, sp.Basic) for y in values):
+                return sp.ImmutableMatrix(x.rows, x.cols, values)
+            if x.cols == 1:  # a vector with mpmath numbers in it: its components
+                return tuple(values)
+            return tuple(tuple(values[i * x.cols:(i + 1) * x.cols]) for i in range(x.rows))
 
         return cls(body.name, body.support, put(body.mass), put(body.inertia),
                    put(body.position), put(body.velocity), put(body.spin),
@@ -649,27 +666,56 @@ class _BodyAt:
         where they are numbers: a point of the symbols where the body is a body."""
         if self.support == "fixed":
             return True
-        if self.mass.is_number and not self.mass > 0:
+        if _is_number(self.mass) and not self.mass > 0:
             return False
-        return not (isinstance(self.inertia, sp.Expr) and self.inertia.is_number
-                    and self.inertia < 0)
+        return not (isinstance(self.inertia, (sp.Expr, mpmath.mpf))
+                    and _is_number(self.inertia) and self.inertia < 0)
+
+
+POINT_DIGITS = 2 * DIGITS  # an answer's irrational values at a point: these digits
+
+
+def _is_number(x: Any) -> bool:
+    return isinstance(x, mpmath.mpf) or sp.sympify(x).is_number
+
+
+def _put(x: Any, point: Mapping[Any, Any], dps: int) -> Any:
+    """`x` at `point`: walked once to its value (exact where rational), or, where it
+    holds what that walk does not take (a Float above all, which must stay one),
+    SymPy's own substitution."""
+    try:
+        return value_at(x, point, dps)
+    except Unsupported:
+        return sp.sympify(x).xreplace(point)
 
 
 def _at_point(point, before, after, contacts, impulses, tangential, rule, locked, joints,
               joint_impulses) -> dict[str, Any] | None:
     """The residuals at one point of the symbols, or None where no contact approaches
-    there (no impact to check)."""
-    before = tuple(_BodyAt.of(b, point) for b in before)
-    after = tuple(_BodyAt.of(b, point) for b in after)
+    there (no impact to check). The answer's values there are exact rationals where
+    they are rational, else mpmath numbers at POINT_DIGITS (more where the data span
+    more orders of magnitude than the residuals' 50 digits leave room for)."""
+    dps = POINT_DIGITS
+    while True:
+        at_before = tuple(_BodyAt.of(b, point, dps) for b in before)
+        at_after = tuple(_BodyAt.of(b, point, dps) for b in after)
+        pushes = {c.name: _put(impulses[c.name], point, dps) for c in contacts}
+        along = {c.name: [_put(x, point, dps) for x in _components(tangential.get(c.name,
+                                                                                  0))]
+                 for c in contacts}
+        values = [*pushes.values(), *(y for v in along.values() for y in v),
+                  *(y for b in (*at_before, *at_after) for y in (
+                      *_spin(b), *(b.velocity if b.support != "fixed" else ())))]
+        if not all(_is_number(x) for x in values):
+            return None
+        needed = DIGITS + 10 + _span(values)
+        if needed <= dps or not any(isinstance(x, mpmath.mpf) for x in values):
+            break
+        dps = needed
+    before, after = at_before, at_after
     if not all(b.physical for b in before):
         return None  # a body of no mass (or less) there: no impact to check
     contacts = tuple(c.at(point) for c in contacts)
-    pushes = {c.name: sp.sympify(impulses[c.name]).xreplace(point) for c in contacts}
-    along = {c.name: [sp.sympify(x).xreplace(point)
-                      for x in _components(tangential.get(c.name, 0))] for c in contacts}
-    if not all(x.is_number for x in (*pushes.values(), *(y for v in along.values()
-                                                          for y in v))):
-        return None
     along = {name: v if len(v) > 1 else v[0] for name, v in along.items()}
     found = residuals(before, after, contacts, pushes, along, rule,
                       tuple(c.name for c in contacts if pushes[c.name] > 0), locked,

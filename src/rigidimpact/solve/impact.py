@@ -434,7 +434,8 @@ class Impact:
         energies from the work of the impulse in the contact frame, stand-ins put back."""
         stand_ins = self._local[1]
         (first, second), after = self.before, self.after
-        moved = [a.with_motion(a.velocity.subs(values), sp.sympify(a.spin).subs(values))
+        moved = [a.with_motion(a.velocity.xreplace(values),
+                               sp.sympify(a.spin).xreplace(values))
                  if a.support != "fixed" else a for a in after]
         back = self.frame.T  # contact frame -> scene frame
         finals = []

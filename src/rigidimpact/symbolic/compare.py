@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
+from rigidimpact.symbolic.evaluate import Unsupported, value_at
 from rigidimpact.symbolic.flint_poly import rational_zero
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -73,9 +74,13 @@ def symbolic_zero(expr: sp.Expr) -> bool:
     True
     """
     expr = sp.sympify(expr)
-    rational = _rational_trig(expr)
     # one fraction p / q: it is zero exactly where its numerator is zero (no gcd needed
-    # to decide it), made in FLINT where every atom is a symbol
+    # to decide it), made in FLINT, each trig function put in tan(angle/2) as it is
+    # read, where every angle is a symbol
+    decided = rational_zero(expr, half_angle=True)
+    if decided is not None:
+        return decided
+    rational = _rational_trig(expr)
     decided = rational_zero(rational)
     if decided is not None:
         return decided
@@ -104,9 +109,14 @@ def _points(exprs: Iterable[sp.Expr], seed: int) -> list[dict[sp.Symbol, sp.Rati
 
 
 def _value(expr: sp.Expr, point: dict) -> mpmath.mpf:
+    """`expr` at `point`, in arithmetic of twice the digits compared (so that up to 50
+    digits may cancel), or by evalf's adaptive evaluation where the tree has a node
+    :func:`~rigidimpact.symbolic.evaluate.value_at` does not take."""
     with mpmath.workdps(DIGITS + 10):
-        # exact rationals in, then evalf's adaptive evaluation of a constant
-        return mpmath.mpmathify(sp.sympify(expr).xreplace(point).evalf(DIGITS + 10))
+        try:
+            return mpmath.mpmathify(value_at(expr, point, 2 * DIGITS))
+        except Unsupported:
+            return mpmath.mpmathify(sp.sympify(expr).xreplace(point).evalf(DIGITS + 10))
 
 
 def agree(derived: sp.Expr, reference: sp.Expr, seed: int = SEED) -> Verdict:

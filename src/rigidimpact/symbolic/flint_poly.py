@@ -42,7 +42,8 @@ from sympy.polys.factortools import _sort_factors
 from sympy.polys.polytools import _factors_product
 from sympy.polys.polyutils import _sort_gens, basic_from_dict
 
-__all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor", "rational_zero"]
+__all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor", "rational_zero",
+           "expand_polynomial"]
 
 _SYMPY = {"factor": factortools.dmp_zz_factor, "gcd": euclidtools.dmp_zz_heu_gcd}
 
@@ -161,11 +162,17 @@ def _rational_factor(expr: Any) -> Any:
     return _keep_coeff(coeff, _factors_product(factors))
 
 
-def rational_zero(expr: Any) -> bool | None:
+def rational_zero(expr: Any, half_angle: bool = False) -> bool | None:
     """Whether `expr`, a rational function of symbols, pi and sines and cosines of
     symbols (each taken as a variable of its own), is identically zero: its one
     fraction's numerator, made in FLINT, is zero. None where `expr` is not such a
     function, or a denominator in it vanishes identically.
+
+    With `half_angle`, each angle's sine, cosine and tangent are first written in
+    ``t = tan(angle/2)`` (``2t/(1 + t^2)``, ``(1 - t^2)/(1 + t^2)``, ``2t/(1 - t^2)``),
+    one variable for each angle: then the answer decides every rational identity of
+    the trig functions too (sin^2 + cos^2 = 1 among them), as the substitution made in
+    SymPy would, without building the substituted expression.
 
     Examples
     --------
@@ -173,40 +180,86 @@ def rational_zero(expr: Any) -> bool | None:
     >>> x, y = sp.symbols("x y")
     >>> rational_zero(1 / (x - y) + 1 / (y - x)), rational_zero(x / y - 1)
     (True, False)
+    >>> t = sp.Symbol("t", real=True)
+    >>> rational_zero(sp.sin(t)**2 + sp.cos(t)**2 - 1, half_angle=True)
+    True
+    >>> rational_zero(sp.tan(t) * sp.cos(t) - sp.sin(t), half_angle=True)
+    True
     """
-    found = _fraction(sp.sympify(expr))
+    found = _fraction(sp.sympify(expr), half_angle)
     return None if found is None else found[1] == 0
 
 
-def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
+_TRIG = (sp.sin, sp.cos)
+
+
+def _generators(expr: Any, half_angle: bool) -> set[Any] | None:
+    """The variables of `expr` as a rational function (each symbol and pi, and each sine
+    or cosine of a symbol; with `half_angle`, a ``tan(angle/2)`` stand-in for each
+    angle's trig functions), each distinct subtree looked at once; None where it holds
+    anything else."""
+    gens: set[Any] = set()
+    visited: set[Any] = set()
+    stack = [expr]
+    trig = (sp.sin, sp.cos, sp.tan) if half_angle else _TRIG
+    while stack:
+        node = stack.pop()
+        if node in visited:
+            continue
+        visited.add(node)
+        if node.is_Symbol or node is sp.pi:  # pi, transcendental, is SymPy's variable too
+            gens.add(node)
+        elif isinstance(node, trig):
+            if not node.args[0].is_Symbol:
+                return None
+            gens.add(_half(node.args[0]) if half_angle else node)
+        elif node.is_Rational:
+            continue
+        elif node.is_Add or node.is_Mul:
+            stack.extend(node.args)
+        elif node.is_Pow:
+            if not node.exp.is_Integer:
+                return None
+            stack.append(node.base)
+        else:
+            return None
+    return gens
+
+
+def _half(angle: Any) -> Any:
+    """The variable standing for ``tan(angle/2)``: the same one for every call, so a
+    generator's place in SymPy's sorted order is fixed."""
+    return _HALVES.setdefault(angle, sp.Dummy(f"t_{angle}", real=True))
+
+
+_HALVES: dict[Any, Any] = {}
+
+
+def _fraction(expr: Any, half_angle: bool = False
+              ) -> tuple[tuple[Any, ...], Any, Any] | None:
     """`expr` as one fraction of FLINT's rational polynomials, numerator and denominator,
     in SymPy's sorted generators (each symbol, each sine or cosine of a symbol); None
     where `expr` holds anything else (a float, a radical, another function, a sine of
     anything but a symbol), is a number, or divides by an identical zero. pi is a
     variable, as SymPy's factor takes it (it is transcendental: no polynomial with
-    rational coefficients vanishes at it)."""
-    gens: set[Any] = set()
-    for node in sp.preorder_traversal(expr):
-        if node.is_Symbol or node is sp.pi:  # pi, transcendental, is SymPy's variable too
-            gens.add(node)
-        elif isinstance(node, (sp.sin, sp.cos)):
-            if not node.args[0].is_Symbol:
-                return None
-            gens.add(node)
-        elif node.is_Rational or node.is_Add or node.is_Mul:
-            continue
-        elif node.is_Pow:
-            if not node.exp.is_Integer:
-                return None
-        else:
-            return None
+    rational coefficients vanishes at it). With `half_angle`, the trig functions are
+    rational functions of ``tan(angle/2)`` (:func:`rational_zero`)."""
+    gens = _generators(expr, half_angle)
     if not gens:
-        return None  # a number: SymPy's own
+        return None  # a number (SymPy's own), or not a rational function
     order = _sort_gens(tuple(gens))
     ctx = fmpq_mpoly_ctx.get(tuple(f"x{i}" for i in range(len(order))), "lex")
     one, zero = ctx.from_dict({}) + 1, ctx.from_dict({})
     place = dict(zip(order, ctx.gens(), strict=True))
     seen: dict[Any, tuple[Any, Any]] = {}
+
+    def trig(node: Any) -> tuple[Any, Any]:
+        t = place[_half(node.args[0])]
+        if isinstance(node, sp.sin):
+            return 2 * t, 1 + t * t
+        if isinstance(node, sp.cos):
+            return 1 - t * t, 1 + t * t
+        return 2 * t, 1 - t * t
 
     def fraction(node: Any) -> tuple[Any, Any]:
         if node in place:
@@ -215,6 +268,8 @@ def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
             return seen[node]
         if node.is_Rational:
             out = (one * fmpq(int(node.p), int(node.q)), one)
+        elif half_angle and isinstance(node, (sp.sin, sp.cos, sp.tan)):
+            out = trig(node)
         elif node.is_Add:  # over the least common denominator (the terms' gcds):
             num, den = zero, one  # a product of them all would swell with every term
             for term in node.args:
@@ -236,12 +291,38 @@ def _fraction(expr: Any) -> tuple[tuple[Any, ...], Any, Any] | None:
         else:  # an integer power
             n, d = fraction(node.base)
             k = int(node.exp)
+            if k < 0 and n == 0:
+                raise ZeroDivisionError
             out = (n ** k, d ** k) if k >= 0 else (d ** -k, n ** -k)
         seen[node] = out
         return out
 
-    num, den = fraction(expr)
+    try:
+        num, den = fraction(expr)
+    except ZeroDivisionError:
+        return None
     return None if den == 0 else (order, num, den)
+
+
+def expand_polynomial(expr: Any) -> Any:
+    """``sympy.expand(expr)`` for a polynomial in symbols, pi and sines and cosines of
+    symbols, multiplied out in FLINT: the same expression (SymPy's sum of monomials is
+    canonical however it is built); by SymPy itself for anything else.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, t = sp.Symbol("x"), sp.Symbol("t", real=True)
+    >>> poly = (x + sp.cos(t)) ** 2 * (2 * x - 3)
+    >>> expand_polynomial(poly) == sp.expand(poly)
+    True
+    """
+    found = _fraction(expr)
+    if found is None or found[2] != 1:
+        return sp.expand(expr)
+    order, num, _ = found
+    rep = {m: sp.Rational(int(c.p), int(c.q)) for m, c in num.to_dict().items()}
+    return basic_from_dict(rep, *order) if rep else sp.Integer(0)
 
 
 def _integral(p: Any) -> tuple[Any, int]:

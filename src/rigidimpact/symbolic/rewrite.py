@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from rigidimpact.symbolic.flint_poly import factor, flint_polynomials
+from rigidimpact.symbolic.flint_poly import expand_polynomial, factor, flint_polynomials
 
 __all__ = ["tidy", "recognise", "solve_linear", "polynomial_roots", "pythagorean"]
 
@@ -128,7 +128,7 @@ def _expanded(factored: sp.Expr) -> sp.Expr:
     (x*cos(t) + cos(t))/(x**2 - x*cos(t))
     """
     numerator, denominator = sp.fraction(factored)
-    return sp.expand(numerator) / sp.expand(denominator)
+    return expand_polynomial(numerator) / expand_polynomial(denominator)
 
 
 def _pythagoras(expr: sp.Expr, old: sp.Expr, other: sp.Expr) -> sp.Expr:
@@ -200,7 +200,7 @@ def recognise(expr: sp.Expr, name: sp.Symbol, definition: sp.Expr,
     if line.degree() != 1:
         raise ValueError(f"{name} = {definition} is not linear in {eliminate}")
     slope, offset = line.all_coeffs()
-    return tidy(expr.subs(eliminate, -offset / slope))
+    return tidy(expr.xreplace({eliminate: -offset / slope}))
 
 
 def solve_linear(equations, unknowns) -> dict[sp.Symbol, sp.Expr]:
