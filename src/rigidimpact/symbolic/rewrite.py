@@ -12,6 +12,8 @@ Examples
 
 from __future__ import annotations
 
+import functools
+
 import sympy as sp
 
 from rigidimpact.symbolic.flint_poly import expand_polynomial, factor, flint_polynomials
@@ -240,8 +242,10 @@ def polynomial_roots(expr: sp.Expr, x: sp.Symbol) -> list[sp.Expr]:
     return sorted(found, key=sp.default_sort_key)
 
 
+@functools.lru_cache(maxsize=256)
 def _numerator_poly(expr: sp.Expr, x: sp.Symbol) -> sp.Poly:
-    """The numerator of `expr` over one denominator, as a polynomial in `x`."""
+    """The numerator of `expr` over one denominator, as a polynomial in `x` (made once
+    for each expression: a group is recognised in each result of a derivation)."""
     return sp.Poly(sp.expand(sp.fraction(sp.together(expr))[0]), x)
 
 
