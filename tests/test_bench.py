@@ -95,6 +95,9 @@ def _three_files(out, data):
     assert data["auto_choice"]["meets_tolerance"]
     assert json.loads((out / "bench.json").read_text())["rows"]
     assert "| problem | method |" in (out / "bench.md").read_text()
+    # the report ends with what the bench itself took
+    assert data["seconds"] > 0 and \
+        f"took {data['seconds']:.0f} s." in (out / "bench.md").read_text()
     assert (out / "accuracy-vs-time.png").read_bytes()[:4] == b"\x89PNG"
 
 

@@ -648,6 +648,34 @@ def verify_against_plain(repeats: int = 3) -> dict[str, float]:
             "ratio": times["ours"] / times["plain"]}
 
 
+def run_against_plain(repeats: int = 1, limit: float = 900.0) -> dict[str, float] | None:
+    """``make run``'s job (``derivations/run_all.py``: every derivation, ``verify``, the
+    LaTeX, the figures and animations, its result cache off) end to end against the
+    plain SymPy barbell script, timed in turn; None where the package runs outside its
+    repository (no ``derivations/`` beside ``src/``) or the job runs past `limit` s."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    script = Path(__file__).resolve().parents[3] / "derivations" / "run_all.py"
+    if not script.is_file():
+        return None
+    env = {**os.environ, "RIGIDIMPACT_CACHE": "off"}
+    with tempfile.TemporaryDirectory() as out:
+        def job() -> None:
+            subprocess.run([sys.executable, str(script), "--out", out], check=True,
+                           capture_output=True, timeout=limit, env=env)
+
+        try:
+            times = _interleaved({"run": job, "plain": lambda: _python(PLAIN_BARBELL)},
+                                 repeats)
+        except subprocess.TimeoutExpired:
+            return None
+    return {"run_s": times["run"], "plain_barbell_s": times["plain"],
+            "ratio": times["run"] / times["plain"]}
+
+
 def start_against_sympy(repeats: int = 3) -> dict[str, float]:
     """The command line's start against importing SymPy alone: ``rigidimpact --help`` and
     ``rigidimpact derive barbell`` (derived afresh: its result cache off) beside
@@ -682,6 +710,7 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
     unknown = set(families) - set(FAMILIES)
     if unknown:
         raise ValueError(f"unknown bench families: {sorted(unknown)}")
+    started = time.perf_counter()
     repeats = 3 if quick else 5
     methods = ("DOP853", "LSODA") if quick else ("RK45", "DOP853", "Radau", "BDF", "LSODA")
     tolerances = (1e-4, 1e-8) if quick else (1e-3, 1e-5, 1e-7, 1e-9)
@@ -733,8 +762,11 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
                                            ("smooth",) if quick else ("smooth", "stick"))
         report["verify_vs_plain"] = verify_against_plain(1 if quick else 3)
         report["start_vs_sympy"] = start_against_sympy(1 if quick else 5)
+        if not quick:  # about 45 s a run: the full bench only
+            report["run_vs_plain"] = run_against_plain(1)
     if "contacts" in families:
         report["contacts"] = contacts_family(quick)
+    report["seconds"] = time.perf_counter() - started
     return report
 
 
@@ -800,6 +832,12 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                       f"afresh, {st['derive_barbell_s']:.2f} s (ratio "
                       f"{st['derive_ratio']:.2f}); `rigidimpact --help` {st['help_s']:.2f} s "
                       f"(ratio {st['help_ratio']:.2f})."]
+        rp = report.get("run_vs_plain")
+        if rp:
+            lines += ["", f"`make run`'s job (derivations/run_all.py, its result cache "
+                          f"off) end to end {rp['run_s']:.1f} s against the plain SymPy "
+                          f"barbell script {rp['plain_barbell_s']:.2f} s: ratio "
+                          f"{rp['ratio']:.1f}."]
     if "contacts" in report:
         family = report["contacts"]
         lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
@@ -821,6 +859,9 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                          f"{peak} | {(key or '')[:-2]} | {shown} | {gap} |")
         lines += ["", "Fitted exponents (seconds ~ n^k, n >= 16): " + ", ".join(
             f"{name} {k:.2f}" for name, k in family["exponents"].items()) + "."]
+    if "seconds" in report:
+        lines += ["", f"This bench{' (--quick)' if report['quick'] else ''} took "
+                      f"{report['seconds']:.0f} s."]
     if report.get("failed"):
         lines += ["", "Settings the simulation refused (not timed):"]
         lines += [f"- {f['method']} {f['setting']}: {f['message']}" for f in report["failed"]]
