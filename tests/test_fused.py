@@ -177,8 +177,11 @@ def test_a_sweep_on_dask_writes_the_one_process_numbers(tmp_path, monkeypatch):
     fixed = {"m": 1.0, "e": 0.5, "v_ix": 1.0, "L": 2.0}
     monkeypatch.setattr(sweep_module, "fused", lambda r, b: fused(r, b, chunk=64))
     alone = run_sweep(results, grid, fixed, tmp_path / "alone")
+    # local workers started for a test's few sets too
+    monkeypatch.setattr("rigidimpact.outputs.workers.REPAYS",
+                        {"draws": 0, "sets": 0, "solves": 0})
     spread = run_sweep(results, grid, fixed, tmp_path / "dask", workers=2, processes=False)
-    assert alone["results"] == spread["results"]
+    assert alone["results"] == spread["results"] and "workers" not in spread
     for key in results:
         a = np.load(tmp_path / "alone" / f"{key}.npy")
         b = np.load(tmp_path / "dask" / f"{key}.npy")
@@ -243,6 +246,8 @@ def test_a_sweep_of_compliant_runs_set_by_set_and_on_dask(tmp_path, monkeypatch,
     scene.write_text(CRADLE)
     grid = {"e": np.linspace(0.5, 1.0, 7)}
     alone = run_point_sweep(str(scene), grid, {}, tmp_path / "alone")
+    monkeypatch.setattr("rigidimpact.outputs.workers.REPAYS",
+                        {"draws": 0, "sets": 0, "solves": 0})
     spread = run_point_sweep(str(scene), grid, {}, tmp_path / "dask", workers=2,
                              processes=False)
     assert alone["results"] == spread["results"] and alone["sets"] == 7
@@ -254,3 +259,29 @@ def test_a_sweep_of_compliant_runs_set_by_set_and_on_dask(tmp_path, monkeypatch,
     assert main(["sweep", str(scene), "--grid", "e=0.5:1:3", "--keys", "last.vx",
                  "--out", str(tmp_path / "keys")]) != 0
     assert "solved set by set" in capsys.readouterr().err
+
+
+def test_a_sweep_steps_aside_from_local_workers_its_sets_cannot_repay(tmp_path, capsys):
+    # the rule counts work: 10 sets of a closed form and 3 solves are far fewer than
+    # what repays starting local workers (outputs/workers.py, REPAYS), so --workers 2
+    # runs in this process, says so on the standard error and in the summary, and
+    # writes the numbers the one-process sweep writes
+    settings = ["--set", "m=1", "--set", "M=2", "--set", "L=1", "--set", "e=0.5",
+                "--set", "v_ix=1"]
+    assert main(["sweep", "barbell", "--grid", "theta=0:1.5:10", *settings,
+                 "--workers", "2", "--out", str(tmp_path / "stepped"), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["workers"].startswith("--workers 2: 10 sets are fewer")
+    assert "rigidimpact: note: --workers 2: 10 sets" in captured.err
+    assert main(["sweep", "barbell", "--grid", "theta=0:1.5:10", *settings,
+                 "--out", str(tmp_path / "alone"), "--json"]) == 0
+    assert "workers" not in json.loads(capsys.readouterr().out)
+    for key in ("v_fx", "V_x", "omega_z"):
+        assert np.array_equal(np.load(tmp_path / "stepped" / f"{key}.npy"),
+                              np.load(tmp_path / "alone" / f"{key}.npy"), equal_nan=True)
+    scene = tmp_path / "cradle.toml"
+    scene.write_text(CRADLE)
+    assert main(["sweep", str(scene), "--grid", "e=0.5:1:3", "--workers", "2",
+                 "--out", str(tmp_path / "solves"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["workers"].startswith(
+        "--workers 2: 3 solves are fewer")

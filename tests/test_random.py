@@ -264,12 +264,20 @@ def test_the_dask_path_equals_one_process_for_the_same_seed(barbell, workers):
     assert spread == alone
 
 
-def test_derive_on_dask_workers_and_a_missing_scheduler(capsys):
+def _always_start_workers(monkeypatch):
+    """Local workers started for any work, however small (a test's is small)."""
+    from rigidimpact.outputs import workers
+
+    monkeypatch.setattr(workers, "REPAYS", {kind: 0 for kind in workers.REPAYS})
+
+
+def test_derive_on_dask_workers_and_a_missing_scheduler(capsys, monkeypatch):
     from pathlib import Path
 
     from rigidimpact.cli import main
 
     pytest.importorskip("dask.distributed")
+    _always_start_workers(monkeypatch)
     scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
     assert main(["derive", str(scene), "--json", "--workers", "2"]) == 0
     import json
@@ -277,7 +285,7 @@ def test_derive_on_dask_workers_and_a_missing_scheduler(capsys):
     on_dask = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
     assert main(["derive", str(scene), "--json"]) == 0
     alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
-    assert on_dask["monte_carlo"] == alone["monte_carlo"]
+    assert on_dask["monte_carlo"] == alone["monte_carlo"] and "workers" not in on_dask
     assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:1"]) != 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no Dask scheduler at tcp://127.0.0.1:1" in err[0]
@@ -373,7 +381,7 @@ def test_several_contacts_a_solve_a_draw_by_hand(tmp_path, capsys):
         "samples, seed 11):" in text and "no closed form: a solve a draw" in text
 
 
-def test_several_contacts_on_dask_equal_one_process(tmp_path):
+def test_several_contacts_on_dask_equal_one_process(tmp_path, monkeypatch):
     pytest.importorskip("dask.distributed")
     from rigidimpact.analyses.distributions import point_monte_carlo
     from rigidimpact.scenes.scene import load_scene
@@ -383,6 +391,7 @@ def test_several_contacts_on_dask_equal_one_process(tmp_path):
     scene = load_scene(path)
     keys = ["rod.vy", "rod.omega"]
     alone = point_monte_carlo(scene, keys, 96, seed=3, chunk=16)
+    _always_start_workers(monkeypatch)
     spread = point_monte_carlo(scene, keys, 96, seed=3, chunk=16, workers=2,
                                processes=False)
     assert spread == alone
@@ -481,10 +490,37 @@ def test_a_run_on_local_workers_leaves_no_process_behind():
     from pathlib import Path
 
     scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
-    command = subprocess.Popen([sys.executable, "-m", "rigidimpact", "derive", str(scene),
-                                "--workers", "2", "--json"], stdout=subprocess.DEVNULL,
+    started = ("from rigidimpact.outputs import workers; "  # for a test's few draws too
+               "workers.REPAYS.update(draws=0); "
+               "from rigidimpact.cli import main; "
+               f"raise SystemExit(main(['derive', {str(scene)!r}, '--workers', '2', "
+               "'--json']))")
+    command = subprocess.Popen([sys.executable, "-c", started], stdout=subprocess.DEVNULL,
                                stderr=subprocess.PIPE, start_new_session=True)
     _, err = command.communicate(timeout=300)
     left = _in_session(command.pid)  # at once: an orphan is reaped within moments
     assert command.returncode == 0, err
     assert left == [], left
+
+
+def test_local_workers_step_aside_where_the_work_cannot_repay_them(capsys):
+    # the rule counts work, never seconds: the shipped scene's 10^6 draws are far fewer
+    # than the 2 x 10^8 that repay starting local workers, so --workers 2 runs in this
+    # process, says so in its text and its JSON, and gives the same numbers (sweeps:
+    # tests/test_fused.py)
+    import json
+    from pathlib import Path
+
+    from rigidimpact.cli import main
+    from rigidimpact.outputs.workers import REPAYS
+
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    assert main(["derive", str(scene), "--json", "--workers", "2"]) == 0
+    stepped = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert main(["derive", str(scene), "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert stepped["monte_carlo"] == alone["monte_carlo"] and "workers" not in alone
+    assert stepped["workers"].startswith("--workers 2: 1,000,000 draws are fewer than "
+                                         f"the {REPAYS['draws']:,}")
+    assert main(["derive", str(scene), "--workers", "2"]) == 0
+    assert "  (--workers 2: 1,000,000 draws are fewer than" in capsys.readouterr().out

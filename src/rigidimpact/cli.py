@@ -687,6 +687,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                         scheduler=args.scheduler)
     for warning in summary["warnings"]:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if summary.get("workers"):
+        print(f"rigidimpact: note: {summary['workers']}", file=sys.stderr)
     if args.json:
         _print_json(summary)
         return 0
@@ -736,6 +738,8 @@ def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
                               args.workers, args.scheduler)
     for warning in summary["warnings"]:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
+    if summary.get("workers"):
+        print(f"rigidimpact: note: {summary['workers']}", file=sys.stderr)
     if args.json:
         _print_json(summary)
         return 0
@@ -811,8 +815,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--format", choices=("text", "latex"), default="text")
     p.add_argument("--json", action="store_true")
     p.add_argument("--workers", type=int, metavar="N",
-                   help="a scene's [random] Monte Carlo on N local Dask workers (the "
-                        "same answer as one process for the same seed)")
+                   help="a scene's [random] Monte Carlo on N local Dask workers where "
+                        "its draws repay them (else here, said): the same answer")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="... or on the Dask cluster at ADDRESS (tcp://host:8786)")
     p.set_defaults(run=_cmd_derive)
@@ -889,8 +893,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--workers", type=int, metavar="N",
-                   help="on N local Dask workers, a block of 2^20 sets a task (the same "
-                        "numbers as one process)")
+                   help="on N local Dask workers where the sets repay them (else "
+                        "here, said), 2^20 sets a task: the same numbers")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="... or on the Dask cluster at ADDRESS (tcp://host:8786)")
     p.set_defaults(run=_cmd_sweep)

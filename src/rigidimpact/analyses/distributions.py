@@ -8,6 +8,7 @@ costs in time). ``derive`` prints them and ``derive --json`` adds them under
 
 from __future__ import annotations
 
+import contextlib
 import random
 import time
 from collections.abc import Mapping, Sequence
@@ -17,7 +18,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.outputs.workers import dask_client
+from rigidimpact.outputs.workers import dask_client, local_or_here
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
@@ -41,28 +42,32 @@ def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
                         values: dict[sp.Symbol, Any], samples: int, seed: int,
                         chunk: int = CHUNK, workers: int | None = None,
                         scheduler: str | None = None, processes: bool = True,
-                        progress: bool = False) -> dict[str, float]:
+                        progress: bool = False, client: Any = None) -> dict[str, float]:
     """:func:`rigidimpact.symbolic.distributions.monte_carlo` spread over Dask workers:
     one task a chunk, each drawing from its own stream of the seed, their sums added
     in the chunks' order, so the answer equals the one-process answer for the same
-    seed and chunk, whatever the number of workers. With no `scheduler` a local
-    cluster of `workers` processes (default: one a core) is started and closed; with
-    one (``tcp://host:8786``) its cluster is used. `progress` draws Dask's progress bar
-    on the standard error."""
+    seed and chunk, whatever the number of workers. On `client` where one is given (a
+    command's several outputs share one cluster); else with no `scheduler` a local
+    cluster of `workers` processes (default: one a core) is started and closed, and
+    with one (``tcp://host:8786``) its cluster is used. `progress` draws Dask's
+    progress bar on the standard error."""
+    if client is None:
+        with dask_client(workers, scheduler, processes) as opened:
+            return monte_carlo_on_dask(g, inputs, values, samples, seed, chunk,
+                                       progress=progress, client=opened)
     sizes = chunk_sizes(samples, chunk)
-    with dask_client(workers, scheduler, processes) as client:
-        # a few runs of consecutive chunks a worker (the expression and its inputs sent
-        # once a run, not once a chunk), each chunk still its own stream: the sums are
-        # the one-process sums, in the chunks' order
-        count = len(client.scheduler_info().get("workers", {})) or 1
-        runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
-        futures = [client.submit(chunk_run, g, inputs, values, seed, start,
-                                 sizes[start:stop], pure=False) for start, stop in runs]
-        if progress:
-            from dask.distributed import progress as bar
+    # a few runs of consecutive chunks a worker (the expression and its inputs sent once
+    # a run, not once a chunk), each chunk still its own stream: the sums are the
+    # one-process sums, in the chunks' order
+    count = len(client.scheduler_info().get("workers", {})) or 1
+    runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
+    futures = [client.submit(chunk_run, g, inputs, values, seed, start,
+                             sizes[start:stop], pure=False) for start, stop in runs]
+    if progress:
+        from dask.distributed import progress as bar
 
-            bar(futures)
-        sums = [part for run in client.gather(futures) for part in run]
+        bar(futures)
+    sums = [part for run in client.gather(futures) for part in run]
     return combine(sums, samples)
 
 
@@ -140,6 +145,7 @@ def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
     inputs = dict(table.inputs)
     sizes = chunk_sizes(samples, chunk)
     jobs = [(k, size) for k, size in enumerate(sizes)]
+    workers, note = local_or_here(samples, "solves", workers, scheduler)
     if workers is None and scheduler is None:
         parts = [point_chunk(scene, keys, inputs, seed, k, size)
                  for k, size in jobs]
@@ -156,7 +162,8 @@ def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
     warned = sum(p[1] for p in parts)
     first = next((p[2] for p in parts if p[2]), None)
     return {key: {**combine([p[0][key] for p in parts], samples), "seed": seed,
-                  "warned": warned, **({"warning": first} if first else {})}
+                  "warned": warned, **({"warning": first} if first else {}),
+                  **({"workers": note} if note else {})}
             for key in keys}
 
 
@@ -178,7 +185,10 @@ def _point_distributions(scene: Any, results: Mapping[str, Any], workers: int | 
     seconds = time.perf_counter() - begin
     drivers = [str(s) for s in sorted(table.inputs, key=str)]
     return {key: {"random": drivers, "solved": "a solve a draw (no closed form)",
-                  "monte_carlo": found[key], "monte_carlo_seconds": seconds}
+                  "monte_carlo": {k: v for k, v in found[key].items() if k != "workers"},
+                  "monte_carlo_seconds": seconds,
+                  **({"workers": found[key]["workers"]} if "workers" in found[key]
+                     else {})}
             for key in keys}
 
 
@@ -282,7 +292,10 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
     where found in closed form ``variable``, ``density``, ``support`` and ``mean`` (SymPy
     expressions), ``below_zero`` (P(output < 0), where 0 lies inside the support at the
     scene's [values]); always ``monte_carlo`` (mean, standard_error, below_zero,
-    samples, seed) at the scene's [values], and the seconds each took."""
+    samples, seed) at the scene's [values], and the seconds each took. With `workers`
+    asked for draws too few to repay starting them
+    (:func:`rigidimpact.outputs.workers.local_or_here`), each drawn output's
+    ``workers`` says they were not started and the draws were made here."""
     table = scene.random
     inputs = dict(table.inputs)
     unknown = [k for k in table.outputs if k not in results]
@@ -294,6 +307,32 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
     keys = table.outputs or tuple(k for k, v in results.items()
                                   if len(v.free_symbols & set(inputs)) == 1)
     values = {s: v for s, v in scene.values.items() if s not in inputs}
+    # the outputs drawn (a random input in them, every other number given): local
+    # workers only where all their draws together repay the workers' start, and then
+    # one cluster for them all
+    drawn_keys = [k for k in keys if results[k].free_symbols & set(inputs)
+                  and not results[k].free_symbols - set(inputs) - set(values)]
+    workers, note = local_or_here(table.samples * len(drawn_keys), "draws", workers,
+                                  scheduler)
+    with contextlib.ExitStack() as stack:
+        found = _each_distribution(scene, results, keys, inputs, values, workers,
+                                   scheduler, progress, stack)
+    if note:
+        for entry in found.values():
+            if "monte_carlo" in entry:
+                entry["workers"] = note
+    return found
+
+
+def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[str],
+                       inputs: Mapping[sp.Symbol, Distribution],
+                       values: Mapping[sp.Symbol, Any], workers: int | None,
+                       scheduler: str | None, progress: bool,
+                       stack: contextlib.ExitStack) -> dict[str, dict[str, Any]]:
+    """:func:`scene_distributions`' outputs one by one; a Dask cluster, where one is to
+    be used, opened at the first draws into `stack` and kept for the rest."""
+    table = scene.random
+    client = None
     found: dict[str, dict[str, Any]] = {}
     for key in keys:
         g = results[key]
@@ -327,8 +366,10 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
         if workers is None and scheduler is None:
             stats = monte_carlo(g, drawn, values, table.samples, table.seed, CHUNK)
         else:
+            if client is None:
+                client = stack.enter_context(dask_client(workers, scheduler))
             stats = monte_carlo_on_dask(g, drawn, values, table.samples, table.seed, CHUNK,
-                                        workers, scheduler, progress=progress)
+                                        progress=progress, client=client)
         entry["monte_carlo"] = {**stats, "seed": table.seed}
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
         found[key] = entry
@@ -346,7 +387,7 @@ def distributions_json(found: dict[str, dict[str, Any]]) -> dict[str, Any]:
                 row[name] = str(entry[name])
         if "support" in entry:
             row["support"] = [str(x) for x in entry["support"]]
-        for name in ("symbolic_in", "no_closed_form", "monte_carlo_missing"):
+        for name in ("symbolic_in", "no_closed_form", "monte_carlo_missing", "workers"):
             if name in entry:
                 row[name] = entry[name]
         if "monte_carlo" in entry:
@@ -369,6 +410,9 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
                     if "monte_carlo" in e), table.samples)
     lines = [f"Distributions (random: {laws}; Monte Carlo at [values], {samples} "
              f"samples, seed {table.seed}):"]
+    note = next((e["workers"] for e in found.values() if "workers" in e), None)
+    if note:
+        lines.append(f"  ({note})")
     for key, entry in found.items():
         lines.append(f"  {key}:")
         if "density" in entry:

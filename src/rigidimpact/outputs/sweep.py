@@ -33,7 +33,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import replace_folder
-from rigidimpact.outputs.workers import dask_client
+from rigidimpact.outputs.workers import dask_client, local_or_here
 from rigidimpact.scenes.scene import load_scene
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
@@ -123,7 +123,8 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
         raise InputError("--out", f"the results need {need / 1e9:.1f} GB and "
                          f"{str(parent)!r} has {free / 1e9:.1f} GB free; sweep fewer sets "
                          "or fewer --keys")
-    summary: dict[str, Any] = {}
+    workers, note = local_or_here(total, "sets", workers, scheduler)
+    summary: dict[str, Any] = {"workers": note} if note else {}
 
     written = [k for k in kernel.keys if kept is None or k in kept]
     scratch = tempfile.TemporaryDirectory(prefix="sweep-") if len(written) < len(
@@ -253,6 +254,7 @@ def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[st
                          f"budget of {MAX_POINTS} for a scene without a closed form")
     blocks = [(a, min(a + POINTS, total)) for a in range(0, total, POINTS)]
     point_block(path, grid, fixed, 0, 1)  # a bad value is said here, before any worker
+    workers, note = local_or_here(total, "solves", workers, scheduler)
     parts: dict[tuple[int, int], dict[str, np.ndarray]] = {}
     start = time.perf_counter()
     if workers is None and scheduler is None:
@@ -281,7 +283,8 @@ def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[st
                "fixed": dict(fixed), "order": list(grid), "shape": list(shape),
                "sets": total, "backend": "solve a set at a time", "seconds": seconds,
                "sets_per_s": total / seconds if seconds > 0 else None,
-               "results": stats, "warnings": sweep_warnings(stats, total)}
+               "results": stats, "warnings": sweep_warnings(stats, total),
+               **({"workers": note} if note else {})}
 
     def fill(staging: Path) -> list[str]:
         for k, v in arrays.items():
