@@ -368,7 +368,7 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
         else:
             if client is None:
                 client = stack.enter_context(dask_client(workers, scheduler))
-            stats = monte_carlo_on_dask(g, drawn, values, table.samples, table.seed, CHUNK,
+            stats = monte_carlo_on_dask(g, drawn, dict(values), table.samples, table.seed, CHUNK,
                                         progress=progress, client=client)
         entry["monte_carlo"] = {**stats, "seed": table.seed}
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
