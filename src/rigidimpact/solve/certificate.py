@@ -708,7 +708,9 @@ def _at_point(point, before, after, contacts, impulses, tangential, rule, locked
                       *_spin(b), *(b.velocity if b.support != "fixed" else ())))]
         if not all(_is_number(x) for x in values):
             return None
-        needed = DIGITS + 10 + _span(values)
+        data = [*values, *(y for b in at_before if b.support != "fixed" for y in (
+            b.mass, *(x for row in _inertia(b) for x in row), *b.position))]
+        needed = DIGITS + 10 + _span(data)
         if needed <= dps or not any(isinstance(x, mpmath.mpf) for x in values):
             break
         dps = needed
