@@ -67,21 +67,17 @@ def _root(q: Any, n: int) -> Any:
     return mpmath.root(_mp(q), n)
 
 
+def _integer_power(base: Any, k: int) -> Any:
+    if k < 0 and isinstance(base, MPQ) and base == 0:
+        raise ZeroDivisionError("zero to a negative power")
+    return base ** k
+
+
 def _power(base: Any, exponent: sp.Expr) -> Any:
     if exponent.is_Integer:
-        k = int(exponent)
-        if isinstance(base, MPQ):
-            if k < 0 and base == 0:
-                raise ZeroDivisionError("zero to a negative power")
-            return base ** k
-        return base ** k
+        return _integer_power(base, int(exponent))
     if exponent.is_Rational and isinstance(base, MPQ) and base >= 0:
-        root = _root(base, int(exponent.q))
-        if isinstance(root, MPQ):
-            if exponent.p < 0 and root == 0:
-                raise ZeroDivisionError("zero to a negative power")
-            return root ** int(exponent.p)
-        return root ** int(exponent.p)
+        return _integer_power(_root(base, int(exponent.q)), int(exponent.p))
     power = mpmath.power(_mp(base), _mp(_leaf(exponent)))
     if isinstance(power, mpmath.mpc):
         raise Unsupported("a complex power")
