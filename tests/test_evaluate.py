@@ -76,6 +76,12 @@ def test_what_it_does_not_evaluate_it_leaves_to_sympy():
     for expr in (0.5 * x, sp.Piecewise((x, x > 0), (0, True)), sp.Function("g")(x), x + y):
         with pytest.raises(Unsupported):  # a Float must stay a Float: SymPy's way
             value_at(expr, {x: sp.Rational(1, 2)})
+    for expr in (sp.log(x), sp.asin(x)):  # no real value there: SymPy's way, not complex
+        with pytest.raises(Unsupported):
+            value_at(expr, {x: sp.Integer(-2)})
+    with mpmath.workdps(60):  # a constant at the digits asked for
+        assert abs(value_at(sp.E * x, {x: sp.Integer(1)}, 60) - mpmath.e) < \
+            mpmath.mpf(10) ** -55
     with pytest.raises(ZeroDivisionError):
         value_at(1 / (x - 1), {x: sp.Integer(1)})
     # SymPy's exact values of its functions, kept exact

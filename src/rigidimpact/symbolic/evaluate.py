@@ -90,7 +90,7 @@ def _leaf(node: sp.Expr) -> Any:
     if node is sp.pi:
         return +mpmath.pi
     if node is sp.E:
-        return mpmath.e()
+        return +mpmath.e
     raise Unsupported(f"no value for {node}")
 
 
@@ -139,6 +139,8 @@ def value_at(expr: Any, point: Mapping[Any, Any], dps: int = 60) -> Any:
                 value = MPQ(_AT_ZERO[type(node)])
             else:
                 value = _FUNCTIONS[type(node)](_mp(x))
+                if isinstance(value, mpmath.mpc):  # log of a negative, asin past 1
+                    raise Unsupported(f"no real value for {node} there")
         elif isinstance(node, sp.Abs):
             value = abs(walk(node.args[0]))
         else:
