@@ -64,7 +64,7 @@ def test_the_rows_of_a_rational_normal_stay_rational():
 
 
 def test_random_rough_family_small(tmp_path):
-    rows = rough_search.search(12, 2024, tmp_path)
+    rows = rough_search.search(8, 2024, tmp_path)
     assert [r for r in rows if r["problem"]] == []
     assert all(r["status"] in (0, 2) for r in rows)
 
