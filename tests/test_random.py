@@ -271,7 +271,11 @@ def _always_start_workers(monkeypatch):
     monkeypatch.setattr(workers, "REPAYS", {kind: 0 for kind in workers.REPAYS})
 
 
-def test_derive_on_dask_workers_and_a_missing_scheduler(capsys, monkeypatch):
+def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys,
+                                                                         monkeypatch):
+    # the command on two local workers gives the one-process numbers: checked with the
+    # processes it leaves behind (test_a_run_on_local_workers_leaves_no_process_behind),
+    # the one run of it in this file
     from pathlib import Path
 
     from rigidimpact.cli import main
@@ -279,13 +283,6 @@ def test_derive_on_dask_workers_and_a_missing_scheduler(capsys, monkeypatch):
     pytest.importorskip("dask.distributed")
     _always_start_workers(monkeypatch)
     scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
-    assert main(["derive", str(scene), "--json", "--workers", "2"]) == 0
-    import json
-
-    on_dask = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
-    assert main(["derive", str(scene), "--json"]) == 0
-    alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
-    assert on_dask["monte_carlo"] == alone["monte_carlo"] and "workers" not in on_dask
     assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:1"]) != 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no Dask scheduler at tcp://127.0.0.1:1" in err[0]
@@ -480,14 +477,18 @@ def _in_session(sid: int) -> list[str]:
 
 @pytest.mark.skipif(not __import__("pathlib").Path("/proc/self/stat").exists(),
                     reason="reads the process table from /proc")
-def test_a_run_on_local_workers_leaves_no_process_behind():
+def test_a_run_on_local_workers_leaves_no_process_behind(capsys):
     # the command is started in its own session: once it has exited, nothing it started
     # (the workers, their nannies, multiprocessing's resource tracker) is left in it,
-    # not even a finished process waiting to be reaped
+    # not even a finished process waiting to be reaped; and its numbers are the
+    # one-process numbers, to the last bit
     pytest.importorskip("dask.distributed")
+    import json
     import subprocess
     import sys
     from pathlib import Path
+
+    from rigidimpact.cli import main
 
     scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
     started = ("from rigidimpact.outputs import workers; "  # for a test's few draws too
@@ -495,12 +496,16 @@ def test_a_run_on_local_workers_leaves_no_process_behind():
                "from rigidimpact.cli import main; "
                f"raise SystemExit(main(['derive', {str(scene)!r}, '--workers', '2', "
                "'--json']))")
-    command = subprocess.Popen([sys.executable, "-c", started], stdout=subprocess.DEVNULL,
-                               stderr=subprocess.PIPE, start_new_session=True)
-    _, err = command.communicate(timeout=300)
+    command = subprocess.Popen([sys.executable, "-c", started], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, start_new_session=True, text=True)
+    out, err = command.communicate(timeout=300)
     left = _in_session(command.pid)  # at once: an orphan is reaped within moments
     assert command.returncode == 0, err
     assert left == [], left
+    on_dask = json.loads(out)["distributions"]["barbell.vy"]
+    assert main(["derive", str(scene), "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
+    assert on_dask["monte_carlo"] == alone["monte_carlo"] and "workers" not in on_dask
 
 
 def test_local_workers_step_aside_where_the_work_cannot_repay_them(capsys):

@@ -6,6 +6,7 @@ where they run, so one worker, two or a cluster give the one-process answer.
 
 from __future__ import annotations
 
+import socket
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
@@ -80,6 +81,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
                                    scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
         client = Client(cluster)
     else:
+        _reachable(scheduler)
         try:
             client = Client(scheduler, timeout=10)
         except (OSError, ValueError, TypeError) as exc:  # ValueError: not an address
@@ -93,6 +95,22 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         if cluster is not None:
             cluster.close()
             _stop_resource_tracker()
+
+
+def _reachable(scheduler: str) -> None:
+    """Say at once that nothing listens at a ``tcp://host:port`` `scheduler` (the
+    connection refused), where Dask's client would try again for its whole timeout
+    (10 s); other addresses, and hosts that do not answer, are left to the client."""
+    host, colon, port = scheduler.removeprefix("tcp://").rpartition(":")
+    if not scheduler.startswith("tcp://") or not colon or not port.isdigit():
+        return
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=10).close()
+    except ConnectionRefusedError:
+        raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: the "
+                         "connection was refused") from None
+    except OSError:  # no answer, no such host: the client says so in its own words
+        return
 
 
 def _stop_resource_tracker() -> None:
