@@ -113,3 +113,23 @@ def test_fixed_step_marching_stops_at_the_crossing_across_blocks():
     assert small_blocks == bench._fixed_step_turn(angle, 1e-3)
     with pytest.raises(ArithmeticError):
         bench._fixed_step_turn(math.radians(30.0), 1e-2)  # above theta_c: no re-strike
+
+
+def test_the_dask_bench_asks_for_work_that_starts_local_workers():
+    # below what repays starting local workers, --workers 2 would run in one process:
+    # the bench would time one process twice and call it Dask
+    with pytest.raises(ValueError, match="local workers start for 1000 or more"):
+        bench.dask_against_one(1, 200)
+
+
+@pytest.mark.slow
+def test_the_dask_bench_times_three_ways_with_the_same_numbers():
+    # one process, two Dask workers, and two plain processes each sweeping half: the
+    # bench itself raises if the two-worker sweep's numbers differ from one process's
+    pytest.importorskip("dask.distributed")
+    found = bench.dask_against_one(1)
+    assert found["solves"] == 1000
+    assert min(found["one_process_s"], found["two_workers_s"],
+               found["two_processes_apart_s"]) > 0
+    assert found["dask_gain"] == found["one_process_s"] / found["two_workers_s"]
+    assert found["two_core_limit"] == found["one_process_s"] / found["two_processes_apart_s"]

@@ -50,6 +50,7 @@ from rigidimpact.analyses.contacts import contacts_family
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.plots import accuracy_vs_time
+from rigidimpact.outputs.workers import REPAYS
 from rigidimpact.paper.problems import derive
 from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
@@ -59,8 +60,8 @@ from rigidimpact.symbolic.notation import symbol
 from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
-           "verify_against_plain", "start_against_sympy", "ladder_scene", "FAMILIES",
-           "FLOOR"]
+           "verify_against_plain", "start_against_sympy", "dask_against_one",
+           "ladder_scene", "FAMILIES", "FLOOR"]
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
@@ -703,6 +704,99 @@ def start_against_sympy(repeats: int = 3) -> dict[str, float]:
             "help_ratio": times["help"] / times["sympy"]}
 
 
+CRADLE_SCENE = """title = "Three-ball cradle through the compliant contact"
+[values]
+e = 0.9
+[[bodies]]
+name = "first"
+shape = "sphere"
+mass = "1"
+radius = "1/2"
+position = ["-1/2", "0"]
+velocity = ["1", "0"]
+[[bodies]]
+name = "middle"
+shape = "sphere"
+mass = "1"
+radius = "1/2"
+position = ["1/2", "0"]
+[[bodies]]
+name = "last"
+shape = "sphere"
+mass = "1"
+radius = "1/2"
+position = ["3/2", "0"]
+[[contacts]]
+name = "left"
+bodies = ["first", "middle"]
+point = ["0", "0"]
+restitution = "e"
+[[contacts]]
+name = "right"
+bodies = ["middle", "last"]
+point = ["1", "0"]
+restitution = "e"
+[impact]
+rule = "compliant"
+"""
+
+
+def dask_against_one(repeats: int = 3, solves: int = 1000) -> dict[str, float] | None:
+    """What two local Dask workers gain on this machine, and what two cores could gain
+    at most on the same work: `solves` compliant runs of a three-ball cradle
+    (``rigidimpact sweep`` over its restitution) in one process, on ``--workers 2``,
+    and as two independent processes side by side, each sweeping half (no Dask: the
+    machine's own limit, which counts what two busy cores cost each other). Each a
+    whole fresh command, the three timed in turn; medians. The one-process and the
+    two-worker runs must give the same numbers, bit for bit (else RuntimeError). None
+    without Dask; `solves` at least what repays starting local workers
+    (:data:`rigidimpact.outputs.workers.REPAYS`), else ValueError."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+    from concurrent.futures import ThreadPoolExecutor
+
+    if solves < REPAYS["solves"]:
+        raise ValueError(f"{solves} solves: local workers start for {REPAYS['solves']} "
+                         "or more")
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        return None
+    with tempfile.TemporaryDirectory(prefix="bench-dask-") as folder:
+        scene = Path(folder) / "cradle.toml"
+        scene.write_text(CRADLE_SCENE, encoding="utf-8")
+        half = solves // 2
+        # the whole grid of e from 0.1 to 1, and its two halves (the same sets)
+        whole = f"e=0.1:1:{solves}"
+        parts = [f"e=0.1:{0.1 + 0.9 * (half - 1) / (solves - 1)!r}:{half}",
+                 f"e={0.1 + 0.9 * half / (solves - 1)!r}:1:{solves - half}"]
+
+        def sweep(grid: str, out: str, *more: str) -> None:
+            subprocess.run([sys.executable, "-m", "rigidimpact", "sweep", str(scene),
+                            "--grid", grid, "--out", str(Path(folder) / out), "--json",
+                            *more], check=True, capture_output=True, timeout=3600,
+                           env={**os.environ, "RIGIDIMPACT_CACHE": "off"})
+
+        def side_by_side() -> None:
+            with ThreadPoolExecutor(2) as pool:
+                list(pool.map(lambda k: sweep(parts[k], f"half{k}"), (0, 1)))
+
+        times = _interleaved({"one": lambda: sweep(whole, "one"),
+                              "workers": lambda: sweep(whole, "two", "--workers", "2"),
+                              "apart": side_by_side}, repeats)
+        for key in ("first.vx", "middle.vx", "last.vx"):  # the same numbers, bit for bit
+            one, two = (np.load(Path(folder) / run / f"{key}.npy") for run in ("one", "two"))
+            if not np.array_equal(one, two):
+                raise RuntimeError(f"{key}: two Dask workers gave other numbers than one "
+                                   "process")
+    return {"solves": float(solves), "one_process_s": times["one"],
+            "two_workers_s": times["workers"], "two_processes_apart_s": times["apart"],
+            "dask_gain": times["one"] / times["workers"],
+            "two_core_limit": times["one"] / times["apart"]}
+
+
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
               progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
     """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
@@ -764,6 +858,8 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
         report["start_vs_sympy"] = start_against_sympy(1 if quick else 5)
         if not quick:  # about 45 s a run: the full bench only
             report["run_vs_plain"] = run_against_plain(1)
+            # three commands of 15 to 40 s each, three times: the full bench only
+            report["dask_vs_one"] = dask_against_one(3)
     if "contacts" in families:
         report["contacts"] = contacts_family(quick)
     report["seconds"] = time.perf_counter() - started
@@ -838,6 +934,15 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                           f"off) end to end {rp['run_s']:.1f} s against the plain SymPy "
                           f"barbell script {rp['plain_barbell_s']:.2f} s: ratio "
                           f"{rp['ratio']:.1f}."]
+        dk = report.get("dask_vs_one")
+        if dk:
+            lines += ["", f"Dask: {dk['solves']:.0f} compliant runs of a three-ball cradle "
+                          f"(`rigidimpact sweep`) took {dk['one_process_s']:.1f} s in one "
+                          f"process and {dk['two_workers_s']:.1f} s on `--workers 2` (gain "
+                          f"{dk['dask_gain']:.2f}); two independent processes, each "
+                          f"sweeping half, took {dk['two_processes_apart_s']:.1f} s side by "
+                          f"side: two cores here gain at most {dk['two_core_limit']:.2f} on "
+                          "this work."]
     if "contacts" in report:
         family = report["contacts"]
         lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
