@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pytest
 
+from rigidimpact.analyses.bench import CRADLE_SCENE
 from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.paper.problems import derive
@@ -188,49 +189,7 @@ def test_a_sweep_on_dask_writes_the_one_process_numbers(tmp_path, monkeypatch):
         assert np.array_equal(a, b, equal_nan=True), key
 
 
-CRADLE = '''
-title = "cradle"
-
-[values]
-e = 0.9
-
-[[bodies]]
-name = "first"
-shape = "sphere"
-mass = "1"
-radius = "1/2"
-position = ["-1/2", "0"]
-velocity = ["1", "0"]
-
-[[bodies]]
-name = "middle"
-shape = "sphere"
-mass = "1"
-radius = "1/2"
-position = ["1/2", "0"]
-
-[[bodies]]
-name = "last"
-shape = "sphere"
-mass = "1"
-radius = "1/2"
-position = ["3/2", "0"]
-
-[[contacts]]
-name = "left"
-bodies = ["first", "middle"]
-point = ["0", "0"]
-restitution = "e"
-
-[[contacts]]
-name = "right"
-bodies = ["middle", "last"]
-point = ["1", "0"]
-restitution = "e"
-
-[impact]
-rule = "compliant"
-'''
+CRADLE = CRADLE_SCENE  # the three-ball cradle through the compliant contact (the bench's)
 
 
 def test_a_sweep_of_compliant_runs_set_by_set_and_on_dask(tmp_path, monkeypatch, capsys):

@@ -61,7 +61,7 @@ from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
            "verify_against_plain", "start_against_sympy", "dask_against_one",
-           "ladder_scene", "FAMILIES", "FLOOR"]
+           "ladder_scene", "CRADLE_SCENE", "FAMILIES", "FLOOR"]
 
 FLOOR = 1e-18
 FAMILIES = ("symbolic", "float64", "mpmath", "compliant", "integration", "restrike-event",
