@@ -286,6 +286,10 @@ def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys,
     assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:1"]) != 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no Dask scheduler at tcp://127.0.0.1:1" in err[0]
+    assert "connection was refused" in err[0]  # at once, not after the client's 10 s
+    assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:99999"]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "a port lies between 1 and 65535" in err[0]
     assert main(["derive", "barbell", "--workers", "2"]) != 0
     assert "only a scene with a [random] table" in capsys.readouterr().err
 

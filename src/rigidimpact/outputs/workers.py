@@ -104,6 +104,9 @@ def _reachable(scheduler: str) -> None:
     host, colon, port = scheduler.removeprefix("tcp://").rpartition(":")
     if not scheduler.startswith("tcp://") or not colon or not port.isdigit():
         return
+    if not 1 <= int(port) <= 65535:
+        raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: a port lies "
+                         "between 1 and 65535")
     try:
         socket.create_connection((host.strip("[]"), int(port)), timeout=10).close()
     except ConnectionRefusedError:
