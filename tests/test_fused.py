@@ -189,9 +189,6 @@ def test_a_sweep_on_dask_writes_the_one_process_numbers(tmp_path, monkeypatch):
         assert np.array_equal(a, b, equal_nan=True), key
 
 
-CRADLE = CRADLE_SCENE  # the three-ball cradle through the compliant contact (the bench's)
-
-
 def test_a_sweep_of_compliant_runs_set_by_set_and_on_dask(tmp_path, monkeypatch, capsys):
     # a scene with no closed form (the compliant rule) is solved set by set; on Dask
     # (threads here, to start fast) the numbers are the same, and each equals what
@@ -202,7 +199,7 @@ def test_a_sweep_of_compliant_runs_set_by_set_and_on_dask(tmp_path, monkeypatch,
 
     monkeypatch.setattr(sweep_module, "POINTS", 3)
     scene = tmp_path / "cradle.toml"
-    scene.write_text(CRADLE)
+    scene.write_text(CRADLE_SCENE)
     grid = {"e": np.linspace(0.5, 1.0, 7)}
     alone = run_point_sweep(str(scene), grid, {}, tmp_path / "alone")
     monkeypatch.setattr("rigidimpact.outputs.workers.REPAYS",
@@ -239,7 +236,7 @@ def test_a_sweep_steps_aside_from_local_workers_its_sets_cannot_repay(tmp_path, 
         assert np.array_equal(np.load(tmp_path / "stepped" / f"{key}.npy"),
                               np.load(tmp_path / "alone" / f"{key}.npy"), equal_nan=True)
     scene = tmp_path / "cradle.toml"
-    scene.write_text(CRADLE)
+    scene.write_text(CRADLE_SCENE)
     assert main(["sweep", str(scene), "--grid", "e=0.5:1:3", "--workers", "2",
                  "--out", str(tmp_path / "solves"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["workers"].startswith(

@@ -271,8 +271,7 @@ def _always_start_workers(monkeypatch):
     monkeypatch.setattr(workers, "REPAYS", {kind: 0 for kind in workers.REPAYS})
 
 
-def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys,
-                                                                         monkeypatch):
+def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys):
     # the command on two local workers gives the one-process numbers: checked with the
     # processes it leaves behind (test_a_run_on_local_workers_leaves_no_process_behind),
     # the one run of it in this file
@@ -281,7 +280,6 @@ def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys,
     from rigidimpact.cli import main
 
     pytest.importorskip("dask.distributed")
-    _always_start_workers(monkeypatch)
     scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
     assert main(["derive", str(scene), "--scheduler", "tcp://127.0.0.1:1"]) != 0
     err = capsys.readouterr().err.strip().splitlines()
@@ -292,6 +290,42 @@ def test_derive_with_a_missing_scheduler_or_no_random_table_is_one_line(capsys,
     assert len(err) == 1 and "a port lies between 1 and 65535" in err[0]
     assert main(["derive", "barbell", "--workers", "2"]) != 0
     assert "only a scene with a [random] table" in capsys.readouterr().err
+
+
+def test_a_scheduler_address_where_something_else_answers_is_one_line(capsys):
+    # a server that is not Dask's (here one that answers as a web server would): Dask's
+    # client reads its first bytes as a length of exabytes; said in one line, not as an
+    # input too large
+    import socket
+    import threading
+    from pathlib import Path
+
+    from rigidimpact.cli import main
+
+    pytest.importorskip("dask.distributed")
+    server = socket.create_server(("127.0.0.1", 0))
+    port = server.getsockname()[1]
+    held = []
+
+    def answer() -> None:
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:  # closed at the test's end
+                return
+            held.append(conn)
+            conn.sendall(b"HTTP/1.1 400 Bad Request\r\n\r\n")
+
+    threading.Thread(target=answer, daemon=True).start()
+    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    try:
+        assert main(["derive", str(scene), "--scheduler", f"tcp://127.0.0.1:{port}"]) != 0
+    finally:
+        server.close()
+        for conn in held:
+            conn.close()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "does not speak Dask's protocol" in err[0], err
 
 
 def test_the_distribution_is_exported_as_latex(capsys):

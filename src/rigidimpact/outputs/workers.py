@@ -84,6 +84,9 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         _reachable(scheduler)
         try:
             client = Client(scheduler, timeout=10)
+        except MemoryError:  # a length read from the first bytes of what answered
+            raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: what "
+                             "answers there does not speak Dask's protocol") from None
         except (OSError, ValueError, TypeError) as exc:  # ValueError: not an address
             reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
             raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: "
@@ -100,7 +103,8 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
 def _reachable(scheduler: str) -> None:
     """Say at once that nothing listens at a ``tcp://host:port`` `scheduler` (the
     connection refused), where Dask's client would try again for its whole timeout
-    (10 s); other addresses, and hosts that do not answer, are left to the client."""
+    (10 s), and after 10 s that it does not answer (not 10 s more in the client); other
+    addresses, and hosts that cannot be reached at all, are left to the client."""
     host, colon, port = scheduler.removeprefix("tcp://").rpartition(":")
     if not scheduler.startswith("tcp://") or not colon or not port.isdigit():
         return
@@ -112,7 +116,10 @@ def _reachable(scheduler: str) -> None:
     except ConnectionRefusedError:
         raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: the "
                          "connection was refused") from None
-    except OSError:  # no answer, no such host: the client says so in its own words
+    except TimeoutError:  # said here: the client would wait its own 10 s again
+        raise InputError("--scheduler", f"no Dask scheduler at {scheduler}: no answer "
+                         "within 10 s") from None
+    except OSError:  # no such host, no route: the client says so in its own words
         return
 
 
