@@ -515,11 +515,12 @@ def _in_session(sid: int) -> list[str]:
 
 @pytest.mark.skipif(not __import__("pathlib").Path("/proc/self/stat").exists(),
                     reason="reads the process table from /proc")
-def test_a_run_on_local_workers_leaves_no_process_behind(capsys):
+def test_a_run_on_local_workers_leaves_no_process_behind(capsys, tmp_path):
     # the command is started in its own session: once it has exited, nothing it started
     # (the workers, their nannies, multiprocessing's resource tracker) is left in it,
-    # not even a finished process waiting to be reaped; and its numbers are the
-    # one-process numbers, to the last bit
+    # not even a finished process waiting to be reaped; and its answers are the
+    # one-process answers, to the last bit, for both its outputs (one with a closed
+    # form, derived here while the workers draw; one without)
     pytest.importorskip("dask.distributed")
     import json
     import subprocess
@@ -528,7 +529,13 @@ def test_a_run_on_local_workers_leaves_no_process_behind(capsys):
 
     from rigidimpact.cli import main
 
-    scene = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    shipped = Path(__file__).resolve().parents[1] / "derivations" / "random-barbell.toml"
+    text = shipped.read_text()
+    assert 'outputs = ["barbell.vy"]' in text and "samples = 1000000\n" in text
+    scene = tmp_path / "two-outputs.toml"
+    scene.write_text(text.replace('outputs = ["barbell.vy"]',
+                                  'outputs = ["barbell.vy", "barbell.omega"]')
+                     .replace("samples = 1000000\n", "samples = 300000\n"))
     started = ("from rigidimpact.outputs import workers; "  # for a test's few draws too
                "workers.REPAYS.update(draws=0); "
                "from rigidimpact.cli import main; "
@@ -540,10 +547,16 @@ def test_a_run_on_local_workers_leaves_no_process_behind(capsys):
     left = _in_session(command.pid)  # at once: an orphan is reaped within moments
     assert command.returncode == 0, err
     assert left == [], left
-    on_dask = json.loads(out)["distributions"]["barbell.vy"]
+    on_dask = json.loads(out)["distributions"]
     assert main(["derive", str(scene), "--json"]) == 0
-    alone = json.loads(capsys.readouterr().out)["distributions"]["barbell.vy"]
-    assert on_dask["monte_carlo"] == alone["monte_carlo"] and "workers" not in on_dask
+    alone = json.loads(capsys.readouterr().out)["distributions"]
+    assert list(on_dask) == list(alone) == ["barbell.vy", "barbell.omega"]
+    assert "density" in alone["barbell.vy"] and "no_closed_form" in alone["barbell.omega"]
+    for key, found in alone.items():
+        assert on_dask[key]["monte_carlo"]["samples"] == 300000
+        timed = {"monte_carlo_seconds", "exact_seconds"}
+        assert {k: v for k, v in on_dask[key].items() if k not in timed} == \
+            {k: v for k, v in found.items() if k not in timed}, key
 
 
 def test_local_workers_step_aside_where_the_work_cannot_repay_them(capsys):

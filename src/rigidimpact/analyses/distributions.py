@@ -55,14 +55,28 @@ def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
         with dask_client(workers, scheduler, processes) as opened:
             return monte_carlo_on_dask(g, inputs, values, samples, seed, chunk,
                                        progress=progress, client=opened)
+    return _gathered(client, _sent(client, g, inputs, values, samples, seed, chunk),
+                     samples, progress)
+
+
+def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
+          values: dict[sp.Symbol, Any], samples: int, seed: int,
+          chunk: int) -> list[Any]:
+    """The futures of :func:`monte_carlo_on_dask`'s tasks, sent to `client`'s workers
+    and not waited for."""
     sizes = chunk_sizes(samples, chunk)
     # a few runs of consecutive chunks a worker (the expression and its inputs sent once
     # a run, not once a chunk), each chunk still its own stream: the sums are the
     # one-process sums, in the chunks' order
     count = len(client.scheduler_info().get("workers", {})) or 1
     runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
-    futures = [client.submit(chunk_run, g, inputs, values, seed, start,
-                             sizes[start:stop], pure=False) for start, stop in runs]
+    return [client.submit(chunk_run, g, inputs, values, seed, start,
+                          sizes[start:stop], pure=False) for start, stop in runs]
+
+
+def _gathered(client: Any, futures: list[Any], samples: int,
+              progress: bool) -> dict[str, float]:
+    """The Monte Carlo's answer once the tasks of :func:`_sent` are done."""
     if progress:
         from dask.distributed import progress as bar
 
@@ -329,17 +343,34 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
                        values: Mapping[sp.Symbol, Any], workers: int | None,
                        scheduler: str | None, progress: bool,
                        stack: contextlib.ExitStack) -> dict[str, dict[str, Any]]:
-    """:func:`scene_distributions`' outputs one by one; a Dask cluster, where one is to
-    be used, opened at the first draws into `stack` and kept for the rest."""
+    """:func:`scene_distributions`' outputs: where workers are asked for, a Dask cluster
+    opened into `stack` and every output's draws sent to it first, then the closed
+    forms derived here while the workers draw, then the draws' sums gathered; in one
+    process, the closed forms and then the draws. A Monte Carlo's seconds on workers run
+    from the sending of its tasks to their sums."""
     table = scene.random
-    client = None
     found: dict[str, dict[str, Any]] = {}
+    every = {}
     for key in keys:
         g = results[key]
         drivers = sorted(g.free_symbols & set(inputs), key=str)
-        if not drivers:
-            continue
-        missing = sorted(g.free_symbols - set(inputs) - set(values), key=str)
+        if drivers:
+            every[key] = (g, drivers, sorted(g.free_symbols - set(inputs) - set(values),
+                                             key=str))
+    # on workers, every output's draws are sent first and its closed form is derived
+    # here while they are drawn (this process would otherwise leave a core idle)
+    sent: dict[str, tuple[float, list[Any]]] = {}
+    client = None
+    if workers is not None or scheduler is not None:
+        for key, (g, drivers, missing) in every.items():
+            if missing:
+                continue
+            if client is None:
+                client = stack.enter_context(dask_client(workers, scheduler))
+            sent[key] = (time.perf_counter(),
+                         _sent(client, g, {s: inputs[s] for s in drivers}, dict(values),
+                               table.samples, table.seed, CHUNK))
+    for key, (g, drivers, missing) in every.items():
         entry: dict[str, Any] = {"random": [str(s) for s in drivers]}
         if len(drivers) == 1 and inputs[drivers[0]].kind != "discrete":
             refusal = closed_form_refusal(g, drivers[0])
@@ -361,18 +392,20 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
             entry["monte_carlo_missing"] = str(missing[0])
             found[key] = entry
             continue
-        begin = time.perf_counter()
-        drawn = {s: inputs[s] for s in drivers}
-        if workers is None and scheduler is None:
-            stats = monte_carlo(g, drawn, values, table.samples, table.seed, CHUNK)
+        found[key] = entry
+    for key, entry in found.items():
+        if "monte_carlo_missing" in entry:
+            continue
+        g, drivers, _ = every[key]
+        if key in sent:  # from the sending of its tasks to their sums
+            begin, futures = sent[key]
+            stats = _gathered(client, futures, table.samples, progress)
         else:
-            if client is None:
-                client = stack.enter_context(dask_client(workers, scheduler))
-            stats = monte_carlo_on_dask(g, drawn, dict(values), table.samples, table.seed, CHUNK,
-                                        progress=progress, client=client)
+            begin = time.perf_counter()
+            stats = monte_carlo(g, {s: inputs[s] for s in drivers}, values,
+                                table.samples, table.seed, CHUNK)
         entry["monte_carlo"] = {**stats, "seed": table.seed}
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
-        found[key] = entry
     return found
 
 
