@@ -120,6 +120,8 @@ def test_the_dask_bench_asks_for_work_that_starts_local_workers():
     # the bench would time one process twice and call it Dask
     with pytest.raises(ValueError, match="local workers start for 1000 or more"):
         bench.dask_against_one(1, 200)
+    with pytest.raises(ValueError, match="local workers start for 200000000 or more"):
+        bench.dask_draws_against_one(1, 10**6)
 
 
 @pytest.mark.slow
@@ -129,6 +131,20 @@ def test_the_dask_bench_times_three_ways_with_the_same_numbers():
     pytest.importorskip("dask.distributed")
     found = bench.dask_against_one(1)
     assert found["solves"] == 1000
+    assert min(found["one_process_s"], found["two_workers_s"],
+               found["two_processes_apart_s"]) > 0
+    assert found["dask_gain"] == found["one_process_s"] / found["two_workers_s"]
+    assert found["two_core_limit"] == found["one_process_s"] / found["two_processes_apart_s"]
+
+
+@pytest.mark.slow
+def test_the_dask_draws_bench_times_three_ways_with_the_same_numbers():
+    # one process, two Dask workers, and two plain processes each drawing half the
+    # chunks: the bench raises if the two-worker Monte Carlo differs from one process's
+    # by a bit, or the halves' sums added in order give another mean
+    pytest.importorskip("dask.distributed")
+    found = bench.dask_draws_against_one(1, 2 * 10**8)
+    assert found["samples"] == 2e8
     assert min(found["one_process_s"], found["two_workers_s"],
                found["two_processes_apart_s"]) > 0
     assert found["dask_gain"] == found["one_process_s"] / found["two_workers_s"]

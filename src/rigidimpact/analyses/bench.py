@@ -56,11 +56,13 @@ from rigidimpact.scenes.scene import parse_scene
 from rigidimpact.simulate import run
 from rigidimpact.simulate.flight import first_contact
 from rigidimpact.simulate.outcome import flyer
+from rigidimpact.symbolic.distributions import combine
 from rigidimpact.symbolic.notation import symbol
 from rigidimpact.symbolic.numeric import fused, has_numba, kernels
 
 __all__ = ["run_bench", "pareto", "throughput", "write_outputs", "symbolic_ladder",
            "verify_against_plain", "start_against_sympy", "dask_against_one",
+           "dask_draws_against_one",
            "ladder_scene", "CRADLE_SCENE", "FAMILIES", "FLOOR"]
 
 FLOOR = 1e-18
@@ -797,6 +799,92 @@ def dask_against_one(repeats: int = 3, solves: int = 1000) -> dict[str, float] |
             "two_core_limit": times["one"] / times["apart"]}
 
 
+HALF_DRAWS = """import json, sys
+from rigidimpact.analyses.distributions import CHUNK, chunk_run
+from rigidimpact.scenes.scene import parse_scene
+from rigidimpact.symbolic.distributions import chunk_sizes
+scene = parse_scene(open(sys.argv[1], encoding="utf-8").read())
+g = scene.derivation().results["barbell.vy"]
+inputs = dict(scene.random.inputs)
+values = {s: v for s, v in scene.values.items() if s not in inputs}
+sizes = chunk_sizes(scene.random.samples, CHUNK)
+start, stop = (0, len(sizes) // 2) if sys.argv[2] == "0" else (len(sizes) // 2, len(sizes))
+print(json.dumps(chunk_run(g, inputs, values, scene.random.seed, start, sizes[start:stop])))
+"""
+
+
+def dask_draws_against_one(repeats: int = 3, samples: int = 10**9
+                           ) -> dict[str, float] | None:
+    """What two local Dask workers gain on the closed-form Monte Carlo, and what two
+    cores could gain at most: ``rigidimpact derive`` of the dropped barbell
+    (``derivations/random-barbell.toml``) with `samples` draws, in one process and on
+    ``--workers 2``, and two independent processes side by side, each parsing and
+    deriving the scene and drawing half of the same chunks (no Dask, no closed form:
+    the machine's own limit on the draws). Each a fresh process, the three timed in
+    turn; medians. The one-process and two-worker Monte Carlos must agree bit for bit,
+    and the two halves' sums, added in order, must give the same mean (else
+    RuntimeError). None without Dask or outside the repository; `samples` at least
+    what repays starting local workers
+    (:data:`rigidimpact.outputs.workers.REPAYS`), else ValueError."""
+    import json
+    import os
+    import subprocess
+    import sys
+    import tempfile
+    from concurrent.futures import ThreadPoolExecutor
+
+    if samples < REPAYS["draws"]:
+        raise ValueError(f"{samples} draws: local workers start for {REPAYS['draws']} "
+                         "or more")
+    shipped = Path(__file__).resolve().parents[3] / "derivations" / "random-barbell.toml"
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        return None
+    if not shipped.is_file():
+        return None
+    text = shipped.read_text(encoding="utf-8")
+    if "samples = 1000000\n" not in text:
+        raise RuntimeError(f"{shipped.name}: no line 'samples = 1000000' to change")
+    env = {**os.environ, "RIGIDIMPACT_CACHE": "off"}
+    found: dict[str, list] = {"one": [], "workers": [], "apart": []}
+    with tempfile.TemporaryDirectory(prefix="bench-draws-") as folder:
+        scene = Path(folder) / "dropped.toml"
+        scene.write_text(text.replace("samples = 1000000\n", f"samples = {samples}\n"),
+                         encoding="utf-8")
+
+        def derive(key: str, *more: str) -> None:
+            done = subprocess.run([sys.executable, "-m", "rigidimpact", "derive",
+                                   str(scene), "--json", *more], check=True,
+                                  capture_output=True, text=True, timeout=3600, env=env)
+            found[key].append(json.loads(done.stdout)["distributions"]["barbell.vy"]
+                              ["monte_carlo"])
+
+        def half(k: int) -> list:
+            done = subprocess.run([sys.executable, "-c", HALF_DRAWS, str(scene), str(k)],
+                                  check=True, capture_output=True, text=True,
+                                  timeout=3600, env=env)
+            return json.loads(done.stdout)
+
+        def side_by_side() -> None:
+            with ThreadPoolExecutor(2) as pool:
+                parts = list(pool.map(half, (0, 1)))
+            found["apart"].append(combine([tuple(x) for p in parts for x in p], samples))
+
+        times = _interleaved({"one": lambda: derive("one"),
+                              "workers": lambda: derive("workers", "--workers", "2"),
+                              "apart": side_by_side}, repeats)
+    one = found["one"][0]
+    if any(x != one for x in found["one"] + found["workers"]):
+        raise RuntimeError("two Dask workers gave another Monte Carlo than one process")
+    if any(x["mean"] != one["mean"] for x in found["apart"]):
+        raise RuntimeError("the two halves' draws gave another mean than one process")
+    return {"samples": float(samples), "one_process_s": times["one"],
+            "two_workers_s": times["workers"], "two_processes_apart_s": times["apart"],
+            "dask_gain": times["one"] / times["workers"],
+            "two_core_limit": times["one"] / times["apart"]}
+
+
 def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
               progress: Callable[[int, int, str], None] | None = None) -> dict[str, Any]:
     """Run every family (or those named) and return ``{"rows", "throughput", ...}``."""
@@ -860,6 +948,8 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
             report["run_vs_plain"] = run_against_plain(1)
             # three commands of 15 to 40 s each, three times: the full bench only
             report["dask_vs_one"] = dask_against_one(3)
+            # the same for 10^9 draws: about 40, 20 and 20 s, three times
+            report["dask_draws_vs_one"] = dask_draws_against_one(3)
     if "contacts" in families:
         report["contacts"] = contacts_family(quick)
     report["seconds"] = time.perf_counter() - started
@@ -943,6 +1033,15 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                           f"sweeping half, took {dk['two_processes_apart_s']:.1f} s side by "
                           f"side: two cores here gain at most {dk['two_core_limit']:.2f} on "
                           "this work."]
+        dd = report.get("dask_draws_vs_one")
+        if dd:
+            lines += ["", f"Dask: {dd['samples']:.0e} draws of the dropped barbell's "
+                          f"rebound (`rigidimpact derive`) took {dd['one_process_s']:.1f} s "
+                          f"in one process and {dd['two_workers_s']:.1f} s on `--workers 2` "
+                          f"(gain {dd['dask_gain']:.2f}); two independent processes, each "
+                          f"drawing half, took {dd['two_processes_apart_s']:.1f} s side by "
+                          f"side: two cores here gain at most {dd['two_core_limit']:.2f} on "
+                          "these draws."]
     if "contacts" in report:
         family = report["contacts"]
         lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
