@@ -580,3 +580,36 @@ def test_local_workers_step_aside_where_the_work_cannot_repay_them(capsys):
                                          f"the {REPAYS['draws']:,}")
     assert main(["derive", str(scene), "--workers", "2"]) == 0
     assert "  (--workers 2: 1,000,000 draws are fewer than" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("law", ["uniform", "normal", "lognormal", "discrete", "constant"])
+def test_a_draw_plan_draws_what_the_fused_kernel_gives_on_numpys_own_draws(law):
+    # the plan that workers draw with (NumPy alone) against the kernel built from the
+    # expression in this process, on draws made by NumPy's own calls: bit for bit
+    import numpy as np
+
+    from rigidimpact.symbolic.distributions import distribution, draw_plan
+    from rigidimpact.symbolic.numeric import fused
+
+    x, y, e = sp.symbols("x y e")
+    tables = {"uniform": {"uniform": ["0", "pi/2"]}, "normal": {"normal": ["1", "1/3"]},
+              "lognormal": {"lognormal": ["0", "1/2"]},
+              "discrete": {"discrete": ["1/4", "1/2", "1"], "weights": [1, 2, 1]},
+              "constant": {"uniform": ["0", "1"]}}
+    inputs = {x: distribution(tables[law], "x"), y: distribution({"uniform": ["-1", "1"]}, "y")}
+    g = sp.Integer(3) / 7 if law == "constant" else (e - sp.cos(x) ** 2 * y) / (1 + sp.cos(x) ** 2)
+    size = 20_001  # not a whole number of the kernel's chunks
+    got = draw_plan(g, inputs, {e: 0.5}).values(np.random.default_rng(11), size)
+    rng = np.random.default_rng(11)  # x then y: the inputs in the order of their names
+    drawn_x = {"uniform": lambda: rng.uniform(0.0, float(sp.pi / 2), size),
+               "normal": lambda: rng.normal(1.0, 1 / 3, size),
+               "lognormal": lambda: rng.lognormal(0.0, 0.5, size),
+               "discrete": lambda: rng.choice(np.array([0.25, 0.5, 1.0]), size=size,
+                                              p=np.array([1.0, 2.0, 1.0]) / 4.0),
+               "constant": lambda: rng.uniform(0.0, 1.0, size)}[law]()
+    drawn_y = rng.uniform(-1.0, 1.0, size)
+    if law == "constant":
+        expected = np.full(size, 3 / 7)
+    else:
+        expected = fused({"y": g.subs(e, sp.Float(0.5))})(x=drawn_x, y=drawn_y)["y"]
+    assert got.shape == (size,) and np.array_equal(got, expected)

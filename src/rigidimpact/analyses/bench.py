@@ -800,16 +800,18 @@ def dask_against_one(repeats: int = 3, solves: int = 1000) -> dict[str, float] |
 
 
 HALF_DRAWS = """import json, sys
-from rigidimpact.analyses.distributions import CHUNK, chunk_run
+from rigidimpact.analyses.distributions import CHUNK
 from rigidimpact.scenes.scene import parse_scene
-from rigidimpact.symbolic.distributions import chunk_sizes
+from rigidimpact.symbolic.distributions import chunk_sizes, draw_plan
+from rigidimpact.symbolic.drawn import plan_run
 scene = parse_scene(open(sys.argv[1], encoding="utf-8").read())
 g = scene.derivation().results["barbell.vy"]
 inputs = dict(scene.random.inputs)
 values = {s: v for s, v in scene.values.items() if s not in inputs}
 sizes = chunk_sizes(scene.random.samples, CHUNK)
 start, stop = (0, len(sizes) // 2) if sys.argv[2] == "0" else (len(sizes) // 2, len(sizes))
-print(json.dumps(chunk_run(g, inputs, values, scene.random.seed, start, sizes[start:stop])))
+plan = draw_plan(g, inputs, values)
+print(json.dumps(plan_run(plan, scene.random.seed, start, sizes[start:stop])))
 """
 
 

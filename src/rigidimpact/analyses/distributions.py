@@ -22,12 +22,13 @@ from rigidimpact.outputs.workers import dask_client, local_or_here
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
-    chunk_sums,
     combine,
+    draw_plan,
     monte_carlo,
     pushforward,
     stream,
 )
+from rigidimpact.symbolic.drawn import plan_run
 
 __all__ = ["scene_distributions", "monte_carlo_on_dask", "point_monte_carlo",
            "point_chunk", "distributions_json", "distributions_text"]
@@ -70,8 +71,11 @@ def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     # one-process sums, in the chunks' order
     count = len(client.scheduler_info().get("workers", {})) or 1
     runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
-    return [client.submit(chunk_run, g, inputs, values, seed, start,
-                          sizes[start:stop], pure=False) for start, stop in runs]
+    # the plan (the kernel's source, the samplers' numbers) is made here, so a worker
+    # draws with NumPy alone: it imports neither SymPy nor the rest of this package
+    plan = draw_plan(g, inputs, values)
+    return [client.submit(plan_run, plan, seed, start, sizes[start:stop], pure=False)
+            for start, stop in runs]
 
 
 def _gathered(client: Any, futures: list[Any], samples: int,
@@ -105,20 +109,12 @@ def _runs(count: int, runs: int) -> list[tuple[int, int]]:
     return list(zip(edges[:-1], edges[1:], strict=True))
 
 
-def chunk_run(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
-              values: dict[sp.Symbol, Any], seed: int, start: int,
-              sizes: Sequence[int]) -> list[tuple[float, float, float]]:
-    """The sums of chunks start, start + 1, ... (one :func:`chunk_sums` each)."""
-    return [chunk_sums(g, inputs, values, seed, start + k, size)
-            for k, size in enumerate(sizes)]
-
-
 def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Distribution],
                 seed: int, index: int, size: int
                 ) -> tuple[dict[str, tuple[float, float, float]], int, str | None]:
     """One chunk of a Monte Carlo of a scene solved with numbers: `size` draws of its
     random `inputs` from chunk `index`'s own stream of the seed (as
-    :func:`rigidimpact.symbolic.distributions.chunk_sums` draws them), each set solved
+    a closed form's chunks draw them), each set solved
     by the scene's rule at its [values] otherwise. For each key the sum, the sum of
     squares and the count below zero; with the number of draws whose answer came with a
     warning (kinetic energy created, a contact that would pull) and the first such."""

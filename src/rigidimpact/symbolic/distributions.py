@@ -35,6 +35,7 @@ from sympy.simplify.fu import TR8
 
 from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
+from rigidimpact.symbolic.drawn import DrawPlan, Sampler, stream
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
 
@@ -45,7 +46,7 @@ else:
 
 __all__ = ["Distribution", "Pushforward", "RandomInputs", "distribution", "pushforward",
            "monte_carlo", "histogram", "random_table", "chunk_sizes", "chunk_sums",
-           "combine", "stream", "KINDS", "SAMPLES"]
+           "combine", "stream", "draw_plan", "KINDS", "SAMPLES"]
 
 KINDS = ("uniform", "normal", "lognormal", "discrete")
 SAMPLES, MAX_SAMPLES = 1_000_000, 10**9  # the Monte Carlo beside each exact answer
@@ -87,18 +88,17 @@ class Distribution:
             return sp.Integer(0), sp.oo
         return min(self.parameters, key=float), max(self.parameters, key=float)
 
+    def sampler(self, name: str = "",
+                values: Mapping[sp.Symbol, Any] | None = None) -> Sampler:
+        """This law with its parameters at `values` as floats, for the draws
+        (:class:`rigidimpact.symbolic.drawn.Sampler`)."""
+        numbers = tuple(float(sp.sympify(p).subs(values or {})) for p in self.parameters)
+        return Sampler(name, self.kind, numbers, tuple(float(w) for w in self.weights))
+
     def sample(self, rng: np.random.Generator, size: int,
                values: Mapping[sp.Symbol, Any] | None = None) -> np.ndarray:
         """`size` draws from `rng`, the parameters at `values`."""
-        numbers = [float(sp.sympify(p).subs(values or {})) for p in self.parameters]
-        if self.kind == "uniform":
-            return rng.uniform(numbers[0], numbers[1], size)
-        if self.kind == "normal":
-            return rng.normal(numbers[0], numbers[1], size)
-        if self.kind == "lognormal":
-            return rng.lognormal(numbers[0], numbers[1], size)
-        weights = np.array([float(w) for w in self.weights] or [1.0] * len(numbers))
-        return rng.choice(np.array(numbers), size=size, p=weights / weights.sum())
+        return self.sampler("", values).sample(rng, size)
 
 
 def distribution(table: Any, name: str,
@@ -346,40 +346,25 @@ def chunk_sizes(samples: int, chunk: int) -> list[int]:
     return [min(chunk, samples - start) for start in range(0, samples, chunk)]
 
 
-def _draws(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
-           values: Mapping[sp.Symbol, Any], rng: np.random.Generator,
-           size: int) -> np.ndarray:
-    """`size` values of g, its random inputs drawn from `rng` (in the order of their
-    names) and the other symbols at `values`, evaluated by the fused kernel
-    (:func:`rigidimpact.symbolic.numeric.fused`: g in its stable form, its shared
-    subexpressions once)."""
+def draw_plan(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
+              values: Mapping[sp.Symbol, Any]) -> DrawPlan:
+    """How to draw g (:class:`rigidimpact.symbolic.drawn.DrawPlan`): its random `inputs`
+    drawn in the order of their names, the other symbols at `values`, evaluated by the
+    fused kernel (:func:`rigidimpact.symbolic.numeric.fused`: g in its stable form, its
+    shared subexpressions once), whose source the plan carries."""
     fixed = {s: v for s, v in values.items() if s not in inputs}
-    drawn = {s.name: inputs[s].sample(rng, size, fixed) for s in sorted(inputs, key=str)}
     at = tuple(sorted(((s, sp.sympify(v)) for s, v in fixed.items()), key=lambda x: str(x[0])))
-    out = _kernel(sp.sympify(g), at)(**drawn)["y"]
-    return np.broadcast_to(np.asarray(out, dtype=float), (size,))
+    kernel = _kernel(sp.sympify(g), at)
+    return DrawPlan(kernel.source(), kernel.arguments,
+                    tuple(inputs[s].sampler(s.name, fixed) for s in sorted(inputs, key=str)),
+                    kernel.chunk)
 
 
 @lru_cache(maxsize=32)
 def _kernel(g: sp.Expr, at: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()) -> Any:
     """The fused kernel of g with the symbols in `at` given their values, built once a
-    process (a worker runs many chunks of one output)."""
+    process."""
     return fused({"y": g.subs(dict(at))})
-
-
-def stream(seed: int, index: int) -> np.random.SeedSequence:
-    """Chunk `index`'s own stream of the seed: the `index`-th child of
-    ``numpy.random.SeedSequence(seed)`` (what ``spawn`` would give it, made without
-    making the children before it).
-
-    Examples
-    --------
-    >>> a = stream(2011, 5).generate_state(4)
-    >>> b = np.random.SeedSequence(2011).spawn(8)[5].generate_state(4)
-    >>> bool((a == b).all())
-    True
-    """
-    return np.random.SeedSequence(seed, spawn_key=(index,))
 
 
 def chunk_sums(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
@@ -387,9 +372,9 @@ def chunk_sums(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
                size: int) -> tuple[float, float, float]:
     """One chunk of a Monte Carlo: the sum, the sum of squares and the count below
     zero of `size` draws of g from chunk `index`'s own stream of the seed
-    (:func:`stream`), so a chunk draws the same numbers in any process and any order."""
-    out = _draws(g, inputs, values, np.random.default_rng(stream(seed, index)), size)
-    return float(out.sum()), float((out * out).sum()), float((out < 0).sum())
+    (:func:`stream`), so a chunk draws the same numbers in any process and any order
+    (:meth:`rigidimpact.symbolic.drawn.DrawPlan.sums` of :func:`draw_plan`)."""
+    return draw_plan(g, inputs, values).sums(seed, index, size)
 
 
 def combine(sums: Sequence[tuple[float, float, float]], samples: int) -> dict[str, float]:
@@ -415,8 +400,8 @@ def monte_carlo(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
     same seed and chunk give the same answer in one process or spread over workers
     (:func:`rigidimpact.analyses.distributions.monte_carlo_on_dask`)."""
     sizes = chunk_sizes(samples, chunk)
-    return combine([chunk_sums(g, inputs, values, seed, k, size)
-                    for k, size in enumerate(sizes)], samples)
+    plan = draw_plan(g, inputs, values)
+    return combine([plan.sums(seed, k, size) for k, size in enumerate(sizes)], samples)
 
 
 def histogram(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
@@ -427,7 +412,8 @@ def histogram(g: sp.Expr, inputs: Mapping[sp.Symbol, Distribution],
     chunk at a time (ten million draws need no more memory than one chunk)."""
     counts = np.zeros(len(edges) - 1)
     sizes = chunk_sizes(samples, chunk)
+    plan = draw_plan(g, inputs, values)
     for index, size in enumerate(sizes):
-        out = _draws(g, inputs, values, np.random.default_rng(stream(seed, index)), size)
+        out = plan.values(np.random.default_rng(stream(seed, index)), size)
         counts += np.histogram(out, bins=edges)[0]
     return counts / (samples * np.diff(edges))

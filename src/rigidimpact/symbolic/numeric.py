@@ -36,6 +36,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
+from rigidimpact.symbolic.drawn import compiled
 from rigidimpact.symbolic.rewrite import tidy
 
 if TYPE_CHECKING:
@@ -461,22 +462,9 @@ def _fused_source(stable: tuple[sp.Expr, ...], arguments: tuple[str, ...],
 
 
 def _fused_function(source: str, backend: str):
-    """Compile generated source (our own printer's output from exact expressions, never
-    text from a user's file)."""
-    import math
-
-    import numpy  # the module itself, not this module's stand-in: numba types it
-
-    namespace: dict[str, Any] = {"numpy": numpy, "math": math}
-    exec(compile(source, "<rigidimpact fused kernel>", "exec"), namespace)  # noqa: S102
-    if backend == "numba":
-        import numba
-
-        # NumPy's error model: a division by zero gives inf or nan as in the NumPy
-        # backend (not a ZeroDivisionError), and with no check in it the loop vectorises
-        return namespace["pre"], numba.njit(nogil=True, error_model="numpy")(
-            namespace["kernel"])
-    return namespace["kernel"]
+    """Compile generated source (:func:`rigidimpact.symbolic.drawn.compiled`: our own
+    printer's output from exact expressions, never text from a user's file)."""
+    return compiled(source, backend)
 
 
 FALLBACK_DIGITS = 40  # where float64 cannot hold a result or a step toward it
