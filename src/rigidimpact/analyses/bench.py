@@ -958,6 +958,35 @@ def run_bench(quick: bool = False, families: Iterable[str] = FAMILIES,
     return report
 
 
+def _dask_lines(report: dict[str, Any]) -> list[str]:
+    """bench.md's paragraphs on Dask against one process (where the report has them).
+
+    Examples
+    --------
+    >>> _dask_lines({"dask_draws_vs_one": {"samples": 1e9, "one_process_s": 40.0,
+    ...     "two_workers_s": 25.0, "two_processes_apart_s": 20.0, "dask_gain": 1.6,
+    ...     "two_core_limit": 2.0}})[1][:75]
+    "Dask: 1,000,000,000 draws of the dropped barbell's rebound (`rigidimpact deri"
+    """
+    lines: list[str] = []
+    for key, work, command, share, unit in (
+            ("dask_vs_one", "compliant runs of a three-ball cradle", "sweep",
+             "sweeping half", "this work"),
+            ("dask_draws_vs_one", "draws of the dropped barbell's rebound", "derive",
+             "drawing half", "these draws")):
+        dk = report.get(key)
+        if dk:
+            count = dk.get("solves", dk.get("samples"))
+            lines += ["", f"Dask: {count:,.0f} {work} (`rigidimpact {command}`) took "
+                          f"{dk['one_process_s']:.1f} s in one process and "
+                          f"{dk['two_workers_s']:.1f} s on `--workers 2` (gain "
+                          f"{dk['dask_gain']:.2f}); two independent processes, each "
+                          f"{share}, took {dk['two_processes_apart_s']:.1f} s side by "
+                          f"side: two cores here gain at most "
+                          f"{dk['two_core_limit']:.2f} on {unit}."]
+    return lines
+
+
 def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
     """bench.json, bench.md and accuracy-vs-time.png in `out`; returns the paths."""
     import json
@@ -1026,24 +1055,7 @@ def write_outputs(report: dict[str, Any], out: Path) -> list[Path]:
                           f"off) end to end {rp['run_s']:.1f} s against the plain SymPy "
                           f"barbell script {rp['plain_barbell_s']:.2f} s: ratio "
                           f"{rp['ratio']:.1f}."]
-        dk = report.get("dask_vs_one")
-        if dk:
-            lines += ["", f"Dask: {dk['solves']:.0f} compliant runs of a three-ball cradle "
-                          f"(`rigidimpact sweep`) took {dk['one_process_s']:.1f} s in one "
-                          f"process and {dk['two_workers_s']:.1f} s on `--workers 2` (gain "
-                          f"{dk['dask_gain']:.2f}); two independent processes, each "
-                          f"sweeping half, took {dk['two_processes_apart_s']:.1f} s side by "
-                          f"side: two cores here gain at most {dk['two_core_limit']:.2f} on "
-                          "this work."]
-        dd = report.get("dask_draws_vs_one")
-        if dd:
-            lines += ["", f"Dask: {dd['samples']:.0e} draws of the dropped barbell's "
-                          f"rebound (`rigidimpact derive`) took {dd['one_process_s']:.1f} s "
-                          f"in one process and {dd['two_workers_s']:.1f} s on `--workers 2` "
-                          f"(gain {dd['dask_gain']:.2f}); two independent processes, each "
-                          f"drawing half, took {dd['two_processes_apart_s']:.1f} s side by "
-                          f"side: two cores here gain at most {dd['two_core_limit']:.2f} on "
-                          "these draws."]
+        lines += _dask_lines(report)
     if "contacts" in report:
         family = report["contacts"]
         lines += ["", "Several contacts, each rule against n (one run each; peak MiB of "
