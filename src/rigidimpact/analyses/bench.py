@@ -966,7 +966,7 @@ def _dask_lines(report: dict[str, Any]) -> list[str]:
     >>> _dask_lines({"dask_draws_vs_one": {"samples": 1e9, "one_process_s": 40.0,
     ...     "two_workers_s": 25.0, "two_processes_apart_s": 20.0, "dask_gain": 1.6,
     ...     "two_core_limit": 2.0}})[1][:75]
-    "Dask: 1,000,000,000 draws of the dropped barbell's rebound (`rigidimpact deri"
+    "Dask: 1,000,000,000 draws of the dropped barbell's rebound (`rigidimpact de"
     """
     lines: list[str] = []
     for key, work, command, share, unit in (
