@@ -10,6 +10,7 @@ import pytest
 
 from rigidimpact.analyses import bench, restrike
 from rigidimpact.cli import main
+from rigidimpact.outputs.workers import REPAYS
 
 
 def test_pareto_keeps_only_unbeaten_rows():
@@ -118,9 +119,9 @@ def test_fixed_step_marching_stops_at_the_crossing_across_blocks():
 def test_the_dask_bench_asks_for_work_that_starts_local_workers():
     # below what repays starting local workers, --workers 2 would run in one process:
     # the bench would time one process twice and call it Dask
-    with pytest.raises(ValueError, match="local workers start for 1000 or more"):
-        bench.dask_against_one(1, 200)
-    with pytest.raises(ValueError, match="local workers start for 200000000 or more"):
+    with pytest.raises(ValueError, match=f"local workers start for {REPAYS['solves']} "):
+        bench.dask_against_one(1, REPAYS["solves"] - 1)
+    with pytest.raises(ValueError, match=f"local workers start for {REPAYS['draws']} "):
         bench.dask_draws_against_one(1, 10**6)
 
 

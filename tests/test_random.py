@@ -561,7 +561,7 @@ def test_a_run_on_local_workers_leaves_no_process_behind(capsys, tmp_path):
 
 def test_local_workers_step_aside_where_the_work_cannot_repay_them(capsys):
     # the rule counts work, never seconds: the shipped scene's 10^6 draws are far fewer
-    # than the 2 x 10^8 that repay starting local workers, so --workers 2 runs in this
+    # than the 10^8 that repay starting local workers, so --workers 2 runs in this
     # process, says so in its text and its JSON, and gives the same numbers (sweeps:
     # tests/test_fused.py)
     import json

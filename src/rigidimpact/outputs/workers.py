@@ -7,6 +7,8 @@ where they run, so one worker, two or a cluster give the one-process answer.
 from __future__ import annotations
 
 import socket
+import sys
+import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
@@ -17,13 +19,16 @@ __all__ = ["dask_client", "local_or_here", "REPAYS"]
 
 # The work below which local workers do not repay their start, counted in the work's own
 # units (never in seconds: the same command says the same thing on every machine).
-# Starting two local workers and feeding them costs about 4 s on a 2-core machine (the
-# cluster about 1.4 s, SymPy and the package imported in each worker 0.6 s, Dask in
-# this process, closing it 0.4 s), measured so: 10^8 draws of the barbell's rebound
-# took 7.5 s on two workers against 5.5 s in one process, 4 x 10^8 took 15.6 s against
-# 19.6 s. A closed form's draws and sets cost alike (its fused kernel, 1e7 to 2e7 a
-# second); a solve (a scene with no closed form) costs 1e3 to 1e5 times more.
-REPAYS = {"draws": 2 * 10**8, "sets": 2 * 10**8, "solves": 1_000}
+# Starting two local workers and feeding them costs about 1 s on a 2-core machine
+# (importing Dask here 0.4 to 0.55 s, the cluster with its two workers forked from this
+# process 0.2 to 0.5 s, closing it 0.03 s), measured so, each pair in turn: the
+# barbell's rebound with 3 x 10^7 draws took 3.3 and 4.5 s in one process against 3.6
+# and 4.1 s on two workers, 5 x 10^7 4.4 and 5.6 against 4.3 and 5.3 s, 10^8 5.9 and
+# 5.9 against 5.2 and 4.9 s; the compliant cradle's 100 solves 5.9 s against 5.5 s
+# twice, 300 solves 14.4 against 11.1 and 11.7 s. A closed form's draws and sets cost
+# alike (its fused kernel, 1e7 to 2e7 a second); a solve (a scene with no closed form)
+# costs 1e3 to 1e5 times more.
+REPAYS = {"draws": 10**8, "sets": 10**8, "solves": 200}
 
 
 def local_or_here(work: int, kind: str, workers: int | None,
@@ -48,7 +53,7 @@ def local_or_here(work: int, kind: str, workers: int | None,
     if workers is None or scheduler is not None or work >= least:
         return workers, None
     return None, (f"--workers {workers}: {work:,} {kind} are fewer than the {least:,} "
-                  "that repay starting local Dask workers (about 4 s on a 2-core "
+                  "that repay starting local Dask workers (about 1 s on a 2-core "
                   "machine); run in this process instead, with the same numbers")
 
 
@@ -71,8 +76,15 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         # draws is 8 MB) is then mapped afresh and its pages zeroed by the system. A
         # chunk of the barbell's Monte Carlo took 0.043 to 0.049 s on such a worker and
         # 0.030 to 0.036 s without it, as in one process.
-        with dask.config.set({"distributed.nanny.pre-spawn-environ."
-                              "MALLOC_TRIM_THRESHOLD_": None}):
+        settings: dict[str, Any] = {"distributed.nanny.pre-spawn-environ."
+                                    "MALLOC_TRIM_THRESHOLD_": None}
+        if processes and _fork_here(dask):
+            settings[METHOD] = "fork"
+        with dask.config.set(settings), warnings.catch_warnings():
+            # Python 3.12 and later warn at any fork of a process with threads (Dask's
+            # event loop runs in one); the fork is chosen here, knowingly (_fork_here)
+            warnings.filterwarnings("ignore", r"This process .* is multi-threaded",
+                                    DeprecationWarning)
             # no dashboard; the scheduler's own HTTP endpoint (health, metrics) on a free
             # port of this machine only, not on 8787 of every interface, where a second
             # run at the same time would collide
@@ -98,6 +110,25 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         if cluster is not None:
             cluster.close()
             _stop_resource_tracker()
+
+
+METHOD = "distributed.worker.multiprocessing-method"
+
+
+def _fork_here(dask: Any) -> bool:
+    """Whether local workers are forked from this process rather than spawned afresh
+    (Dask's default): on Linux, unless the user's own Dask configuration (its files or
+    a ``DASK_DISTRIBUTED__WORKER__MULTIPROCESSING_METHOD`` variable) names a method.
+    A forked worker starts with what this process has imported (NumPy, SciPy, SymPy,
+    the package): two workers were up in 0.2 s against 1.1 to 1.3 s spawned, and closed
+    in 0.03 s against 0.3 s, and the compliant cradle's 1,000 solves on two workers took
+    22 to 25 s forked against 28 s spawned (41 s in one process), a spawned worker
+    importing SciPy and the package before its first solve. macOS and Windows do not
+    fork safely a process that has threads: there Dask's default stands."""
+    if sys.platform != "linux":
+        return False
+    chosen = dask.config.get(METHOD, default=None, config=dask.config.collect())
+    return chosen is None
 
 
 def _reachable(scheduler: str) -> None:
