@@ -513,6 +513,28 @@ def _in_session(sid: int) -> list[str]:
     return found
 
 
+def test_local_workers_are_forked_on_linux_unless_the_users_dask_config_says(
+        monkeypatch, tmp_path):
+    # forked workers start with what the command has loaded; a method the user names
+    # in Dask's own configuration (a variable or a file) is left to Dask
+    dask = pytest.importorskip("dask")
+    from rigidimpact.outputs.workers import _fork_here
+
+    monkeypatch.delenv("DASK_DISTRIBUTED__WORKER__MULTIPROCESSING_METHOD", raising=False)
+    monkeypatch.setattr(dask.config, "paths", [str(tmp_path)])
+    monkeypatch.setattr("sys.platform", "linux")
+    assert _fork_here(dask)
+    monkeypatch.setattr("sys.platform", "darwin")
+    assert not _fork_here(dask)
+    monkeypatch.setattr("sys.platform", "linux")
+    (tmp_path / "dask.yaml").write_text("distributed:\n  worker:\n"
+                                        "    multiprocessing-method: forkserver\n")
+    assert not _fork_here(dask)
+    (tmp_path / "dask.yaml").unlink()
+    monkeypatch.setenv("DASK_DISTRIBUTED__WORKER__MULTIPROCESSING_METHOD", "spawn")
+    assert not _fork_here(dask)
+
+
 @pytest.mark.skipif(not __import__("pathlib").Path("/proc/self/stat").exists(),
                     reason="reads the process table from /proc")
 def test_a_run_on_local_workers_leaves_no_process_behind(capsys, tmp_path):

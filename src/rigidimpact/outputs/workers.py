@@ -127,7 +127,8 @@ def _fork_here(dask: Any) -> bool:
     fork safely a process that has threads: there Dask's default stands."""
     if sys.platform != "linux":
         return False
-    chosen = dask.config.get(METHOD, default=None, config=dask.config.collect())
+    chosen = dask.config.get(METHOD, default=None,
+                             config=dask.config.collect(dask.config.paths))
     return chosen is None
 
 
