@@ -271,10 +271,10 @@ def _pushforward(g: sp.Expr, x: sp.Symbol, input_distribution: Distribution,
     ends = sorted({low, high, *cuts}, key=lambda e: _sample_point(e, at))
     pieces = tuple(zip(ends[:-1], ends[1:], strict=True))
     density, inverses, images = sp.Integer(0), [], []
+    candidates = sp.solve(sp.Eq(g, y), x)  # every inverse branch; each piece picks one
     for a, b in pieces:
         middle = (a + b) / 2
         level = g.subs(x, middle)
-        candidates = sp.solve(sp.Eq(g, y), x)
         h = None
         for candidate in candidates:
             try:
