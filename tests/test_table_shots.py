@@ -345,8 +345,8 @@ def _rough_table(seed: int) -> tuple:
     return bodies, planes, pairs
 
 
-@pytest.mark.parametrize("seed", [0, 2, 4, 5] + [pytest.param(k, marks=pytest.mark.slow)
-                                                for k in (1, 3)])
+@pytest.mark.parametrize("seed", [0, 4] + [pytest.param(k, marks=pytest.mark.slow)
+                                          for k in (1, 2, 3, 5)])
 def test_spinning_balls_on_a_rough_table_never_gain_energy_nor_overlap(seed):
     # friction everywhere, spins, rolling resistance and pivoting friction: the energy
     # (kinetic, rotational and the height's) never grows from one event to the next,
