@@ -120,11 +120,12 @@ def _fork_here(dask: Any) -> bool:
     (Dask's default): on Linux, unless the user's own Dask configuration (its files or
     a ``DASK_DISTRIBUTED__WORKER__MULTIPROCESSING_METHOD`` variable) names a method.
     A forked worker starts with what this process has imported (NumPy, SciPy, SymPy,
-    the package): two workers were up in 0.2 s against 1.1 to 1.3 s spawned, and closed
-    in 0.03 s against 0.3 s, and the compliant cradle's 1,000 solves on two workers took
-    22 to 25 s forked against 28 s spawned (41 s in one process), a spawned worker
-    importing SciPy and the package before its first solve. macOS and Windows do not
-    fork safely a process that has threads: there Dask's default stands."""
+    the package): two workers were up in 0.2 to 0.5 s against 1.1 to 1.3 s spawned, and
+    closed in 0.03 s against 0.3 s, and the compliant cradle's 1,000 solves on two
+    workers took 22 to 25 s forked against 28 s spawned (40 to 42 s in one process), a
+    spawned worker importing SciPy and the package before its first solve. Elsewhere
+    Dask's default stands: macOS does not fork safely a process that has threads, and
+    Windows cannot fork."""
     if sys.platform != "linux":
         return False
     chosen = dask.config.get(METHOD, default=None,
