@@ -250,7 +250,9 @@ def _box_run(seed: int, speed: Any = 1) -> tuple:
     return bodies, spheres(bodies, planes, pairs, gravity=(0, 0, -10), impacts=25)
 
 
-@pytest.mark.parametrize("seed, speed", [(k, 1) for k in range(8)]
+@pytest.mark.parametrize("seed, speed", [(k, 1) for k in range(4)]
+                         + [pytest.param(k, 1, marks=pytest.mark.slow)
+                            for k in range(4, 8)]
                          + [(k, sp.sqrt(2)) for k in range(8, 10)]
                          + [pytest.param(k, sp.sqrt(2), marks=pytest.mark.slow)
                             for k in range(10, 14)])
@@ -275,12 +277,12 @@ def test_elastic_balls_in_a_box_keep_their_energy_and_never_overlap(seed, speed)
 
 
 def test_the_box_family_has_balls_meeting():
-    # the family above reaches what it is for: balls that meet, several times
+    # the family above reaches what it is for: balls that meet, once a seed on average
     meetings = 0
-    for seed in range(8):
-        _, run = _box_run(seed, 1)  # the runs of the test above, read again
+    for seed in range(4):
+        _, run = _box_run(seed, 1)  # the fast tier's runs of the test above, read again
         meetings += sum(bool(e.other) for e in run.events)
-    assert meetings >= 8
+    assert meetings >= 4
 
 
 def test_the_stun_shot_turned_and_moved_on_the_table_gives_the_turned_run():
