@@ -57,6 +57,10 @@ def local_or_here(work: int, kind: str, workers: int | None,
                   "machine); run in this process instead, with the same numbers")
 
 
+# the Dask setting that says how a local cluster starts its worker processes
+METHOD = "distributed.worker.multiprocessing-method"
+
+
 @contextmanager
 def dask_client(workers: int | None = None, scheduler: str | None = None,
                 processes: bool = True) -> Iterator[Any]:
@@ -78,13 +82,15 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         # 0.030 to 0.036 s without it, as in one process.
         settings: dict[str, Any] = {"distributed.nanny.pre-spawn-environ."
                                     "MALLOC_TRIM_THRESHOLD_": None}
-        if processes and _fork_here(dask):
+        forked = processes and _fork_here(dask)
+        if forked:
             settings[METHOD] = "fork"
         with dask.config.set(settings), warnings.catch_warnings():
-            # Python 3.12 and later warn at any fork of a process with threads (Dask's
-            # event loop runs in one); the fork is chosen here, knowingly (_fork_here)
-            warnings.filterwarnings("ignore", r"This process .* is multi-threaded",
-                                    DeprecationWarning)
+            if forked:
+                # Python 3.12 and later warn at any fork of a process with threads
+                # (Dask's event loop runs in one); the fork is chosen here, knowingly
+                warnings.filterwarnings("ignore", r"This process .* is multi-threaded",
+                                        DeprecationWarning)
             # no dashboard; the scheduler's own HTTP endpoint (health, metrics) on a free
             # port of this machine only, not on 8787 of every interface, where a second
             # run at the same time would collide
@@ -110,9 +116,6 @@ def dask_client(workers: int | None = None, scheduler: str | None = None,
         if cluster is not None:
             cluster.close()
             _stop_resource_tracker()
-
-
-METHOD = "distributed.worker.multiprocessing-method"
 
 
 def _fork_here(dask: Any) -> bool:
