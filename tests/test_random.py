@@ -535,6 +535,29 @@ def test_local_workers_are_forked_on_linux_unless_the_users_dask_config_says(
     assert not _fork_here(dask)
 
 
+def test_local_workers_do_not_profile_themselves_unless_the_user_asks(monkeypatch):
+    # Dask's statistical profiler feeds a dashboard that is not started here; its stack
+    # sampling every 10 ms took CPU beside the solves. A user who enables it (a
+    # variable, or a file on Dask's path) keeps it
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("dask.distributed")
+    from rigidimpact.outputs.workers import PROFILE, dask_client
+
+    def profiled() -> bool:
+        import dask as inside
+
+        return bool(inside.config.get(PROFILE))
+
+    monkeypatch.delenv("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", raising=False)
+    assert dask.config.get(PROFILE)  # Dask's default, which the workers here change
+    with dask_client(1) as client:
+        assert list(client.run(profiled).values()) == [False]
+    assert dask.config.get(PROFILE)  # this process's own configuration is as it was
+    monkeypatch.setenv("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", "True")
+    with dask_client(1) as client:
+        assert list(client.run(profiled).values()) == [True]
+
+
 @pytest.mark.skipif(not __import__("pathlib").Path("/proc/self/stat").exists(),
                     reason="reads the process table from /proc")
 def test_a_run_on_local_workers_leaves_no_process_behind(capsys, tmp_path):
