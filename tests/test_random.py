@@ -535,7 +535,8 @@ def test_local_workers_are_forked_on_linux_unless_the_users_dask_config_says(
     assert not _fork_here(dask)
 
 
-def test_local_workers_do_not_profile_themselves_unless_the_user_asks(monkeypatch):
+def test_local_workers_do_not_profile_themselves_unless_the_user_asks(monkeypatch,
+                                                                     tmp_path):
     # Dask's statistical profiler feeds a dashboard that is not started here; its stack
     # sampling every 10 ms took CPU beside the solves. A user who enables it (a
     # variable, or a file on Dask's path) keeps it
@@ -549,6 +550,7 @@ def test_local_workers_do_not_profile_themselves_unless_the_user_asks(monkeypatc
         return bool(inside.config.get(PROFILE))
 
     monkeypatch.delenv("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", raising=False)
+    monkeypatch.setattr(dask.config, "paths", [str(tmp_path)])  # no file of the user's
     assert dask.config.get(PROFILE)  # Dask's default, which the workers here change
     with dask_client(1) as client:
         assert list(client.run(profiled).values()) == [False]
