@@ -14,7 +14,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision, chain
-from rigidimpact.solve.lcp import NoSolution, lemke
+from rigidimpact.solve.lcp import NoSolution, lemke, markowitz_solve
 from rigidimpact.solve.rules import simultaneous as rule
 
 
@@ -106,3 +106,34 @@ def test_a_long_enumeration_stops_in_one_line(monkeypatch):
                         point=(r3 / 2, -sp.S.Half)))
     with pytest.raises(InputError, match="contacts: 2 contacts: 4 sets of acting contacts"):
         Collision(bodies, contacts).simultaneous()
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_markowitz_elimination_solves_sparse_unsymmetric_systems_exactly(seed):
+    # a random sparse system that is not symmetric, with a zero diagonal here and there
+    # (a pivot off the diagonal is needed), held against SymPy's dense LU solve
+    rng = random.Random(seed)
+    n = rng.randint(5, 30)
+    rows = {i: {} for i in range(n)}
+    for i in range(n):
+        for j in rng.sample(range(n), rng.randint(1, 3)):
+            rows[i][j] = Fraction(rng.randint(-9, 9) or 1, rng.randint(1, 5))
+        rows[i][(i + 1) % n] = Fraction(rng.randint(1, 9))  # no row or column empty
+    rhs = {i: Fraction(rng.randint(-9, 9), rng.randint(1, 4)) for i in range(n)}
+    A = sp.Matrix(n, n, lambda i, j: sp.Rational(rows[i].get(j, 0)))
+    if A.det() == 0:
+        assert markowitz_solve(rows, rhs, budget=10**6) is None
+        return
+    expected = A.LUsolve(sp.Matrix([sp.Rational(rhs[i]) for i in range(n)]))
+    found = markowitz_solve(rows, rhs, budget=10**6)
+    assert found is not None
+    assert [sp.Rational(found[j]) for j in range(n)] == list(expected)
+
+
+def test_markowitz_elimination_says_none_when_singular_or_over_its_budget():
+    half = Fraction(1, 2)
+    singular = {0: {0: half, 1: Fraction(1)}, 1: {0: Fraction(1), 1: Fraction(2)}}
+    assert markowitz_solve(singular, {0: half}, budget=100) is None
+    dense = {i: {j: Fraction(i + j + 1, 1 + (i == j)) for j in range(20)} for i in range(20)}
+    assert markowitz_solve(dense, {0: half}, budget=50) is None  # first pivot costs 400
+    assert markowitz_solve(dense, {0: half}, budget=10**6) is not None

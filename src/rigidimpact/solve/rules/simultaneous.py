@@ -347,8 +347,10 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
             sp.sympify(x).is_Rational for x in data):
         return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     try:
-        J = rows.to_DM().convert_to(QQ)
-        Minv = problem.M_inverse.to_DM().convert_to(QQ)
+        # sparse, all of them: a product of a sparse and a dense DomainMatrix makes both
+        # dense (J of a chain of 400 is 800 by 1,203 with four entries a row)
+        J = rows.to_DM().convert_to(QQ).to_sparse()
+        Minv = problem.M_inverse.to_DM().convert_to(QQ).to_sparse()
     except Exception:  # noqa: BLE001 - an irrational entry: not in the rationals
         return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
@@ -453,9 +455,9 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                              "try the sequential rule") from None
         how = "solved by Lemke's exact tableau"
     P = [z[i] for i in range(n)] + [z[n + i] - z[2 * n + i] for i in range(n)]
-    impulses = DomainMatrix([[QQ(int(x.numerator), int(x.denominator))] for x in P],
-                            (2 * n, 1), QQ)
-    u0 = problem.u_before.to_DM().convert_to(QQ)
+    impulses = DomainMatrix({k: {0: QQ(int(x.numerator), int(x.denominator))}
+                             for k, x in enumerate(P) if x}, (2 * n, 1), QQ)
+    u0 = problem.u_before.to_DM().convert_to(QQ).to_sparse()
     u_dm = u0 + Minv * (J.transpose() * impulses)
     slip_dm = J * u_dm
     u = sp.Matrix([QQ.to_sympy(u_dm[k, 0].element) for k in range(u_dm.shape[0])])
