@@ -9,7 +9,9 @@ costs in each.
 - the floating compass-gait biped of derivations/compass_gait.py at heel strike (e = 0
   and stick: both rows of the heel).
 
-Run: ``python derivations/beside_pinocchio.py [--links N] [--json]`` (needs `make peers`).
+Run: ``python derivations/beside_pinocchio.py [--links N] [--json]`` (needs `make peers`);
+with ``--kernel 100000``, the compiled maps (``SystemImpact.kernel``) over 10^5 states
+at once against Pinocchio called once a state.
 The tests in tests/test_pinocchio.py hold the two to 1e-10 at seeded random states.
 """
 
@@ -96,19 +98,64 @@ def pinocchio_after(model, frame, q, v, rows, restitution):
     return pin.impulseDynamics(model, data, q, v, J[rows, :], restitution, 0.0).copy()
 
 
+def _compass_gait_module():
+    sys.path.insert(0, str(HERE))
+    try:
+        import compass_gait as cg
+    finally:
+        sys.path.remove(str(HERE))
+    return cg
+
+
+def gait_strike():
+    """(kane, the heel strike as a SystemImpact, symbol values) of :func:`compass_gait`,
+    not solved: what :meth:`SystemImpact.kernel` compiles."""
+    cg = _compass_gait_module()
+    kane, frame, swing, _, _ = cg.legs(floating=True)
+    strike = ri.mechanics.impact(kane, [ri.mechanics.contact(
+        swing, frame.y, restitution=0, tangential="stick", name="heel")], frame=frame)
+    values = {cg.m: 5, cg.m_H: 10, cg.a: sp.Rational(1, 2), cg.b: sp.Rational(1, 2)}
+    return kane, strike, values
+
+
+def chain_states(seed: int, count: int, links: int) -> tuple[np.ndarray, np.ndarray]:
+    """`count` seeded states of the chain as arrays (angles, rates), each with the tip
+    moving into the wall at more than 0.05 (the rates turned round where the tip moved
+    away; a state that grazes the wall drawn again)."""
+    rng = np.random.default_rng(seed)
+    angles = rng.uniform(-1.2, 1.2, (2 * count, links))
+    rates = rng.uniform(-2, 2, (2 * count, links))
+    into = (np.cos(angles) * rates).sum(axis=1)
+    rates[into < 0] *= -1
+    kept = np.flatnonzero(np.abs(into) > 0.05)[:count]
+    return angles[kept], rates[kept]
+
+
+def gait_states(seed: int, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """`count` seeded heel-strike states of the compass gait (q: x, y, stance, swing;
+    u likewise), as the tests draw them one at a time."""
+    rng = np.random.default_rng(seed)
+    half = rng.uniform(0.1, 0.4, count)
+    q = np.stack([np.zeros(count), np.zeros(count), -half, half], axis=1)
+    u = np.stack([np.zeros(count), np.zeros(count), rng.uniform(-2, -0.5, count),
+                  rng.uniform(-2, 1, count)], axis=1)
+    return q, u
+
+
 def compass_gait():
     """(kane, rigidimpact's heel-strike solution, symbol values, Pinocchio's model and its
     heel frame) for the compass-gait biped: x and y of the stance foot, the stance leg's
     angle (from the slope's normal, the leg along its frame's +y), the swing leg's angle
     relative to it at the hip (the swing leg along its frame's -y); masses m = 5 at
     a = 1/2 on the stance leg, m_H = 10 at the hip, m at b = 1/2 below the hip."""
-    sys.path.insert(0, str(HERE))
-    try:
-        import compass_gait as cg
-    finally:
-        sys.path.remove(str(HERE))
+    cg = _compass_gait_module()
     kane, _, solution = cg.heel_strike()
     values = {cg.m: 5, cg.m_H: 10, cg.a: sp.Rational(1, 2), cg.b: sp.Rational(1, 2)}
+    return (kane, solution, values, *gait_in_pinocchio())
+
+
+def gait_in_pinocchio():
+    """The compass gait of :func:`compass_gait` as a Pinocchio tree, and its heel frame."""
     model = pin.Model()
     j = model.addJoint(0, pin.JointModelPX(), pin.SE3.Identity(), "x")
     j = model.addJoint(j, pin.JointModelPY(), pin.SE3.Identity(), "y")
@@ -120,16 +167,17 @@ def compass_gait():
     model.appendBodyToJoint(j, point_mass(5.0, (0, -0.5, 0)), pin.SE3.Identity())
     heel = model.addFrame(pin.Frame("heel", j, 0, pin.SE3(np.eye(3), np.array(
         [0, -1.0, 0])), pin.FrameType.OP_FRAME))
-    return kane, solution, values, model, heel
+    return model, heel
 
 
 def chain_state(rng: random.Random, links: int) -> tuple[list[float], list[float]]:
     """Seeded angles and rates of the chain, the tip moving into the wall (+x)."""
-    angles = [rng.uniform(-1.2, 1.2) for _ in range(links)]
-    rates = [rng.uniform(-2, 2) for _ in range(links)]
-    if sum(np.cos(a) * w for a, w in zip(angles, rates, strict=True)) <= 0.05:
-        rates = [-w for w in rates]
-    return angles, rates
+    while True:  # a state that grazes the wall (|speed into it| <= 0.05) drawn again
+        angles = [rng.uniform(-1.2, 1.2) for _ in range(links)]
+        rates = [rng.uniform(-2, 2) for _ in range(links)]
+        into = sum(np.cos(a) * w for a, w in zip(angles, rates, strict=True))
+        if abs(into) > 0.05:
+            return angles, (rates if into > 0 else [-w for w in rates])
 
 
 def _per_call(run, repeat: int) -> float:
@@ -177,16 +225,63 @@ def costs(links: int = 5, repeat: int = 20) -> list[dict]:
     return rows
 
 
+def kernel_costs(count: int = 10**5, links: int = 5, repeat: int = 3) -> list[dict]:
+    """Seconds per state of rigidimpact's kernel of each impact map over `count` states
+    at once (:meth:`SystemImpact.kernel`; compiling it excluded, the best of `repeat`
+    calls) against Pinocchio called once a state from Python (over 2,000 states), and
+    the largest difference between the two over the first 1,000 states."""
+    rows = []
+    system, _, _ = chain_in_sympy(links)
+    model, tip = chain_in_pinocchio(links)
+    kernel = system.kernel()
+    q, u = chain_states(45, count, links)
+
+    def theirs_chain(k):
+        return absolute(pinocchio_after(model, tip, relative(q[k]), relative(u[k]), [0], 0.5))
+
+    rows.append(_kernel_row(f"chain of {links}, tip on a wall", kernel, q, u, theirs_chain,
+                            repeat))
+    kane, strike, values = gait_strike()
+    kernel = strike.kernel(values)
+    model, heel = gait_in_pinocchio()
+    q, u = gait_states(45, count)
+
+    def theirs_gait(k):
+        q_pin = np.array([0.0, 0.0, q[k, 2], q[k, 3] - q[k, 2]])
+        v_pin = np.array([*u[k, :3], u[k, 3] - u[k, 2]])
+        after = pinocchio_after(model, heel, q_pin, v_pin, [0, 1], 0.0)
+        after[3] += after[2]
+        return after
+
+    rows.append(_kernel_row("compass gait, heel strike", kernel, q, u, theirs_gait, repeat))
+    return rows
+
+
+def _kernel_row(name, kernel, q, u, theirs, repeat) -> dict:
+    best = min(_per_call(lambda: kernel(q, u), 1) for _ in range(repeat))
+    found = kernel(q, u)
+    if found.warnings:
+        raise RuntimeError(f"{name}: " + "; ".join(found.warnings))
+    checked = min(1000, len(q))
+    gap = max(float(np.max(np.abs(found.speeds_after[k] - theirs(k)))) for k in range(checked))
+    per_call = _per_call(lambda: [theirs(k) for k in range(2000)], 1) / 2000
+    return {"system": name, "states": len(q), "kernel per state": best / len(q),
+            "pinocchio per state": per_call, "largest difference": gap}
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--links", type=int, default=5)
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--kernel", type=int, metavar="STATES", default=0,
+                        help="time the compiled maps over this many states at once "
+                             "against Pinocchio called once a state, instead")
     args = parser.parse_args(argv)
     if pin is None:
         print("beside_pinocchio: Pinocchio is not installed (make peers installs it)",
               file=sys.stderr)
         return 2
-    rows = costs(args.links)
+    rows = kernel_costs(args.kernel, args.links) if args.kernel > 0 else costs(args.links)
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
@@ -194,8 +289,9 @@ def main(argv=None) -> int:
         print(row["system"])
         for key, value in row.items():
             if key != "system" and value is not None:
-                print(f"  {key}: {value:.3g}" + (" s per impact" if "differ" not in key
-                                                 else ""))
+                unit = "" if "differ" in key or key == "states" else \
+                    " s" if "per state" in key else " s per impact"
+                print(f"  {key}: {value:.3g}{unit}")
     return 0
 
 

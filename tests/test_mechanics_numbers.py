@@ -432,3 +432,50 @@ def test_a_3d_bodys_contact_rows_simplify_as_trigsimp_does():
     for x in (sp.sin(a) ** 2 + r * sp.cos(a) ** 2, sp.sin(a) / (1 + sp.cos(a) ** 2)):
         assert _pythagorean(x) == sp.trigsimp(x)
     assert _pythagorean(sp.sin(a) ** 2 * sp.sin(b) + sp.cos(a) ** 2 * sp.sin(b)) == sp.sin(b)
+
+
+def test_the_impact_maps_kernel_agrees_with_the_double_pendulum_by_hand():
+    # the compiled map over 50 seeded states in one call, against M and the tip's row
+    # derived by hand here (Newton's law, every contact acting)
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    q = rng.uniform(-1.2, 1.2, (50, 2))
+    u = rng.uniform(-2, 2, (50, 2))
+    into = np.cos(q[:, 0]) * u[:, 0] + np.cos(q[:, 1]) * u[:, 1]  # the tip's x speed
+    u[into < 0] *= -1
+    kernel = _tip().kernel({m1: 1, m2: 1, l1: 1, l2: 1, e: sp.Rational(1, 2)})
+    found = kernel(q, u)
+    assert kernel.rows == ("tip.n",) and not found.warnings
+    for k in range(50):
+        expected = _newton(q[k, 0], q[k, 1], mp.matrix(u[k].tolist()), mp.mpf(1) / 2)
+        assert found.speeds_after[k].tolist() == pytest.approx(
+            [float(x) for x in expected], rel=1e-12, abs=1e-12)
+    # the same states moving away from the wall: a contact would pull, no speeds given
+    away = kernel(q, -u)
+    assert not away.honoured.any() and np.isnan(away.speeds_after).all()
+    assert away.warnings[0].startswith("at 50 of 50 states a contact would pull")
+
+
+def test_the_kernel_with_a_sticking_tip_agrees_with_solve_at_numbers():
+    import numpy as np
+
+    values = {m1: 1, m2: 2, l1: 1, l2: sp.Rational(3, 2)}
+    hit = _tip(restitution=0, tangential="stick")
+    kernel = hit.kernel(values)
+    assert kernel.rows == ("tip.n", "tip.t")
+    q, u = np.array([[0.3, -0.5]]), np.array([[1.0, 2.0]])
+    found = kernel(q, u)
+    exact = hit.at({**values, q1: sp.Rational(3, 10), q2: -sp.Rational(1, 2), u1: 1,
+                    u2: 2}).solve()
+    assert found.speeds_after[0].tolist() == pytest.approx(
+        [float(x) for x in exact.speeds_after], rel=1e-12)
+
+
+def test_the_kernel_refuses_what_it_cannot_map_in_one_line():
+    with pytest.raises(ri.InputError, match="smooth or sticking contacts under Newton"):
+        _tip(tangential="coulomb", friction=mu).kernel({mu: sp.Rational(1, 3)})
+    with pytest.raises(ri.InputError, match="needs a number for l1, l2, m1, m2"):
+        _tip().kernel({e: 0})
+    with pytest.raises(ri.InputError, match="restitution"):
+        _tip().kernel({m1: 1, m2: 1, l1: 1, l2: 1})

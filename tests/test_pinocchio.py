@@ -61,3 +61,33 @@ def test_the_script_prints_its_table():
     assert [r["system"] for r in rows] == ["chain of 3, tip on a wall",
                                            "compass gait, heel strike"]
     assert all(r["largest difference"] < 1e-10 for r in rows)
+
+
+def test_the_kernels_of_both_maps_agree_with_pinocchio_at_a_thousand_states():
+    # rigidimpact's compiled map, all states in one call, against Pinocchio state by state
+    system, _, _ = peer.chain_in_sympy(LINKS)
+    model, tip = peer.chain_in_pinocchio(LINKS)
+    q, u = peer.chain_states(46, 1000, LINKS)
+    found = system.kernel()(q, u)
+    assert not found.warnings and found.honoured.all()
+    for k in range(1000):
+        theirs = peer.absolute(peer.pinocchio_after(model, tip, peer.relative(q[k]),
+                                                    peer.relative(u[k]), [0], 0.5))
+        assert np.allclose(found.speeds_after[k], theirs, rtol=1e-10, atol=1e-10)
+    _, strike, values = peer.gait_strike()
+    model, heel = peer.gait_in_pinocchio()
+    q, u = peer.gait_states(46, 1000)
+    found = strike.kernel(values)(q, u)
+    assert not found.warnings
+    for k in range(1000):
+        theirs = peer.pinocchio_after(model, heel, np.array([0, 0, q[k, 2], q[k, 3] - q[k, 2]]),
+                                      np.array([*u[k, :3], u[k, 3] - u[k, 2]]), [0, 1], 0.0)
+        theirs[3] += theirs[2]
+        assert np.allclose(found.speeds_after[k], theirs, rtol=1e-10, atol=1e-10)
+
+
+def test_the_kernel_table_runs():
+    rows = peer.kernel_costs(2000, links=3, repeat=1)
+    assert [r["system"] for r in rows] == ["chain of 3, tip on a wall",
+                                           "compass gait, heel strike"]
+    assert all(r["largest difference"] < 1e-10 for r in rows)

@@ -63,6 +63,7 @@ from rigidimpact.laws.law import Equation
 from rigidimpact.mechanics.certify import FLOAT_DIGITS
 from rigidimpact.mechanics.certify import checks as certify_checks
 from rigidimpact.mechanics.certify import wide as _wide
+from rigidimpact.mechanics.kernel import MapKernel
 from rigidimpact.solve.collision import (
     MAX_ENUMERATED,
     Rule,
@@ -658,6 +659,73 @@ class SystemImpact:
         """Every speed from the independent ones (the dependent ones by the velocity
         constraints, which hold after the impact as before)."""
         return independent if self.fold is None else self.fold[1] * independent
+
+    def kernel(self, values: dict | None = None) -> MapKernel:
+        """The impact map where every contact acts, as one NumPy kernel over arrays of
+        states (:mod:`rigidimpact.mechanics.kernel`): `values` gives the constants (a
+        dict like :meth:`at`'s, without q and the speeds); the kernel is called with q
+        and u. Smooth and sticking contacts under Newton's law (the map of a robotics
+        library's impulse dynamics); the rest is refused in one line, for
+        :meth:`solve`. A state where a contact would pull or energy is created gives
+        NaN speeds, counted in the result's warnings.
+
+        Examples
+        --------
+        The pendulum of the module's example, hitting the wall with e = 1/2 at rate -2
+        (and, at a second state, moving away from it: no impact there):
+
+        >>> import sympy as sp, sympy.physics.mechanics as me
+        >>> q, u = me.dynamicsymbols("q u")
+        >>> N, A = me.ReferenceFrame("N"), me.ReferenceFrame("A")
+        >>> A.orient_axis(N, N.z, q); A.set_ang_vel(N, u * N.z)
+        >>> O = me.Point("O"); O.set_vel(N, 0)
+        >>> bob = O.locatenew("bob", -A.y); _ = bob.v2pt_theory(O, N, A)
+        >>> kane = me.KanesMethod(N, [q], [u], [q.diff() - u])
+        >>> _ = kane.kanes_equations([me.Particle("P", bob, 3)], [])
+        >>> found = impact(kane, [contact(bob, N.x, restitution=sp.Rational(1, 2))],
+        ...                frame=N).kernel()([[0.0], [0.0]], [[-2.0], [2.0]])
+        >>> found.speeds_after.ravel().tolist(), found.warnings[0][:38]
+        ([1.0, nan], 'at 1 of 2 states a contact would pull ')
+        """
+        if self.fold is not None:
+            raise InputError("system", "the impact map's kernel takes a system without "
+                             "dependent speeds; solve() takes a nonholonomic one")
+        put = dict(values or {})
+        blocks: list[sp.MatrixBase] = []
+        names: list[str] = []
+        normal: list[int] = []
+        restitution: list[Any] = []
+        kinds: tuple[str, ...]
+        for i, c in enumerate(self.contacts):
+            laws = c.laws
+            if laws.law != "newton" or laws.tangential not in ("smooth", "stick"):
+                raise InputError(f"{c.name}.laws", "the impact map's kernel takes smooth "
+                                 "or sticking contacts under Newton's law, every contact "
+                                 "acting; solve() takes the rest")
+            if laws.tangential == "smooth":
+                block, kinds = self.J[2 * i:2 * i + 1, :], ("n",)
+            elif self.J_plane is not None:
+                block, kinds = self.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
+            else:
+                block, kinds = self.J[2 * i:2 * i + 2, :], ("n", "t")
+            e = sp.sympify(sp.sympify(laws.restitution).xreplace(put))
+            if not e.is_number or not 0 <= e <= 1:
+                raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
+                                 f"(values may give it), not {e}")
+            for k, kind in enumerate(kinds):
+                normal += [len(names)] if kind == "n" else []
+                names.append(f"{c.name}.{kind}")
+                restitution.append(e if kind == "n" else 0)
+                blocks.append(block.row(k))
+        M, J = self.M.xreplace(put), sp.Matrix.vstack(*blocks).xreplace(put)
+        time = me.dynamicsymbols._t
+        left = (M.free_symbols | J.free_symbols) - set(self.q) - {time}
+        left = {s for s in left if not any(s in qi.free_symbols for qi in self.q
+                                           if not qi.is_Symbol)}
+        if left:
+            raise InputError("values", "the kernel needs a number for "
+                             + ", ".join(sorted(map(str, left))))
+        return MapKernel.build(self.q, self.u, M, J, names, normal, restitution)
 
     def at(self, values: dict) -> SystemImpact:
         """The same impact with numbers (or expressions) for q, the constants and (keyed

@@ -1,0 +1,111 @@
+"""The impact map of a mechanics system as one NumPy kernel over many states.
+
+Where every contact acts (each normal row ends at ``-e`` times its approach, each
+sticking contact's tangent rows at zero), the map from the speeds before to the speeds
+after is linear at each configuration q:
+
+    W P = -(1 + E) J u-,   u+ = u- + M^-1 J^T P,   W = J M^-1 J^T,
+
+with M(q) the mass matrix and J(q) the contact rows. This module evaluates M and J for a
+whole array of states at once (one expression tree, its common parts computed once) and
+solves the small systems in one batched call, so that a state costs microseconds. It is
+the map a robotics library's impulse dynamics computes (Pinocchio's
+``impulseDynamics``); it does not ask which contacts act. So each state is checked: where
+a contact would pull (a negative normal impulse) or the impact would create kinetic
+energy, the map is not the impact, and the speeds after there are NaN, counted in the
+result's warnings (``SystemImpact.solve()`` finds which contacts act at such a state).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import sympy as sp
+
+from rigidimpact.lazy import deferred
+
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    np = deferred("numpy")
+
+__all__ = ["MapKernel", "MapNumbers"]
+
+# relative to the state's own scale: a normal impulse below -TOLERANCE x its largest
+# impulse pulls; kinetic energy above (1 + TOLERANCE) x before is created
+TOLERANCE = 1e-9
+
+
+@dataclass(frozen=True)
+class MapNumbers:
+    """The map at N states: `speeds_after` (N, speeds), NaN where the map is not the
+    impact; `impulses` (N, rows); `honoured` (N,) where every contact pushes and no
+    energy is created; `warnings` say how many states fail and why."""
+
+    speeds_after: Any
+    impulses: Any
+    honoured: Any
+    warnings: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class MapKernel:
+    """The impact map, every contact acting, compiled for arrays of states; see the
+    module's text. Call it with q (N, len(q)) and u (N, len(u)), or one state each.
+
+    `rows` names the contact rows (``tip.n``, ``heel.t``), `speeds` the speeds."""
+
+    speeds: tuple[str, ...]
+    rows: tuple[str, ...]
+    normal: tuple[int, ...]  # which rows are normal rows
+    restitution: tuple[float, ...]  # e of each row's contact; 0 for a tangent row
+    entries: Any  # f(*q) -> the entries of M (row by row), then of J (NumPy)
+
+    @classmethod
+    def build(cls, q: Sequence[Any], u: Sequence[Any], M: sp.MatrixBase,
+              J: sp.MatrixBase, rows: Sequence[str], normal: Sequence[int],
+              restitution: Sequence[float]) -> MapKernel:
+        """The kernel of M(q) and J(q), whose only symbols are q's (numbers put in)."""
+        stand_ins = [sp.Dummy(f"q{k}") for k in range(len(q))]
+        swap = dict(zip(q, stand_ins, strict=True))
+        flat = [x.xreplace(swap) for x in (*M, *J)]
+        entries = sp.lambdify(stand_ins, flat, "numpy", cse=True)
+        return cls(tuple(str(s) for s in u), tuple(rows), tuple(normal),
+                   tuple(float(e) for e in restitution), entries)
+
+    def __call__(self, q: Any, u: Any) -> MapNumbers:
+        q = np.atleast_2d(np.asarray(q, dtype=float))
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        n, k = len(self.speeds), len(self.rows)
+        if q.shape[0] != u.shape[0] or u.shape[1] != n:
+            raise ValueError(f"q and u must have as many states, u {n} speeds a state: "
+                             f"given {q.shape} and {u.shape}")
+        states = q.shape[0]
+        values = [np.broadcast_to(np.asarray(x, dtype=float), (states,))
+                  for x in self.entries(*q.T)]
+        table = np.stack(values, axis=1)
+        M = table[:, :n * n].reshape(states, n, n)
+        J = table[:, n * n:].reshape(states, k, n)
+        before = (J @ u[..., None])[..., 0]
+        e = np.asarray(self.restitution)
+        A = np.linalg.solve(M, np.swapaxes(J, 1, 2))  # M^-1 J^T
+        W = J @ A
+        P = np.linalg.solve(W, (-(1 + e) * before)[..., None])[..., 0]
+        after = u + (A @ P[..., None])[..., 0]
+        scale = np.abs(P).max(axis=1, initial=0.0)
+        pulls = (P[:, list(self.normal)] < -TOLERANCE * scale[:, None]).any(axis=1)
+        energy = np.einsum("si,sij,sj->s", u, M, u)
+        gains = np.einsum("si,sij,sj->s", after, M, after) > energy * (1 + TOLERANCE)
+        honoured = ~(pulls | gains) & np.isfinite(after).all(axis=1)
+        warnings = []
+        if pulls.any():
+            warnings.append(f"at {int(pulls.sum())} of {states} states a contact would "
+                            "pull (a negative normal impulse): every contact acting is "
+                            "not the impact there; solve() finds which act")
+        if gains.any():
+            warnings.append(f"at {int(gains.sum())} of {states} states the map creates "
+                            "kinetic energy")
+        return MapNumbers(np.where(honoured[:, None], after, np.nan), P, honoured,
+                          tuple(warnings))
