@@ -479,3 +479,24 @@ def test_the_kernel_refuses_what_it_cannot_map_in_one_line():
         _tip().kernel({e: 0})
     with pytest.raises(ri.InputError, match="restitution"):
         _tip().kernel({m1: 1, m2: 1, l1: 1, l2: 1})
+
+
+def test_the_kernel_says_where_the_contacts_rows_depend_on_each_other():
+    # a sticking tip of a single pendulum: one speed, two rows, W singular everywhere
+    import numpy as np
+
+    q, u = me.dynamicsymbols("q u")
+    frame, arm = me.ReferenceFrame("F"), me.ReferenceFrame("A")
+    arm.orient_axis(frame, frame.z, q)
+    arm.set_ang_vel(frame, u * frame.z)
+    hinge = me.Point("O")
+    hinge.set_vel(frame, 0)
+    bob = hinge.locatenew("bob", -arm.y)
+    bob.v2pt_theory(hinge, frame, arm)
+    kane = me.KanesMethod(frame, [q], [u], [q.diff() - u])
+    kane.kanes_equations([me.Particle("P", bob, 1)], [])
+    hit = ri.mechanics.impact(kane, [ri.mechanics.contact(bob, frame.x, restitution=0,
+                                                          tangential="stick")], frame=frame)
+    found = hit.kernel()(np.array([[0.2], [0.4]]), np.array([[-1.0], [-2.0]]))
+    assert np.isnan(found.speeds_after).all() and not found.honoured.any()
+    assert "singular" in found.warnings[0] and found.warnings[0].startswith("at 2 of 2")

@@ -12,7 +12,8 @@ solves the small systems in one batched call, so that a state costs microseconds
 the map a robotics library's impulse dynamics computes (Pinocchio's
 ``impulseDynamics``); it does not ask which contacts act. So each state is checked: where
 a contact would pull (a negative normal impulse) or the impact would create kinetic
-energy, the map is not the impact, and the speeds after there are NaN, counted in the
+energy, the map is not the impact; where the contacts' rows depend on each other (W
+singular) the impulses are not fixed; the speeds after there are NaN, counted in the
 result's warnings (``SystemImpact.solve()`` finds which contacts act at such a state).
 """
 
@@ -36,6 +37,8 @@ __all__ = ["MapKernel", "MapNumbers"]
 # relative to the state's own scale: a normal impulse below -TOLERANCE x its largest
 # impulse pulls; kinetic energy above (1 + TOLERANCE) x before is created
 TOLERANCE = 1e-9
+# W's rows depend on each other where det W < SINGULAR x the product of its diagonal
+SINGULAR = 1e-10
 
 
 @dataclass(frozen=True)
@@ -90,16 +93,32 @@ class MapKernel:
         J = table[:, n * n:].reshape(states, k, n)
         before = (J @ u[..., None])[..., 0]
         e = np.asarray(self.restitution)
-        A = np.linalg.solve(M, np.swapaxes(J, 1, 2))  # M^-1 J^T
-        W = J @ A
-        P = np.linalg.solve(W, (-(1 + e) * before)[..., None])[..., 0]
+        right = (-(1 + e) * before)[..., None]
+        try:
+            A = np.linalg.solve(M, np.swapaxes(J, 1, 2))  # M^-1 J^T
+            W = J @ A
+            P = np.linalg.solve(W, right)[..., 0]
+        except np.linalg.LinAlgError:  # singular somewhere: state by state, NaN there
+            A, P = _one_by_one(M, J, right)
+            W = J @ np.nan_to_num(A)
         after = u + (A @ P[..., None])[..., 0]
+        # W is symmetric positive semidefinite: det W / (the product of its diagonal),
+        # in [0, 1], is near 0 where its rows depend on each other (rounding keeps a
+        # singular W from being exactly so, and its impulses are then not fixed)
+        diagonal = np.prod(np.diagonal(W, axis1=1, axis2=2), axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            independent = np.linalg.det(W) > SINGULAR * diagonal
+        singular = ~(np.isfinite(P).all(axis=1) & independent)
         scale = np.abs(P).max(axis=1, initial=0.0)
         pulls = (P[:, list(self.normal)] < -TOLERANCE * scale[:, None]).any(axis=1)
         energy = np.einsum("si,sij,sj->s", u, M, u)
         gains = np.einsum("si,sij,sj->s", after, M, after) > energy * (1 + TOLERANCE)
-        honoured = ~(pulls | gains) & np.isfinite(after).all(axis=1)
+        honoured = ~(pulls | gains | singular) & np.isfinite(after).all(axis=1)
         warnings = []
+        if singular.any():
+            warnings.append(f"at {int(singular.sum())} of {states} states M or W = J M^-1 "
+                            "J^T is singular (the contacts' rows depend on each other): "
+                            "the impulses are not fixed there; solve() takes such a state")
         if pulls.any():
             warnings.append(f"at {int(pulls.sum())} of {states} states a contact would "
                             "pull (a negative normal impulse): every contact acting is "
@@ -109,3 +128,16 @@ class MapKernel:
                             "kinetic energy")
         return MapNumbers(np.where(honoured[:, None], after, np.nan), P, honoured,
                           tuple(warnings))
+
+
+def _one_by_one(M: Any, J: Any, right: Any) -> tuple[Any, Any]:
+    """M^-1 J^T and the impulses state by state, NaN where M or W is singular."""
+    states, n, k = J.shape[0], J.shape[2], J.shape[1]
+    A, P = np.full((states, n, k), np.nan), np.full((states, k), np.nan)
+    for s in range(states):
+        try:
+            A[s] = np.linalg.solve(M[s], J[s].T)
+            P[s] = np.linalg.solve(J[s] @ A[s], right[s])[:, 0]
+        except np.linalg.LinAlgError:
+            continue
+    return A, P
