@@ -687,45 +687,7 @@ class SystemImpact:
         >>> found.speeds_after.ravel().tolist(), found.warnings[0][:38]
         ([1.0, nan], 'at 1 of 2 states a contact would pull ')
         """
-        if self.fold is not None:
-            raise InputError("system", "the impact map's kernel takes a system without "
-                             "dependent speeds; solve() takes a nonholonomic one")
-        put = dict(values or {})
-        blocks: list[sp.MatrixBase] = []
-        names: list[str] = []
-        normal: list[int] = []
-        restitution: list[Any] = []
-        kinds: tuple[str, ...]
-        for i, c in enumerate(self.contacts):
-            laws = c.laws
-            if laws.law != "newton" or laws.tangential not in ("smooth", "stick"):
-                raise InputError(f"{c.name}.laws", "the impact map's kernel takes smooth "
-                                 "or sticking contacts under Newton's law, every contact "
-                                 "acting; solve() takes the rest")
-            if laws.tangential == "smooth":
-                block, kinds = self.J[2 * i:2 * i + 1, :], ("n",)
-            elif self.J_plane is not None:
-                block, kinds = self.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
-            else:
-                block, kinds = self.J[2 * i:2 * i + 2, :], ("n", "t")
-            e = sp.sympify(sp.sympify(laws.restitution).xreplace(put))
-            if not e.is_number or not 0 <= e <= 1:
-                raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
-                                 f"(values may give it), not {e}")
-            for k, kind in enumerate(kinds):
-                normal += [len(names)] if kind == "n" else []
-                names.append(f"{c.name}.{kind}")
-                restitution.append(e if kind == "n" else 0)
-                blocks.append(block.row(k))
-        M, J = self.M.xreplace(put), sp.Matrix.vstack(*blocks).xreplace(put)
-        time = me.dynamicsymbols._t
-        left = (M.free_symbols | J.free_symbols) - set(self.q) - {time}
-        left = {s for s in left if not any(s in qi.free_symbols for qi in self.q
-                                           if not qi.is_Symbol)}
-        if left:
-            raise InputError("values", "the kernel needs a number for "
-                             + ", ".join(sorted(map(str, left))))
-        return MapKernel.build(self.q, self.u, M, J, names, normal, restitution)
+        return MapKernel.of(self, values)
 
     def at(self, values: dict) -> SystemImpact:
         """The same impact with numbers (or expressions) for q, the constants and (keyed

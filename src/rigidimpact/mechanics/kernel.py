@@ -24,7 +24,9 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import sympy as sp
+import sympy.physics.mechanics as me
 
+from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
 
 if TYPE_CHECKING:
@@ -65,6 +67,50 @@ class MapKernel:
     normal: tuple[int, ...]  # which rows are normal rows
     restitution: tuple[float, ...]  # e of each row's contact; 0 for a tangent row
     entries: Any  # f(*q) -> the entries of M (row by row), then of J (NumPy)
+
+    @classmethod
+    def of(cls, system: Any, values: dict | None = None) -> MapKernel:
+        """The kernel of a :class:`~rigidimpact.mechanics.impact.SystemImpact`; see its
+        ``kernel``."""
+        if system.fold is not None:
+            raise InputError("system", "the impact map's kernel takes a system without "
+                             "dependent speeds; solve() takes a nonholonomic one")
+        put = dict(values or {})
+        blocks: list[sp.MatrixBase] = []
+        names: list[str] = []
+        normal: list[int] = []
+        restitution: list[Any] = []
+        kinds: tuple[str, ...]
+        for i, c in enumerate(system.contacts):
+            laws = c.laws
+            if laws.law != "newton" or laws.tangential not in ("smooth", "stick"):
+                raise InputError(f"{c.name}.laws", "the impact map's kernel takes smooth "
+                                 "or sticking contacts under Newton's law, every contact "
+                                 "acting; solve() takes the rest")
+            if laws.tangential == "smooth":
+                block, kinds = system.J[2 * i:2 * i + 1, :], ("n",)
+            elif system.J_plane is not None:
+                block, kinds = system.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
+            else:
+                block, kinds = system.J[2 * i:2 * i + 2, :], ("n", "t")
+            e = sp.sympify(sp.sympify(laws.restitution).xreplace(put))
+            if not e.is_number or not 0 <= e <= 1:
+                raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
+                                 f"(values may give it), not {e}")
+            for k, kind in enumerate(kinds):
+                normal += [len(names)] if kind == "n" else []
+                names.append(f"{c.name}.{kind}")
+                restitution.append(e if kind == "n" else 0)
+                blocks.append(block.row(k))
+        M, J = system.M.xreplace(put), sp.Matrix.vstack(*blocks).xreplace(put)
+        time = me.dynamicsymbols._t
+        left = (M.free_symbols | J.free_symbols) - set(system.q) - {time}
+        left = {s for s in left if not any(s in qi.free_symbols for qi in system.q
+                                           if not qi.is_Symbol)}
+        if left:
+            raise InputError("values", "the kernel needs a number for "
+                             + ", ".join(sorted(map(str, left))))
+        return cls.build(system.q, system.u, M, J, names, normal, restitution)
 
     @classmethod
     def build(cls, q: Sequence[Any], u: Sequence[Any], M: sp.MatrixBase,
