@@ -14,7 +14,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
 from rigidimpact.solve.collision import Collision, chain
-from rigidimpact.solve.lcp import NoSolution, lemke, markowitz_solve
+from rigidimpact.solve.lcp import NoSolution, lemke, sparse_solve
 from rigidimpact.solve.rules import simultaneous as rule
 
 
@@ -122,10 +122,10 @@ def test_markowitz_elimination_solves_sparse_unsymmetric_systems_exactly(seed):
     rhs = {i: Fraction(rng.randint(-9, 9), rng.randint(1, 4)) for i in range(n)}
     A = sp.Matrix(n, n, lambda i, j: sp.Rational(rows[i].get(j, 0)))
     if A.det() == 0:
-        assert markowitz_solve(rows, rhs, budget=10**6) is None
+        assert sparse_solve(rows, rhs, budget=10**6) is None
         return
     expected = A.LUsolve(sp.Matrix([sp.Rational(rhs[i]) for i in range(n)]))
-    found = markowitz_solve(rows, rhs, budget=10**6)
+    found = sparse_solve(rows, rhs, budget=10**6)
     assert found is not None
     assert [sp.Rational(found[j]) for j in range(n)] == list(expected)
 
@@ -133,7 +133,7 @@ def test_markowitz_elimination_solves_sparse_unsymmetric_systems_exactly(seed):
 def test_markowitz_elimination_says_none_when_singular_or_over_its_budget():
     half = Fraction(1, 2)
     singular = {0: {0: half, 1: Fraction(1)}, 1: {0: Fraction(1), 1: Fraction(2)}}
-    assert markowitz_solve(singular, {0: half}, budget=100) is None
+    assert sparse_solve(singular, {0: half}, budget=100) is None
     dense = {i: {j: Fraction(i + j + 1, 1 + (i == j)) for j in range(20)} for i in range(20)}
-    assert markowitz_solve(dense, {0: half}, budget=50) is None  # first pivot costs 400
-    assert markowitz_solve(dense, {0: half}, budget=10**6) is not None
+    assert sparse_solve(dense, {0: half}, budget=50) is None  # first pivot costs 400
+    assert sparse_solve(dense, {0: half}, budget=10**6) is not None

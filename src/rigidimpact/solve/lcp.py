@@ -51,7 +51,7 @@ else:
     np = deferred("numpy")
 
 __all__ = ["lemke", "NoSolution", "pivoting", "proximal", "residual", "solve_exactly", "confirm",
-           "least_norm", "sparse_solve", "markowitz_solve", "confirm_by_rows"]
+           "least_norm", "sparse_solve", "confirm_by_rows"]
 
 
 class NoSolution(ValueError):
@@ -194,7 +194,7 @@ def confirm_support(M: Sequence[dict[int, Any]], q: Sequence[Any],
                    for k, i in enumerate(support)}
         # a sparse block (a chain's, a cluster's) by elimination in Markowitz order,
         # within a share of the work a dense solve costs; a dense one (a fan's) by FLINT
-        found = markowitz_solve(entries, {k: -q[i] for k, i in enumerate(support)},
+        found = sparse_solve(entries, {k: -q[i] for k, i in enumerate(support)},
                                 budget=size * size // 4 + 10_000)
         if found is None:
             block = DomainMatrix({k: row for k, row in entries.items() if row},
@@ -343,74 +343,6 @@ def solve_exactly(rows: dict[int, dict[int, Fraction]], rhs: dict[int, Fraction]
 
 def sparse_solve(rows: dict[int, dict[int, Any]], rhs: dict[int, Any],
                  budget: int = 20_000_000) -> dict[int, Any] | None:
-    """The exact solution of a sparse symmetric system ``rows[i][j]`` (numbers of one
-    exact field: SymPy's QQ, python-flint's fmpq where it is installed), by elimination
-    with diagonal pivots in minimum-degree order: each step eliminates the unknown with
-    the fewest neighbours left whose pivot is not zero. None when every unknown left has
-    a zero pivot (a 2x2 pivot would be needed) or the work would pass `budget` entry
-    updates.
-
-    Minimum degree is what makes a saddle-point system cheap: a disc touched by one
-    contact is eliminated first, then that contact, and a body that touches every
-    contact (a fan's striker) last, so a fan of k discs costs O(k), not the O(k^3) of
-    its dense W.
-
-    Examples
-    --------
-    >>> from fractions import Fraction as F
-    >>> sparse_solve({0: {0: F(2), 1: F(1)}, 1: {0: F(1), 1: F(0)}}, {0: F(0), 1: F(1)})
-    {1: Fraction(-2, 1), 0: Fraction(1, 1)}
-    """
-    import heapq
-
-    rows = {i: dict(r) for i, r in rows.items()}
-    b = {i: rhs.get(i, 0) for i in rows}
-    heap = [(len(r), i) for i, r in rows.items()]
-    heapq.heapify(heap)
-    done: list[tuple[int, dict[int, Any]]] = []
-    alive, work, waiting = set(rows), 0, len(rows) + 1
-    while alive:
-        if not heap:
-            return None
-        degree, p = heapq.heappop(heap)
-        if p not in alive or degree % waiting != len(rows[p]) % waiting:
-            continue  # a stale entry: p was pushed again with its new degree
-        pivot = rows[p].get(p, 0)
-        if not pivot:  # wait until a neighbour's elimination fills the diagonal
-            if degree >= waiting:  # every unknown left waits: no 1x1 pivot is left
-                return None
-            heapq.heappush(heap, (len(rows[p]) + waiting, p))
-            continue
-        row = rows.pop(p)
-        alive.discard(p)
-        neighbours = [i for i in row if i != p]
-        work += len(neighbours) * len(row)
-        if work > budget:
-            return None
-        for i in neighbours:
-            target = rows[i]
-            factor = target.pop(p) / pivot
-            for k in neighbours:
-                value = target.get(k, 0) - factor * row[k]
-                if value:
-                    target[k] = value
-                else:
-                    target.pop(k, None)
-            b[i] -= factor * b[p]
-            heapq.heappush(heap, (len(target), i))
-        done.append((p, row))
-    x: dict[int, Any] = {}
-    for p, row in reversed(done):
-        total = b[p]
-        for k, value in row.items():
-            if k != p:
-                total -= value * x[k]
-        x[p] = total / row[p]
-    return x
-
-
-def markowitz_solve(rows: dict[int, dict[int, Any]], rhs: dict[int, Any],
-                    budget: int) -> dict[int, Any] | None:
     """The exact solution of a square sparse system ``rows[i][j] x_j = rhs[i]`` (numbers
     of one exact field), not necessarily symmetric, by Gaussian elimination in Markowitz
     order: each step takes the equation with the fewest entries left and, in it, the
@@ -419,12 +351,17 @@ def markowitz_solve(rows: dict[int, dict[int, Any]], rhs: dict[int, Any],
     is not zero serves. None when the system is singular or the work would pass
     `budget` entry updates (then a dense solve is the cheaper way).
 
+    The same order makes a saddle-point system cheap: a disc touched by one contact is
+    eliminated first, then that contact, and a body that touches every contact (a
+    fan's striker) last, so a fan of k discs costs O(k), not the O(k^3) of its dense W;
+    a zero diagonal needs no 2x2 pivot, an entry off the diagonal serves.
+
     Examples
     --------
     >>> from fractions import Fraction as F
-    >>> markowitz_solve({0: {1: F(2)}, 1: {0: F(1), 1: F(1)}}, {0: F(4), 1: F(3)}, 100)
+    >>> sparse_solve({0: {1: F(2)}, 1: {0: F(1), 1: F(1)}}, {0: F(4), 1: F(3)}, 100)
     {0: Fraction(1, 1), 1: Fraction(2, 1)}
-    >>> markowitz_solve({0: {0: F(1), 1: F(1)}, 1: {0: F(2), 1: F(2)}}, {0: F(1)}, 100)
+    >>> sparse_solve({0: {0: F(1), 1: F(1)}, 1: {0: F(2), 1: F(2)}}, {0: F(1)}, 100)
     """
     import heapq
 
