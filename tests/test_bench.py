@@ -87,6 +87,8 @@ def test_the_whole_quick_bench_writes_its_three_files(tmp_path, capsys):
     assert {"ladder", "verify_vs_plain", "start_vs_sympy", "contacts"} <= set(data)
     start = data["start_vs_sympy"]
     assert start["derive_ratio"] == start["derive_barbell_s"] / start["import_sympy_s"]
+    assert start["derive_ratio_same_collector"] == (start["derive_barbell_s"]
+                                                    / start["import_sympy_same_collector_s"])
 
 
 def _three_files(out, data):

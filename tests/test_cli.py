@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import re
 from pathlib import Path
 
@@ -251,6 +252,31 @@ def test_a_built_in_derivation_reads_no_scene_and_no_package_metadata():
     shown = subprocess.run([sys.executable, "-m", "rigidimpact", "--version"],
                            capture_output=True, text=True, check=True).stdout
     assert shown.startswith("rigidimpact ") and shown.split()[1][0].isdigit()
+
+
+def test_the_command_as_a_process_prints_and_exits_as_main_does(capsys):
+    # `python -m rigidimpact` (the console script's run()) tunes the collector for a
+    # short process; its output and exit status are main()'s, and main() called from
+    # Python leaves the collector's settings as they were
+    import gc
+    import subprocess
+    import sys
+
+    before = gc.get_threshold()
+    assert main(["derive", "discs", "--json"]) == 0
+    assert gc.get_threshold() == before and not gc.get_freeze_count()
+    in_process = capsys.readouterr().out
+    env = {**os.environ, "RIGIDIMPACT_CACHE": "off"}
+    shown = subprocess.run([sys.executable, "-m", "rigidimpact", "derive", "discs", "--json"],
+                           capture_output=True, text=True, env=env)
+    assert shown.returncode == 0 and shown.stderr == ""
+    drop = ("seconds",)  # the one figure that differs between two runs
+    assert ({k: v for k, v in json.loads(shown.stdout).items() if k not in drop}
+            == {k: v for k, v in json.loads(in_process).items() if k not in drop})
+    bad = subprocess.run([sys.executable, "-m", "rigidimpact", "derive", "nonsense"],
+                         capture_output=True, text=True, env=env)
+    assert bad.returncode == 2 and bad.stdout == ""
+    assert bad.stderr.count("\n") == 1 and "unknown problem 'nonsense'" in bad.stderr
 
 
 _SHIPPED = Path(__file__).resolve().parents[1] / "derivations"

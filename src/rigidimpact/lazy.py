@@ -13,6 +13,9 @@ and ``np.zeros`` imports numpy at that first call. After it, every name of the m
 an ordinary attribute of the stand-in (copied once), so a loop pays no more than with the
 module itself.
 
+A command is a short process, and :data:`SHORT_RUN_THRESHOLD` is the collector setting
+it runs under (:func:`rigidimpact.cli.run`).
+
 >>> math_ = deferred("math")
 >>> math_.sqrt(4.0), "sqrt" in vars(math_)
 (2.0, True)
@@ -40,3 +43,9 @@ class _Deferred(ModuleType):
 def deferred(name: str) -> Any:
     """A stand-in for the module `name`, imported when first used (see above)."""
     return _Deferred(name)
+
+
+# The cyclic collector's first generation for a process that is one command: SymPy
+# builds and drops many small containers, and Python's default (a pass every 700 new
+# ones) spends about a tenth of a derivation's time rescanning the young ones.
+SHORT_RUN_THRESHOLD = 20_000
