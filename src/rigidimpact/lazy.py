@@ -47,5 +47,5 @@ def deferred(name: str) -> Any:
 
 # The cyclic collector's first generation for a process that is one command: SymPy
 # builds and drops many small containers, and Python's default (a pass every 700 new
-# ones) spends about a tenth of a derivation's time rescanning the young ones.
+# ones) spends 5 to 10 per cent of `derive barbell` rescanning the young ones.
 SHORT_RUN_THRESHOLD = 20_000
