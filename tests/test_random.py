@@ -660,3 +660,23 @@ def test_a_draw_plan_draws_what_the_fused_kernel_gives_on_numpys_own_draws(law):
     else:
         expected = fused({"y": g.subs(e, sp.Float(0.5))})(x=drawn_x, y=drawn_y)["y"]
     assert got.shape == (size,) and np.array_equal(got, expected)
+
+
+@pytest.mark.parametrize("constant", [False, True])
+def test_a_chunks_sums_are_its_values_summed_as_numpy_sums_them(constant):
+    # a chunk's sums are made with no copy of its values; they must equal, to the bit,
+    # NumPy's own sums of the values the plan draws from the chunk's stream
+    import numpy as np
+
+    from rigidimpact.symbolic.distributions import distribution, draw_plan
+    from rigidimpact.symbolic.drawn import stream
+
+    x, e = sp.symbols("x e")
+    g = sp.Rational(1, 10) if constant else (e - sp.cos(x) ** 2) / (1 + sp.cos(x) ** 2)
+    plan = draw_plan(g, {x: distribution({"uniform": ["0", "pi/2"]}, "x")}, {e: 0.5})
+    size = 100_003
+    values = np.array(plan.values(np.random.default_rng(stream(5, 2)), size))
+    expected = (float(np.sum(values)), float(np.sum(values * values)),
+                float(np.count_nonzero(values < 0)))
+    assert plan.sums(5, 2, size) == expected
+    assert (expected[2] > 0) is not constant and expected[1] > 0

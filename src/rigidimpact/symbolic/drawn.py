@@ -110,6 +110,11 @@ class DrawPlan:
 
     def values(self, rng: np.random.Generator, size: int) -> np.ndarray:
         """`size` values of the closed form, its inputs drawn from `rng` in turn."""
+        return np.broadcast_to(self._values(rng, size), (size,))
+
+    def _values(self, rng: np.random.Generator, size: int) -> np.ndarray:
+        """:meth:`values` in an array of their own (shape ``()`` where the closed form
+        draws nothing), free to be overwritten."""
         drawn = {s.name: s.sample(rng, size) for s in self.samplers}
         kernel = compiled(self.source)
         inputs = [np.asarray(drawn[n], dtype=np.float64) for n in self.arguments]
@@ -118,15 +123,21 @@ class DrawPlan:
         for start in range(0, flat.shape[0], self.chunk):
             stop = min(start + self.chunk, flat.shape[0])
             (flat[start:stop],) = kernel(*(a[start:stop] for a in inputs))
-        return np.broadcast_to(out, (size,))
+        return out
 
     def sums(self, seed: int, index: int, size: int) -> tuple[float, float, float]:
         """One chunk of a Monte Carlo: the sum, the sum of squares and the count below
         zero of `size` values drawn from chunk `index`'s own stream of the seed
         (:func:`stream`), so a chunk draws the same numbers in any process and any
         order."""
-        out = self.values(np.random.default_rng(stream(seed, index)), size)
-        return float(out.sum()), float((out * out).sum()), float((out < 0).sum())
+        out = self._values(np.random.default_rng(stream(seed, index)), size)
+        if out.ndim == 0:  # one value for every draw: summed as the draws are
+            out = np.broadcast_to(out, (size,))
+            return float(out.sum()), float((out * out).sum()), float((out < 0).sum())
+        total, below = float(out.sum()), float((out < 0).sum())
+        # the squares in the values' own array: a chunk's third array of 8 MB not made
+        np.multiply(out, out, out=out)
+        return total, float(out.sum()), below
 
 
 def plan_run(plan: DrawPlan, seed: int, start: int,
