@@ -16,7 +16,6 @@ Examples
 from __future__ import annotations
 
 import argparse
-import gc
 import json
 import os
 import sys
@@ -25,12 +24,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
 from rigidimpact.errors import InputError
-from rigidimpact.lazy import SHORT_RUN_THRESHOLD
 
 if TYPE_CHECKING:
     import sympy as sp
 
-__all__ = ["main", "run"]
+__all__ = ["main"]
 
 
 class _Parser(argparse.ArgumentParser):
@@ -999,19 +997,3 @@ def main(argv: Sequence[str] | None = None) -> int:
               "report it; RIGIDIMPACT_DEBUG=1 shows the traceback)", file=sys.stderr)
         return 70
 
-
-def run(argv: Sequence[str] | None = None) -> NoReturn:
-    """The ``rigidimpact`` command as a process of its own: :func:`main`, then exit.
-
-    A command is a short-lived process, so the cyclic collector runs less often while
-    it works, and at exit what it built is frozen (:func:`gc.freeze`) rather than
-    searched for cycles once more: the process's memory goes back to the system whole.
-    Nothing is lost by that: exit handlers still run, and every file the command writes
-    is whole and closed before :func:`main` returns (:mod:`rigidimpact.outputs.atomic`).
-    Calling :func:`main` from Python (a notebook, the tests) leaves the collector as it
-    was.
-    """
-    gc.set_threshold(SHORT_RUN_THRESHOLD, *gc.get_threshold()[1:])
-    status = main(argv)
-    gc.freeze()
-    sys.exit(status)

@@ -14,7 +14,7 @@ an ordinary attribute of the stand-in (copied once), so a loop pays no more than
 module itself.
 
 A command is a short process, and :data:`SHORT_RUN_THRESHOLD` is the collector setting
-it runs under (:func:`rigidimpact.cli.run`).
+it runs under (:func:`rigidimpact.__main__.run`).
 
 >>> math_ = deferred("math")
 >>> math_.sqrt(4.0), "sqrt" in vars(math_)

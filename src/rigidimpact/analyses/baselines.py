@@ -37,7 +37,7 @@ def _interleaved(candidates: dict[str, Callable[[], Any]], repeats: int) -> dict
 
 
 # the command as its console script runs it, in a fresh Python (output captured)
-COMMAND = "from rigidimpact.cli import run\nrun({argv!r})"
+COMMAND = "from rigidimpact.__main__ import run\nrun({argv!r})"
 
 PLAIN_BARBELL = """
 import sympy as sp
@@ -109,7 +109,7 @@ def start_against_sympy(repeats: int = 3) -> dict[str, float]:
     ``rigidimpact derive barbell`` (derived afresh: its result cache off) beside
     ``python -c "import sympy"``; medians of fresh processes, timed in turn.
 
-    The command runs as a process of its own (:func:`rigidimpact.cli.run`), which tunes
+    The command runs as a process of its own (:func:`rigidimpact.__main__.run`), which tunes
     Python's cyclic collector for a short run; ``import sympy`` is timed twice, as
     Python runs it and under the same collector settings, so that the ratio against the
     second (``derive_ratio_same_collector``) says what the package's own work costs."""
