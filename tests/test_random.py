@@ -535,6 +535,40 @@ def test_local_workers_are_forked_on_linux_unless_the_users_dask_config_says(
     assert not _fork_here(dask)
 
 
+def test_local_workers_look_at_themselves_seldom_unless_the_user_says(monkeypatch,
+                                                                     tmp_path):
+    # the event loops' own delay, the memory and the dashboard's records are taken every
+    # 1 to 2 s, not every 20 to 500 ms: in the workers and in this process's scheduler;
+    # an interval the user sets in Dask's own configuration is kept
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("dask.distributed")
+    from rigidimpact.outputs.workers import QUIET, dask_client
+
+    def intervals(dask_worker=None, dask_scheduler=None) -> dict[str, float]:
+        server = dask_worker or dask_scheduler
+        return {k: server.periodic_callbacks[k].callback_time for k in ("tick", "monitor")}
+
+    for key in QUIET:
+        monkeypatch.delenv("DASK_" + key.upper().replace(".", "__").replace("-", "_"),
+                           raising=False)
+    monkeypatch.setattr(dask.config, "paths", [str(tmp_path)])  # no file of the user's
+    assert dask.config.get("distributed.admin.tick.interval") == "20ms"  # Dask's default
+    with dask_client(1) as client:
+        assert list(client.run(intervals).values()) == [{"tick": 1000, "monitor": 2000}]
+        assert client.run_on_scheduler(intervals) == {"tick": 1000, "monitor": 2000}
+        assert list(client.run(lambda: __import__("dask").config.get(
+            "distributed.worker.memory.monitor-interval")).values()) == ["1s"]
+    assert dask.config.get("distributed.admin.tick.interval") == "20ms"  # as it was
+    monkeypatch.setenv("DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL", "50ms")
+    dask.config.refresh()  # as a process started with the variable reads it
+    try:
+        with dask_client(1) as client:
+            assert list(client.run(intervals).values()) == [{"tick": 50, "monitor": 2000}]
+    finally:
+        monkeypatch.delenv("DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL")
+        dask.config.refresh()
+
+
 def test_local_workers_do_not_profile_themselves_unless_the_user_asks(monkeypatch,
                                                                      tmp_path):
     # Dask's statistical profiler feeds a dashboard that is not started here; its stack
@@ -662,21 +696,50 @@ def test_a_draw_plan_draws_what_the_fused_kernel_gives_on_numpys_own_draws(law):
     assert got.shape == (size,) and np.array_equal(got, expected)
 
 
-@pytest.mark.parametrize("constant", [False, True])
-def test_a_chunks_sums_are_its_values_summed_as_numpy_sums_them(constant):
-    # a chunk's sums are made with no copy of its values; they must equal, to the bit,
-    # NumPy's own sums of the values the plan draws from the chunk's stream
+@pytest.mark.parametrize("case", ["one input", "two inputs", "constant"])
+def test_a_chunks_sums_are_its_values_summed_block_by_block(case):
+    # a chunk's values are made and summed a block at a time: its three sums must equal,
+    # to the bit, NumPy's sums of the blocks' sums of the values the plan draws whole
+    # from the chunk's stream (one input's draws made a block at a time are the same
+    # numbers; several inputs are drawn whole, in turn)
     import numpy as np
 
     from rigidimpact.symbolic.distributions import distribution, draw_plan
     from rigidimpact.symbolic.drawn import stream
 
-    x, e = sp.symbols("x e")
-    g = sp.Rational(1, 10) if constant else (e - sp.cos(x) ** 2) / (1 + sp.cos(x) ** 2)
-    plan = draw_plan(g, {x: distribution({"uniform": ["0", "pi/2"]}, "x")}, {e: 0.5})
+    x, y, e = sp.symbols("x y e")
+    g = {"one input": (e - sp.cos(x) ** 2) / (1 + sp.cos(x) ** 2),
+         "two inputs": (e - sp.cos(x) ** 2) / (1 + y * sp.cos(x) ** 2),
+         "constant": sp.Rational(1, 10)}[case]
+    inputs = {x: distribution({"uniform": ["0", "pi/2"]}, "x"),
+              y: distribution({"normal": ["1", "1/10"]}, "y")}
+    plan = draw_plan(g, {s: inputs[s] for s in g.free_symbols if s in inputs}, {e: 0.5})
     size = 100_003
     values = np.array(plan.values(np.random.default_rng(stream(5, 2)), size))
-    expected = (float(np.sum(values)), float(np.sum(values * values)),
+    blocks = [values[a:a + plan.chunk] for a in range(0, size, plan.chunk)]
+    assert len(blocks) == 13
+    expected = (float(np.sum([b.sum() for b in blocks])),
+                float(np.sum([(b * b).sum() for b in blocks])),
                 float(np.count_nonzero(values < 0)))
     assert plan.sums(5, 2, size) == expected
-    assert (expected[2] > 0) is not constant and expected[1] > 0
+    assert (expected[2] > 0) is (case != "constant") and expected[1] > 0
+
+
+def test_guided_runs_cover_the_work_in_order_and_shrink_to_the_least():
+    # each run is a 2 * workers-th part of what is left (rounded up, at least `least`),
+    # so they cover range(count) in order and only shrink, the last one possibly short
+    import random
+
+    from rigidimpact.outputs.workers import guided
+
+    rng = random.Random(45)
+    for _ in range(500):
+        count, workers, least = rng.randrange(0, 5000), rng.randrange(1, 9), rng.randrange(1, 20)
+        runs = guided(count, workers, least)
+        assert [a for a, _ in runs] == [0] + [b for _, b in runs[:-1]]
+        assert runs[-1][1] == count if count else runs == []
+        sizes = [b - a for a, b in runs]
+        assert sizes == sorted(sizes, reverse=True)
+        assert all(s >= least for s in sizes[:-1])
+        for (a, b) in runs[:-1]:
+            assert b - a == max(least, -(-(count - a) // (2 * workers)))

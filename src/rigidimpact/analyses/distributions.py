@@ -18,7 +18,7 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.outputs.workers import dask_client, local_or_here
+from rigidimpact.outputs.workers import dask_client, guided, local_or_here
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
@@ -66,13 +66,11 @@ def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     """The futures of :func:`monte_carlo_on_dask`'s tasks, sent to `client`'s workers
     and not waited for."""
     sizes = chunk_sizes(samples, chunk)
-    # a few runs of consecutive chunks a worker (the expression and its inputs sent once
-    # a run, not once a chunk), each chunk still its own stream: the sums are the
-    # one-process sums, in the chunks' order
+    # runs of consecutive chunks, shrinking as the work ends (the plan sent once a run,
+    # not once a chunk), each chunk still its own stream: the sums are the one-process
+    # sums, in the chunks' order
     count = len(client.scheduler_info().get("workers", {})) or 1
-    runs = _runs(len(sizes), BLOCKS_PER_WORKER * count)
-    # the plan (the kernel's source, the samplers' numbers) is made here, so a worker
-    # draws with NumPy alone: it imports neither SymPy nor the rest of this package
+    runs = guided(len(sizes), count)
     plan = draw_plan(g, inputs, values)
     return [client.submit(plan_run, plan, seed, start, sizes[start:stop], pure=False)
             for start, stop in runs]
@@ -87,26 +85,6 @@ def _gathered(client: Any, futures: list[Any], samples: int,
         bar(futures)
     sums = [part for run in client.gather(futures) for part in run]
     return combine(sums, samples)
-
-
-BLOCKS_PER_WORKER = 4  # runs of chunks a worker: enough to even out, few to send
-
-
-def _runs(count: int, runs: int) -> list[tuple[int, int]]:
-    """[start, stop) of at most `runs` consecutive runs covering range(count), their
-    lengths differing by at most one.
-
-    Examples
-    --------
-    >>> _runs(10, 4)
-    [(0, 3), (3, 6), (6, 8), (8, 10)]
-    """
-    runs = max(1, min(runs, count))
-    base, extra = divmod(count, runs)
-    edges = [0]
-    for k in range(runs):
-        edges.append(edges[-1] + base + (1 if k < extra else 0))
-    return list(zip(edges[:-1], edges[1:], strict=True))
 
 
 def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Distribution],

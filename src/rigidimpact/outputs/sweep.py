@@ -33,7 +33,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import replace_folder
-from rigidimpact.outputs.workers import dask_client, local_or_here
+from rigidimpact.outputs.workers import dask_client, guided, local_or_here
 from rigidimpact.scenes.scene import load_scene
 from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
@@ -43,7 +43,8 @@ __all__ = ["parse_grid", "run_sweep", "sweep_block", "run_point_sweep", "point_b
 
 BLOCK = 1 << 20  # sets a Dask task
 MAX_POINTS = 10**6  # scenes solved with numbers: each set is one solve (a compliant
-POINTS = 64  # run takes about 0.1 s); sets a task
+POINTS = 64  # run takes about 0.1 s); sets a block in one process (a step of progress)
+FEWEST = 8  # sets the smallest Dask task takes (its blocks shrink as the work ends)
 
 MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
 
@@ -243,21 +244,22 @@ def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[st
                     workers: int | None = None, scheduler: str | None = None,
                     processes: bool = True) -> dict[str, Any]:
     """A sweep of a scene that has no closed form (the compliant rule, several
-    contacts): every set of `grid` solved with numbers, :data:`POINTS` sets a task, in
-    this process or on Dask workers (`workers`, `scheduler`), into ``folder/KEY.npy``
-    and ``summary.json`` as :func:`run_sweep` writes them. Each set is solved alone, so
-    the numbers do not depend on where."""
+    contacts): every set of `grid` solved with numbers, in this process (:data:`POINTS`
+    sets a step of progress) or on Dask workers (`workers`, `scheduler`; blocks that
+    shrink as the work ends, :func:`rigidimpact.outputs.workers.guided`), into
+    ``folder/KEY.npy`` and ``summary.json`` as :func:`run_sweep` writes them. Each set is
+    solved alone, so the numbers do not depend on where."""
     shape = tuple(len(a) for a in grid.values())
     total = int(np.prod(shape)) if shape else 1
     if total > MAX_POINTS:
         raise InputError("--grid", f"{total} sets, each a solve of its own: past the "
                          f"budget of {MAX_POINTS} for a scene without a closed form")
-    blocks = [(a, min(a + POINTS, total)) for a in range(0, total, POINTS)]
     point_block(path, grid, fixed, 0, 1)  # a bad value is said here, before any worker
     workers, note = local_or_here(total, "solves", workers, scheduler)
     parts: dict[tuple[int, int], dict[str, np.ndarray]] = {}
     start = time.perf_counter()
     if workers is None and scheduler is None:
+        blocks = [(a, min(a + POINTS, total)) for a in range(0, total, POINTS)]
         for a, b in blocks:
             parts[a, b] = point_block(path, grid, fixed, a, b)
             if progress:
@@ -266,6 +268,9 @@ def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[st
         with dask_client(workers, scheduler, processes) as client:
             from dask.distributed import as_completed
 
+            # blocks that shrink as the work ends, the last ones a few solves each
+            count = len(client.scheduler_info().get("workers", {})) or 1
+            blocks = guided(total, count, least=FEWEST)
             futures = {client.submit(point_block, path, dict(grid), dict(fixed), a, b,
                                      pure=False): (a, b) for a, b in blocks}
             done = 0
