@@ -743,3 +743,28 @@ def test_guided_runs_cover_the_work_in_order_and_shrink_to_the_least():
         assert all(s >= least for s in sizes[:-1])
         for (a, b) in runs[:-1]:
             assert b - a == max(least, -(-(count - a) // (2 * workers)))
+
+
+@pytest.mark.parametrize("kind, numbers, weights", [
+    ("uniform", (0.0, 1.5707963267948966), ()),
+    ("normal", (1.0, 0.1), ()),
+    ("lognormal", (0.0, 0.5), ()),
+    ("discrete", (0.2, 0.5, 0.9), ()),
+    ("discrete", (0.2, 0.5, 0.9), (1.0, 2.0, 5.0))])
+def test_a_samplers_draws_made_a_block_at_a_time_are_its_draws_made_at_once(
+        kind, numbers, weights):
+    # what a chunk's sums rely on to draw one input a block at a time (NumPy's
+    # generators draw each value in turn from the stream, keeping nothing between
+    # calls): a NumPy that changed this would change the Monte Carlo's draws
+    import numpy as np
+
+    from rigidimpact.symbolic.drawn import Sampler, stream
+
+    sampler = Sampler("x", kind, numbers, weights)
+    size, block = 100_003, 8192
+    whole = sampler.sample(np.random.default_rng(stream(11, 4)), size)
+    rng = np.random.default_rng(stream(11, 4))
+    blocks = np.concatenate([sampler.sample(rng, min(block, size - a))
+                             for a in range(0, size, block)])
+    assert np.array_equal(whole, blocks)
+    assert len(np.unique(whole)) > 2

@@ -71,6 +71,8 @@ def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
     # sums, in the chunks' order
     count = len(client.scheduler_info().get("workers", {})) or 1
     runs = guided(len(sizes), count)
+    # the plan (the kernel's source, the samplers' numbers) is made here, so a worker
+    # draws with NumPy alone: it imports neither SymPy nor the rest of this package
     plan = draw_plan(g, inputs, values)
     return [client.submit(plan_run, plan, seed, start, sizes[start:stop], pure=False)
             for start, stop in runs]
