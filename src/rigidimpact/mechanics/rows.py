@@ -1,0 +1,96 @@
+"""A mechanics system as the rules see every source: the one problem of rows (its
+independent speeds, its dense M^-1, each contact's normal and tangent rows), and the way
+back from what a rule makes of it to the system's own Solution (through
+:meth:`rigidimpact.mechanics.impact.SystemImpact._map` and ``_in_plane``)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import sympy as sp
+
+from rigidimpact.solve.problem import RowsProblem
+from rigidimpact.solve.solution import Solution
+
+__all__ = ["SystemRows"]
+
+
+@dataclass(frozen=True)
+class SystemRows(RowsProblem):
+    """A mechanics system at numbers as the rules see any source: the one problem of
+    rows (its independent speeds, its dense M^-1, each contact's normal and tangent
+    rows), so each rule runs its one implementation. What the rules make of it goes
+    back through :meth:`SystemImpact._map`: the system's Solution, its equations and its
+    own residuals."""
+
+    system: Any = None
+
+    @classmethod
+    def of(cls, system: Any) -> SystemRows:
+        """The one assembly of a system into the problem of rows: each contact's normal
+        and tangent rows, and in 3-D (a contact sliding across a tangent plane) its
+        second tangent's row too."""
+        plane = system.J_plane
+        rows = {} if plane is None else dict(
+            normal_rows=sp.ImmutableMatrix(plane[::3, :]),
+            tangent_rows=sp.ImmutableMatrix(plane[1::3, :]),
+            second_tangent_rows=sp.ImmutableMatrix(plane[2::3, :]))
+        return cls((), tuple(c.laws for c in system.contacts), system=system,
+                   speeds=tuple(str(u) for u in system.u),
+                   velocities=sp.ImmutableMatrix(system.u_before),
+                   inverse_mass=sp.ImmutableMatrix(sp.Matrix(system.M).inv()),
+                   **(rows or dict(normal_rows=sp.ImmutableMatrix(system.J[::2, :]),
+                                   tangent_rows=sp.ImmutableMatrix(system.J[1::2, :]))))
+
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                 impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                 **more: Any) -> Solution:
+        system = self.system
+        along = more.pop("tangential", None) or {}
+        if self.second_tangent_rows is not None:  # 3-D: each contact's n, t1, t2
+            zero = sp.Integer(0)
+            sideways = more.pop("tangent_impulses", None) or {}
+            P = sp.Matrix([x for c in self.contacts for x in (
+                impulses[c.name], *sideways.get(c.name, (along.get(c.name, zero), zero)))])
+            states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
+            exact = not any(sp.sympify(x).has(sp.Float) for x in (*u, *P))
+            solution = system._in_plane(
+                sp.Matrix(u), P, {c.name: states.get(c.name, "acts" if c.name in acted
+                                                     else "released")
+                                  for c in self.contacts}, rule, exact,
+                tuple(more.pop("notes", ())))
+            return replace(solution, order=tuple(order), passes=passes,
+                           method=more.pop("method", ""))
+        P = sp.Matrix([x for c in self.contacts
+                       for x in (impulses[c.name], along.get(c.name, 0))])
+        states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
+        courses = {c.name: states.get(c.name, "released" if c.name not in acted else
+                                      ("acts" if rule == "simultaneous" else "in turn"))
+                   for c in self.contacts}
+        M, u0 = system.M, sp.Matrix(system.u_before)
+        energy = ((u0.T * M * u0)[0] - (u.T * M * u)[0]) / 2
+        # the contact's own printed laws hold where the rule imposed them as they are
+        # (Newton's law at each acting contact, smooth or sticking); otherwise the
+        # rule's impulses are what is printed
+        # (one contact: its own impact under every rule, its own laws printed)
+        own = len(self.contacts) == 1 or rule == "simultaneous" and all(
+            c.laws[0].together == "velocity" and courses[c.name] in ("acts", "released",
+                                                                     "sticks")
+            for c in self.contacts)
+        for c in self.contacts:  # a contact that stuck prints its no-slip law
+            if courses[c.name] == "sticks" or (courses[c.name] == "acts" and
+                                               c.laws[1].unknown_tangential):
+                courses[c.name] = "stick"
+        conditions = tuple(c for c in more.pop("conditions", ()) if c is not sp.true)
+        solution = system._map(sp.Matrix(u), P, courses, energy, summed=not own,
+                               how=None if own else f"{rule} rule", rule=rule,
+                               conditions=conditions)
+        limits, _ = replace(solution, rule=rule).assessed()
+        return replace(solution, rule=rule, order=tuple(order), passes=passes,
+                       acted=tuple(acted), notes=solution.notes + more.pop("notes", ()),
+                       conditions=conditions,
+                       method=more.pop("method", ""),
+                       warnings=solution.warnings + tuple(
+                           w for w in limits if "still approaches" in w))
