@@ -156,3 +156,87 @@ def test_a_polynomial_multiplied_out_in_flint_is_sympys_expand(count):
     x = sp.Symbol("x")
     for expr in (x / (x + 1), sp.sqrt(x) * (x + 1), 0.5 * (x + 1) ** 2, sp.Integer(3)):
         assert expand_polynomial(expr) == sp.expand(expr)
+
+
+class _Failing:
+    """Stands in for FLINT's polynomial contexts: every step raises, as fmpz_mpoly's
+    factor did with OverflowError in its sort key on large coefficients."""
+
+    @staticmethod
+    def get(*_args, **_kwargs):
+        raise OverflowError("value too large to convert to int")
+
+
+def test_every_flint_step_falls_back_to_sympys_own(monkeypatch):
+    from rigidimpact.symbolic import flint_poly
+
+    monkeypatch.setattr(flint_poly, "fmpz_mpoly_ctx", _Failing)
+    monkeypatch.setattr(flint_poly, "fmpq_mpoly_ctx", _Failing)
+    x, y = sp.symbols("x y")
+    t = sp.Symbol("t", real=True)
+    expr = (x**2 - y**2) / (2 * y - 2 * x) + sp.sin(t) ** 2 / (x + y)
+    assert flint_poly.factor(expr) == sp.factor(expr)
+    poly = (x + sp.cos(t)) ** 2 * (2 * x - 3)
+    assert flint_poly.expand_polynomial(poly) == sp.expand(poly)
+    assert flint_poly.rational_zero(1 / (x - y) + 1 / (y - x)) is None  # undecided here
+    f = dmp_from_dict({(2, 0): ZZ(1), (0, 2): ZZ(-1)}, 1, ZZ)  # x^2 - y^2
+    g = dmp_from_dict({(1, 0): ZZ(1), (0, 1): ZZ(1)}, 1, ZZ)  # x + y
+    assert zz_factor(f, 1, ZZ) == dmp_zz_factor(f, 1, ZZ)
+    assert zz_gcd(f, g, 1, ZZ) == dmp_zz_heu_gcd(f, g, 1, ZZ)
+    with flint_polynomials():
+        assert sp.factor(x**2 - y**2) == (x - y) * (x + y)
+
+
+_OVERFLOWING = """
+[[bodies]]
+name = "b"
+shape = "rigid"
+mass = "0.1537*sqrt(3)"
+inertia = "1.683"
+position = ["-0.7618", "1.2811"]
+velocity = ["-2.662", "-2.463"]
+spin = "5"
+[[bodies]]
+name = "s"
+shape = "sphere"
+mass = "2.3108*sqrt(3)"
+radius = "1"
+velocity = ["-1", "-15/7"]
+spin = "70/12"
+[contact]
+bodies = ["b", "s"]
+restitution = "1/2"
+tangential = "stick"
+"""
+
+
+def test_a_closed_form_flint_cannot_factor_is_answered(tmp_path, capsys):
+    """FLINT's factor raised OverflowError on this scene's closed form (its sort key);
+    the answer, SymPy's, is held against the laws solved apart in NumPy: the normal
+    x through O, where the sphere touches b's contact point; Newton's law with e = 1/2
+    and no slip after."""
+    import numpy as np
+
+    from helpers import evaluated, scene_file
+
+    got = evaluated(capsys, ["evaluate", scene_file(tmp_path, _OVERFLOWING)])
+    m_b, i_b, m_s = 0.1537 * 3**0.5, 1.683, 2.3108 * 3**0.5
+    i_s = 0.4 * m_s
+    rho_b, rho_s = np.array([0.7618, -1.2811]), np.array([-1.0, 0.0])  # centre to point
+    u = np.array([-2.662, -2.463, 5, -1, -15 / 7, 70 / 12])
+    minv = np.diag([1 / m_b, 1 / m_b, 1 / i_b, 1 / m_s, 1 / m_s, 1 / i_s])
+
+    def cross(r, d):
+        return r[0] * d[1] - r[1] * d[0]
+
+    def row(d):  # the relative velocity of the points (s's less b's) along d
+        return np.array([-d[0], -d[1], -cross(rho_b, d), d[0], d[1], cross(rho_s, d)])
+
+    jn, jt = row(np.array([1.0, 0])), row(np.array([0, 1.0]))
+    big_j = np.array([jn, jt])
+    w = big_j @ minv @ big_j.T
+    impulse = np.linalg.solve(w, np.array([-(1 + 0.5) * jn @ u, -jt @ u]))
+    after = u + minv @ big_j.T @ impulse
+    keys = ["b.vx", "b.vy", "b.omega", "s.vx", "s.vy", "s.omega"]
+    assert np.allclose([got[k] for k in keys], after, rtol=1e-12, atol=1e-12)
+    assert np.isclose(got["impulse"], impulse[0], rtol=1e-12)

@@ -9,7 +9,9 @@ factorisation as the content with its sign and the irreducible primitive factors
 with a positive leading coefficient in lexicographic order of the variables (the first
 the main one); a gcd with a positive leading coefficient and the two exact cofactors. So
 the answer is SymPy's to the last term (the tests hold the two side by side on seeded
-random polynomials), and SymPy's own code sorts and assembles it.
+random polynomials), and SymPy's own code sorts and assembles it. FLINT is a fast path,
+never the only one: wherever one of its steps fails (it has raised OverflowError while
+sorting the factors of a polynomial with large coefficients), the answer is SymPy's own.
 :func:`flint_polynomials` puts the two in for the duration of a block and puts SymPy's
 back after. :func:`factor` goes further where an expression is a rational function of
 symbols, pi and sines and cosines of symbols: the one fraction is made in FLINT too, not
@@ -45,6 +47,11 @@ from sympy.polys.polyutils import _sort_gens, basic_from_dict
 __all__ = ["flint_polynomials", "zz_factor", "zz_gcd", "factor", "rational_zero",
            "expand_polynomial"]
 
+# what a step in FLINT may raise (an overflow in its sort key, a value it cannot take):
+# SymPy's own routine answers instead; ZeroDivisionError is the fractions' own signal
+_FLINT_FAILURES = (OverflowError, ValueError, TypeError, NotImplementedError,
+                   RuntimeError, MemoryError, AssertionError)
+
 _SYMPY = {"factor": factortools.dmp_zz_factor, "gcd": euclidtools.dmp_zz_heu_gcd}
 
 
@@ -68,13 +75,16 @@ def zz_factor(f: Any, u: int, K: Any) -> tuple[Any, list[tuple[Any, int]]]:
     caller sorts them)."""
     if not u:  # one variable: SymPy's own
         return _SYMPY["factor"](f, u, K)
-    ctx = _context(u)
-    poly = _to_flint(f, u, K, ctx)
-    if poly == 0:
-        return K.zero, []
-    content, found = poly.factor()
-    return K(int(content)), _sort_factors([(_from_flint(g, u, K), int(k))
-                                           for g, k in found])
+    try:
+        ctx = _context(u)
+        poly = _to_flint(f, u, K, ctx)
+        if poly == 0:
+            return K.zero, []
+        content, found = poly.factor()
+        return K(int(content)), _sort_factors([(_from_flint(g, u, K), int(k))
+                                               for g, k in found])
+    except _FLINT_FAILURES:
+        return _SYMPY["factor"](f, u, K)
 
 
 def zz_gcd(f: Any, g: Any, u: int, K: Any) -> tuple[Any, Any, Any]:
@@ -83,12 +93,15 @@ def zz_gcd(f: Any, g: Any, u: int, K: Any) -> tuple[Any, Any, Any]:
     ``g / h``."""
     if not u:
         return _SYMPY["gcd"](f, g, u, K)
-    ctx = _context(u)
-    a, b = _to_flint(f, u, K, ctx), _to_flint(g, u, K, ctx)
-    h = a.gcd(b)
-    if h == 0:
-        return _from_flint(h, u, K), f, g
-    return _from_flint(h, u, K), _from_flint(a / h, u, K), _from_flint(b / h, u, K)
+    try:
+        ctx = _context(u)
+        a, b = _to_flint(f, u, K, ctx), _to_flint(g, u, K, ctx)
+        h = a.gcd(b)
+        if h == 0:
+            return _from_flint(h, u, K), f, g
+        return _from_flint(h, u, K), _from_flint(a / h, u, K), _from_flint(b / h, u, K)
+    except _FLINT_FAILURES:
+        return _SYMPY["gcd"](f, g, u, K)
 
 
 @contextlib.contextmanager
@@ -131,7 +144,10 @@ def factor(expr: Any) -> Any:
     >>> factor(expr) == sp.factor(expr)
     True
     """
-    fast = _rational_factor(sp.sympify(expr))
+    try:
+        fast = _rational_factor(sp.sympify(expr))
+    except _FLINT_FAILURES:
+        fast = None
     return sp.factor(expr) if fast is None else fast
 
 
@@ -186,7 +202,10 @@ def rational_zero(expr: Any, half_angle: bool = False) -> bool | None:
     >>> rational_zero(sp.tan(t) * sp.cos(t) - sp.sin(t), half_angle=True)
     True
     """
-    found = _fraction(sp.sympify(expr), half_angle)
+    try:
+        found = _fraction(sp.sympify(expr), half_angle)
+    except _FLINT_FAILURES:
+        return None  # undecided here: the callers' other tests decide
     return None if found is None else found[1] == 0
 
 
@@ -317,11 +336,14 @@ def expand_polynomial(expr: Any) -> Any:
     >>> expand_polynomial(poly) == sp.expand(poly)
     True
     """
-    found = _fraction(expr)
-    if found is None or found[2] != 1:
+    try:
+        found = _fraction(expr)
+        if found is None or found[2] != 1:
+            return sp.expand(expr)
+        order, num, _ = found
+        rep = {m: sp.Rational(int(c.p), int(c.q)) for m, c in num.to_dict().items()}
+    except _FLINT_FAILURES:
         return sp.expand(expr)
-    order, num, _ = found
-    rep = {m: sp.Rational(int(c.p), int(c.q)) for m, c in num.to_dict().items()}
     return basic_from_dict(rep, *order) if rep else sp.Integer(0)
 
 
