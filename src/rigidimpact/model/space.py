@@ -112,6 +112,7 @@ class Body3:
     support: str = "free"  # or "fixed"
     radius: sp.Expr | None = None  # a sphere's
     inertia_inverse: sp.ImmutableMatrix | None = field(default=None, repr=False)
+    turned: bool = field(default=False, repr=False)  # built with an orientation
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():
@@ -142,6 +143,11 @@ class Body3:
         elif any(sp.simplify(g) != 0 for g in gaps):
             raise InputError(f"{self.name}.inertia", "must be a symmetric 3 x 3 tensor")
         if all(x.is_number for x in inertia):
+            if any(x.has(sp.nan, sp.zoo, sp.oo, -sp.oo) for x in inertia):
+                where = (f"{self.name}.orientation.axis", "is the zero vector at these "
+                         "values: a turn needs an axis") if self.turned else \
+                    (f"{self.name}.inertia", "is undefined at these values")
+                raise InputError(*where)
             values = sorted(float(x) for x in np.linalg.eigvalsh(
                 np.array(sp.Matrix(inertia).evalf(30), dtype=float)))
             if values[0] <= 0:
@@ -203,7 +209,7 @@ class Body3:
             body = cls(name, _expr(mass, f"{name}.mass"), sp.ImmutableMatrix(tensor),
                        as_vector3(position, f"{name}.position"),
                        as_vector3(velocity, f"{name}.velocity"),
-                       as_vector3(spin, f"{name}.spin"))
+                       as_vector3(spin, f"{name}.spin"), turned=True)
             if inverse is not None:
                 object.__setattr__(body, "inertia_inverse",
                                    sp.ImmutableMatrix(inverse.applyfunc(tidy)))
