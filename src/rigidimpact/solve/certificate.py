@@ -734,10 +734,12 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
     (one tangent in the plane, two in space).
 
     On the cone's edge (``|P_t| = mu P_n``: exactly, or to 1e-9 of it in floating point)
-    the contact slid throughout in one direction, so friction must not act along what it
-    aimed at: Coulomb's friction aims at no slip after (``CONTACT.against_slip``: ``P_t``
-    has no part along the slip after); Walton's rough law at ``-beta`` times the slip
-    before (``P_t`` does not point past it). Inside the cone, Walton's contact leaves at
+    the contact slid throughout in one direction, and each law promises its own: Coulomb's
+    friction aims at no slip after (``CONTACT.against_slip``: ``P_t`` has no part along
+    the slip after); Walton's rough law puts the whole friction against the slip before
+    (``CONTACT.against_slip_before``: ``P_t`` points straight back along it; where the
+    normal couples to the slip, the slip after may pass its target ``-beta`` times the
+    slip before, which the law allows). Inside the cone, Walton's contact leaves at
     its target (``CONTACT.tangential_restitution``) and, in the plane, Coulomb's contact
     ends sticking or with its slip reversed (``CONTACT.slides``: no slip after in the
     direction of the slip before; in space the slip may turn). In floating point
@@ -750,6 +752,15 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
     beta = getattr(law, "beta", None)
     aim = list(slip_after) if beta is None else [
         a + num(beta) * b for a, b in zip(slip_after, slip_before, strict=True)]
+    if edge and beta is not None:  # |P_t| |s| + P_t . s is zero only when P_t opposes s
+        before = list(slip_before)
+        reach = abs(before[0]) if len(before) == 1 else _root(
+            sum((b * b for b in before), zero), exact)
+        if not reach > 0:
+            return {}  # no slip before: the law slides along W's coupling, unchecked here
+        gap = size * reach + sum((x * b for x, b in zip(p_t, before, strict=True)), zero)
+        return {f"{name}.against_slip_before": max(zero, gap) / (
+            reach if speed is None else max(speed, reach))}
     if edge:
         along = sum((x * a for x, a in zip(p_t, aim, strict=True)), zero)
         reach = abs(aim[0]) if len(aim) == 1 else _root(sum((a * a for a in aim), zero),
