@@ -128,3 +128,76 @@ def test_a_seeded_family_of_rough_rods_is_answered_by_walton(tmp_path, capsys):
         got = evaluated(capsys, ["evaluate", path, "--set", f"e={e}", "--set",
                                  f"mu={mu!r}", "--set", f"beta={beta!r}"])
         assert _walton_broken(angle, u, e, mu, beta, got) < 1e-9, (angle, u, e, mu, beta)
+
+
+def _bar_on_floor(xs, spin, tangential='"stick"', vx="0"):
+    text = ('[[bodies]]\nname = "bar"\nshape = "rod"\nmass = "1"\nlength = "2"\n'
+            f'angle = "0 deg"\nposition = ["0", "0"]\nvelocity = ["{vx}", "-1"]\n'
+            f'spin = "{spin}"\n[[bodies]]\nname = "floor"\nshape = "fixed"\n')
+    for i, x in enumerate(xs):
+        text += (f'[[contacts]]\nname = "c{i}"\nbodies = ["bar", "floor"]\n'
+                 f'point = ["{x}", "0"]\nnormal = ["0", "-1"]\nrestitution = "1/2"\n'
+                 f'tangential = {tangential}\n')
+    return text
+
+
+def test_eight_sticking_contacts_are_one_linear_solve(tmp_path, capsys):
+    """Every combination of eight contacts' states passes the enumeration's budget; all
+    of them sticking is one linear solve, and it fits: Newton's law at every point of
+    the bar (e = 1/2) with no slip is the bar's speeds reversed and halved."""
+    import json
+
+    from rigidimpact.cli import main
+
+    xs = ["-1", "-5/7", "-3/7", "-1/7", "1/7", "3/7", "5/7", "1"]
+    path = scene_file(tmp_path, _bar_on_floor(xs, "1/2"))
+    assert main(["evaluate", path, "--json"]) == 0
+    out, err = capsys.readouterr()
+    got = json.loads(out)
+    assert got["bar.vx"] == 0 and got["bar.vy"] == 0.5 and got["bar.omega"] == -0.25
+    assert all(got[f"c{i}.normal_impulse"] >= 0 for i in range(8))
+    assert abs(sum(got[f"c{i}.normal_impulse"] for i in range(8)) - 1.5) < 1e-12
+    assert main_warns(err, "impulses are not") and main_warns(err, "were not tried")
+
+
+def main_warns(err: str, words: str) -> bool:
+    return any(line.startswith("rigidimpact: warning:") and words in line
+               for line in err.splitlines())
+
+
+def test_a_seeded_family_of_bars_past_the_enumeration_is_answered(tmp_path, capsys):
+    """Bars on a floor at 7 to 9 contacts, sticking or with Coulomb's mu = 1/5 and a
+    slide along the floor: each answer obeys the rule at every contact (Newton's law
+    where it pushes, no pulling, no approach, the cone, friction against the slip)."""
+    import random
+    from fractions import Fraction
+
+    from helpers import evaluated
+
+    rng = random.Random(7070)
+    for k in range(6):
+        count = rng.randint(7, 9)
+        xs = sorted({Fraction(rng.randint(-20, 20), 20) for _ in range(count)})
+        spin = Fraction(rng.randint(-9, 9), 10)
+        coulomb = k % 2 == 1
+        text = _bar_on_floor([str(x) for x in xs], str(spin),
+                             '"coulomb"\nfriction = "1/5"' if coulomb else '"stick"',
+                             vx="1/2" if coulomb else "0")
+        got = evaluated(capsys, ["evaluate", scene_file(tmp_path, text, f"b{k}.toml")])
+        vx0 = 0.5 if coulomb else 0.0
+        vx, vy, w = got["bar.vx"], got["bar.vy"], got["bar.omega"]
+        p_n = [got[f"c{i}.normal_impulse"] for i in range(len(xs))]
+        # the floor receives P_t along n turned by +90 degrees, (1, 0): the bar -P_t
+        p_t = [-got[f"c{i}.tangential_impulse"] for i in range(len(xs))]
+        assert abs(vy + 1 - sum(p_n)) < 1e-9 and abs(vx - vx0 - sum(p_t)) < 1e-9
+        assert abs(w - float(spin) - 3 * sum(float(x) * p for x, p in zip(xs, p_n))) < 1e-9
+        for x, pn, pt in zip(xs, p_n, p_t):
+            before, after = -1 + float(spin * x), vy + w * float(x)
+            assert pn >= -1e-12 and after >= -0.5 * before - 1e-9
+            if pn > 1e-12:
+                assert abs(after + 0.5 * before) < 1e-9
+                if coulomb:
+                    assert abs(pt) <= 0.2 * pn + 1e-9
+                    assert abs(pt) < 0.2 * pn - 1e-9 and abs(vx) < 1e-9 or pt * vx <= 1e-12
+                else:
+                    assert abs(vx) < 1e-9

@@ -220,15 +220,15 @@ def _states_seconds(make: Callable[[], Collision]) -> float:
     """The rough simultaneous rule by trying every combination of contact states (its
     method for a few contacts), timed; InputError past its budget of tried
     combinations (MAX_STATES_WORK)."""
-    saved = simultaneous_rule.MAX_FRICTION_STATES
-    simultaneous_rule.MAX_FRICTION_STATES = 10**300
+    saved = simultaneous_rule.MAX_FRICTION_STATES, simultaneous_rule.STATES_DIRECT
+    simultaneous_rule.MAX_FRICTION_STATES, simultaneous_rule.STATES_DIRECT = 10**300, False
     try:
         problem = make()
         begin = time.perf_counter()
         problem.simultaneous()
         return time.perf_counter() - begin
     finally:
-        simultaneous_rule.MAX_FRICTION_STATES = saved
+        simultaneous_rule.MAX_FRICTION_STATES, simultaneous_rule.STATES_DIRECT = saved
 
 
 def _rules(case: str, size: int, make: Callable[[], Collision],

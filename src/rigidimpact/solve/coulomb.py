@@ -234,7 +234,7 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
     while fractions:
         fraction = fractions[0]
         last = fraction == 1.0
-        cone = np.where(finite, mu * fraction, np.inf)
+        cone = np.where(finite, np.where(finite, mu, 0.0) * fraction, np.inf)  # inf * 0: nan
         enough = (tolerance if last else passing) * scale
         tried, merit, steps = descend(cone, lam, enough,
                                       max_steps if last else max_steps // 4)

@@ -107,6 +107,10 @@ MAX_FRICTION_STATES = 729
 # combination of up to four contacts fits (256 x 512) and the bench's lifted count ends
 # alike on every machine
 MAX_STATES_WORK = 200_000
+# where every combination would pass that budget, the one linear solve of every closing
+# contact sticking is tried, then one complementarity problem (the bench turns this off
+# to time the enumeration until its budget refuses)
+STATES_DIRECT = True
 # the frictional problem (four unknowns a contact): Lemke's method in floating point with
 # an exact confirmation up to MAX_FRICTION_LEMKE contacts (a dense tableau), and where
 # the confirmation fails, Lemke's exact tableau up to MAX_FRICTION_EXACT_LEMKE
@@ -234,9 +238,19 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
             v_n, v_t, mu, target, tangential)
     states = [("off",) + law.velocity_states for law in tangential]
     count = math.prod(len(s) for s in states)
+    rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
     if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
         return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
-    rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
+    if STATES_DIRECT and (count - 1) * (2 * n) ** 3 > MAX_STATES_WORK:
+        # more combinations than the enumeration may try: first the one linear solve of
+        # every closing contact sticking, then one complementarity problem
+        W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+        gripping = tuple(s[1] if v_n[i] <= 0 else "off" for i, s in enumerate(states))
+        fits = _friction_pattern(problem, gripping, W, v_n, v_t, target, mu)
+        if fits is None:
+            return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
+        return _friction_outcome(problem, rows, [(fits[0], gripping)], not fits[1],
+                                 tried_all=False)
     W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
     not_unique = False
@@ -266,6 +280,16 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         (k,), = acting
         if tangential[k].solved_by_regimes:  # one contact acts: its own exact answer
             return one_acting(problem, k, target)
+    return _friction_outcome(problem, rows, found, not_unique)
+
+
+def _friction_outcome(problem: ImpactProblem, rows: sp.Matrix,
+                      found: Sequence[tuple[sp.Matrix, tuple[str, ...]]],
+                      not_unique: bool, tried_all: bool = True) -> Solution:
+    """The outcome of the combinations of states that fit the rule (`found`, each with
+    its impulses, normal then tangential), saying where the impulses or the motion are
+    not unique, and where the combinations were not all tried."""
+    n = len(problem.contacts)
     impulses, pattern = found[0]
     motions = [(problem.u_before + problem.M_inverse * rows.T * f).applyfunc(tidy)
                for f, _ in found]
@@ -289,6 +313,10 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
                  "with different motions after; shown: " + ", ".join(
                      STATE[s] for s in pattern) + "; others: " + "; ".join(
                      ", ".join(STATE[s] for s in p) for _, p in found[1:]),)
+    if not tried_all:
+        notes += ("every closing contact sticking fits the rule; the other combinations "
+                  "of states (released, sticking, sliding) were not tried, being more "
+                  "than the budget of work allows: the rule may have other solutions",)
     normal = impulses[:n, 0]
     return problem.outcome("simultaneous", (), u,
                    problem.named(normal), tuple(t.name for t, p in
