@@ -96,7 +96,6 @@ def test_walton_on_the_cones_edge_is_checked_by_its_own_promise(tmp_path, capsys
     couples to the slip, the slip after may pass -beta times the slip before, which the
     certificate once took for a broken law and refused every such derivation."""
     from helpers import evaluated
-
     from rigidimpact.cli import main
 
     path = scene_file(tmp_path, _rough_rod(45, "0.6", "-1"))
@@ -114,7 +113,6 @@ def test_a_seeded_family_of_rough_rods_is_answered_by_walton(tmp_path, capsys):
     import random
 
     from helpers import evaluated
-
     from rigidimpact.cli import main
 
     rng = random.Random(70)
