@@ -188,8 +188,9 @@ def test_a_seeded_family_of_bars_past_the_enumeration_is_answered(tmp_path, caps
         # the floor receives P_t along n turned by +90 degrees, (1, 0): the bar -P_t
         p_t = [-got[f"c{i}.tangential_impulse"] for i in range(len(xs))]
         assert abs(vy + 1 - sum(p_n)) < 1e-9 and abs(vx - vx0 - sum(p_t)) < 1e-9
-        assert abs(w - float(spin) - 3 * sum(float(x) * p for x, p in zip(xs, p_n))) < 1e-9
-        for x, pn, pt in zip(xs, p_n, p_t):
+        moment = sum(float(x) * p for x, p in zip(xs, p_n, strict=True))
+        assert abs(w - float(spin) - 3 * moment) < 1e-9
+        for x, pn, pt in zip(xs, p_n, p_t, strict=True):
             before, after = -1 + float(spin * x), vy + w * float(x)
             assert pn >= -1e-12 and after >= -0.5 * before - 1e-9
             if pn > 1e-12:
