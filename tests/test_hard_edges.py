@@ -200,3 +200,48 @@ def test_a_seeded_family_of_bars_past_the_enumeration_is_answered(tmp_path, caps
                     assert abs(pt) < 0.2 * pn - 1e-9 and abs(vx) < 1e-9 or pt * vx <= 1e-12
                 else:
                     assert abs(vx) < 1e-9
+
+
+def test_a_double_pendulums_tip_stopped_in_a_corner_by_two_sticking_contacts():
+    """The tip of a double pendulum (two uniform rods of mass 1 and length 1) meets a
+    floor and a wall at once, e = 0, both sticking: the tip stops, so the system stops
+    (its tip Jacobian is invertible), and the impulse on the tip is fixed while its
+    sharing between the contacts is not. It was refused as a Painleve-type
+    inconsistency: the least-norm sharing pulls at the floor, and rounded comparisons
+    took a touch of 1e-50 for an approach. Held, at float and at exact data, against
+    the impulse found by hand, F = Jt^-T M (0 - u), and the laws."""
+    import sys
+    from pathlib import Path
+
+    import numpy as np
+    import sympy as sp
+
+    import rigidimpact as ri
+
+    sys.path.insert(0, str(Path(__file__).parents[1] / "derivations"))
+    from double_pendulum_floor import VALUES, pendulum
+
+    kane, N, tip = pendulum()
+    (q1, q2), (u1, u2) = kane.q, kane.u
+    q, u = np.array([0.6, 0.8]), np.array([-1.0, -2.5])
+    M = np.array([[4 / 3, np.cos(q[0] - q[1]) / 2], [np.cos(q[0] - q[1]) / 2, 1 / 3]])
+    jt = np.array([[np.cos(q[0]), np.cos(q[1])], [np.sin(q[0]), np.sin(q[1])]])
+    force = np.linalg.solve(jt.T, M @ -u)
+    assert force[0] > 0 > force[1]  # the wall pushes; the floor alone would pull
+    for state, speeds in (({q1: 0.6, q2: 0.8}, {u1: -1.0, u2: -2.5}),
+                          ({q1: sp.Rational(3, 5), q2: sp.Rational(4, 5)},
+                           {u1: -1, u2: sp.Rational(-5, 2)})):
+        hit = ri.mechanics.impact(kane, [
+            ri.mechanics.contact(tip, N.y, restitution=0, tangential="stick", name="floor"),
+            ri.mechanics.contact(tip, N.x, restitution=0, tangential="stick", name="wall")],
+            frame=N)
+        solution = hit.at({**state, **VALUES}).at(speeds).solve()
+        assert max(abs(float(x)) for x in solution.speeds_after) < 1e-40
+        normal, along = solution.impulses, solution.tangential
+        assert float(normal["floor"]) >= 0 and float(normal["wall"]) >= 0
+        # the floor's tangent is -x, the wall's +y: the impulse on the tip
+        on_tip = (float(normal["wall"]) - float(along["floor"]),
+                  float(normal["floor"]) + float(along["wall"]))
+        assert np.allclose(on_tip, force, rtol=1e-12)
+        assert any("impulses are not" in note for note in solution.notes)
+        assert not solution.warnings

@@ -739,10 +739,12 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
     the slip after); Walton's rough law puts the whole friction against the slip before
     (``CONTACT.against_slip_before``: ``P_t`` points straight back along it; where the
     normal couples to the slip, the slip after may pass its target ``-beta`` times the
-    slip before, which the law allows). Inside the cone, Walton's contact leaves at
-    its target (``CONTACT.tangential_restitution``) and, in the plane, Coulomb's contact
-    ends sticking or with its slip reversed (``CONTACT.slides``: no slip after in the
-    direction of the slip before; in space the slip may turn). In floating point
+    slip before, which the law allows); with no slip before, against the slip after,
+    which keeps the way the normal impulse drove the points. Inside the cone, Walton's
+    contact leaves at its target (``CONTACT.tangential_restitution``) and, in the plane,
+    Coulomb's contact ends sticking or with its slip reversed (``CONTACT.slides``: no
+    slip after in the direction of the slip before; in space the slip may turn). In
+    floating point
     (`speed`, the answer's largest speed or impulse) friction's part along the slip
     after is measured against that speed, so a slip of rounding's size aims nowhere."""
     zero = num(0)
@@ -752,12 +754,13 @@ def friction_residuals(name: str, law: Any, num: Any, p_n: Any, p_t: Sequence[An
     beta = getattr(law, "beta", None)
     aim = list(slip_after) if beta is None else [
         a + num(beta) * b for a, b in zip(slip_after, slip_before, strict=True)]
-    if edge and beta is not None:  # |P_t| |s| + P_t . s is zero only when P_t opposes s
-        before = list(slip_before)
-        reach = abs(before[0]) if len(before) == 1 else _root(
-            sum((b * b for b in before), zero), exact)
-        if not reach > 0:
-            return {}  # no slip before: the law slides along W's coupling, unchecked here
+    before = list(slip_before)
+    reach = abs(before[0]) if len(before) == 1 else _root(sum((b * b for b in before),
+                                                              zero), exact)
+    if edge and beta is not None and reach > 0:
+        # |P_t| |s| + P_t . s is zero only when P_t opposes the slip before s (with no
+        # slip before, the law slides against the way the normal impulse drives the
+        # points, which the slip after then keeps: checked as Coulomb's, below)
         gap = size * reach + sum((x * b for x, b in zip(p_t, before, strict=True)), zero)
         return {f"{name}.against_slip_before": max(zero, gap) / (
             reach if speed is None else max(speed, reach))}

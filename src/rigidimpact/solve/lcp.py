@@ -522,10 +522,26 @@ def least_norm(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
 
 
 def _least_norm_rounded(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
-    """:func:`least_norm` of rounded numbers: the pseudo-inverse from the singular
-    values at the numbers' own precision and ten digits more, a singular value below
-    1e-35 of the largest taken as zero; None when the system is inconsistent beyond
-    that rounding."""
+    """:func:`least_norm` of rounded numbers (:func:`rounded_solve`)."""
+    return rounded_solve(matrix, rhs)[0]
+
+
+def rounded_solve(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple[sp.Matrix | None, bool]:
+    """A square or singular system of rounded numbers solved by the pseudo-inverse from
+    the singular values at the numbers' own precision and ten digits more, a singular
+    value below 1e-35 of the largest taken as zero (an elimination in rounded numbers
+    finds a pivot in a rounding error and a huge wrong answer); None when the system is
+    inconsistent beyond that rounding; and whether the solution is the only one (no
+    singular value taken as zero).
+
+    Examples
+    --------
+    >>> third = sp.Float(1, 50) / 3
+    >>> found, unique = rounded_solve(sp.Matrix([[third, third], [1, 1]]),
+    ...                               sp.Matrix([third, 1]))
+    >>> [float(x) for x in found], unique
+    ([0.5, 0.5], False)
+    """
     digits = max([getattr(x, "_prec", 53) for x in (*matrix, *rhs) if x.is_Float]
                  + [53]) * 3 // 10
     with mpmath.workdps(digits + 10):
@@ -536,6 +552,7 @@ def _least_norm_rounded(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
         U, S, V = mpmath.svd_r(A)
         cut = max(S) * mpmath.mpf(10) ** -min(35, digits * 7 // 10) if len(S) else 0
         x = mpmath.matrix(A.cols, 1)
+        unique = len(S) == A.cols and all(S[k] > cut for k in range(len(S)))
         for k in range(len(S)):
             if S[k] > cut:
                 along = sum(U[i, k] * b[i] for i in range(A.rows)) / S[k]
@@ -544,5 +561,5 @@ def _least_norm_rounded(matrix: sp.Matrix, rhs: sp.Matrix) -> sp.Matrix | None:
         scale = max([abs(v) for v in b] + [max(S) * max([abs(v) for v in x] + [0])]
                     + [mpmath.mpf(10) ** -300])
         if max(abs(v) for v in A * x - b) > cut / max(S) * scale * 10 if len(S) else False:
-            return None
-        return sp.Matrix([sp.Float(v, digits) for v in x])
+            return None, unique
+        return sp.Matrix([sp.Float(v, digits) for v in x]), unique

@@ -40,6 +40,7 @@ from rigidimpact.solve.lcp import (
     pivoting,
     proximal,
     residual,
+    rounded_solve,
 )
 from rigidimpact.solve.problem import MAX_ENUMERATED, ImpactProblem
 from rigidimpact.solve.rules.base import Rule
@@ -268,9 +269,9 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
         if fits is None:
             continue
         solved, unique = fits
+        not_unique = not_unique or not unique
         if all(solved != f for f, _ in found):
             found.append((solved, pattern))
-            not_unique = not_unique or not unique
     if not found:
         raise InputError("impact.rule", "no impulses satisfy the simultaneous rule with "
                          "friction here (a Painleve-type inconsistency); try the "
@@ -297,7 +298,8 @@ def _friction_outcome(problem: ImpactProblem, rows: sp.Matrix,
     notes: tuple[str, ...] = ()
     if not_unique:
         notes = ("more contact conditions than freedoms: the motion after is unique but "
-                 "the impulses are not; shown: the least-norm impulses of each state",)
+                 "the impulses are not; shown: the least-norm impulses of each state, or "
+                 "where those would pull, a sharing that pushes",)
     if len(found) > 1 and all(m == u for m in motions):
         # with the velocities after fixed, the conditions on the impulses are convex:
         # every mixture of the solutions found is one too; the mean is shown
@@ -529,25 +531,114 @@ def _friction_pattern(problem: ImpactProblem, pattern, W, v_n, v_t, target,
         else:
             equations.append(P[n + i] + (1 if state == "slide+" else -1) * mu[i] * P[i])
     matrix, rhs = sp.linear_eq_to_matrix(equations, P)
-    impulses, unique = exact_solve(matrix, rhs), True
+    rounded = matrix.has(sp.Float) or rhs.has(sp.Float)
+    if rounded:  # rounded numbers: the rank from their digits
+        impulses, unique = rounded_solve(matrix, rhs)
+        if impulses is None:
+            return None
+    else:
+        impulses, unique = exact_solve(matrix, rhs), True
     if impulses is None:  # the states do not fix the impulses: if they are consistent
         impulses, unique = least_norm(matrix, rhs), False  # the motion is fixed (W's
         if impulses is None:  # null vectors are J^T's); the least-norm ones are shown
             return None
+    # rounded numbers are compared within their own rounding (a contact left exactly
+    # touching comes out 1e-50 one way or the other)
+    slack = _rounding(matrix, rhs, impulses) if rounded else 0
+    if not _pattern_holds(pattern, impulses, W, v_n, v_t, target, mu, slack):
+        if unique:
+            return None
+        # the impulses are not fixed: the least-norm ones break a sign, but another
+        # sharing of the same motion may keep them all (a tip in a corner stopped by a
+        # wall alone)
+        impulses = _fitting_share(matrix, rhs, pattern, mu, rounded)
+        if impulses is None or not _pattern_holds(pattern, impulses, W, v_n, v_t, target,
+                                                  mu, slack):
+            return None
+    if rounded:  # an impulse of rounding's size is none
+        impulses = impulses.applyfunc(lambda x: 0 if abs(x) <= slack else x)
+    return impulses, unique
+
+
+def _rounding(matrix: sp.Matrix, rhs: sp.Matrix, impulses: sp.Matrix) -> Any:
+    """What rounded numbers' comparisons allow: 1e-(0.6 digits) of the largest entry."""
+    digits = max([getattr(x, "_prec", 53) for x in (*matrix, *rhs) if x.is_Float]
+                 + [53]) * 3 // 10
+    scale = max([abs(x) for x in (*matrix, *rhs, *impulses)] + [sp.Integer(1)])
+    return scale * sp.Float(10, digits) ** -(digits * 6 // 10)
+
+
+def _pattern_holds(pattern: Sequence[str], impulses: sp.Matrix, W: sp.Matrix,
+                   v_n: Sequence[Any], v_t: Sequence[Any], target: Sequence[Any],
+                   mu: Sequence[Any], slack: Any) -> bool:
+    """Whether `impulses` keep the signs of their states: no pulling, a released
+    contact not approaching, a sticking one inside its cone, a sliding one slipping
+    its way (within `slack`, for rounded numbers)."""
+    n = len(pattern)
     after = (sp.Matrix(list(v_n) + list(v_t)) + W * impulses).applyfunc(tidy)
     for i, state in enumerate(pattern):
         p_n, p_t, slip = impulses[i], impulses[n + i], after[n + i]
         if state == "off":
-            if after[i] < target[i]:
-                return None
+            if after[i] < target[i] - slack:
+                return False
             continue
-        if p_n < 0:
-            return None
-        if state == "stick" and mu[i] is not None and abs(p_t) > mu[i] * p_n:
-            return None
-        if state == "slide+" and slip < 0 or state == "slide-" and slip > 0:
-            return None
-    return impulses, unique
+        if p_n < -slack:
+            return False
+        if state == "stick" and mu[i] is not None and abs(p_t) > mu[i] * p_n + slack:
+            return False
+        if state == "slide+" and slip < -slack or state == "slide-" and slip > slack:
+            return False
+    return True
+
+
+def _fitting_share(matrix: sp.Matrix, rhs: sp.Matrix, pattern: Sequence[str],
+                   mu: Sequence[Any], rounded: bool) -> sp.Matrix | None:
+    """Impulses that meet the states' equations with every acting contact pushing and
+    every sticking one inside its cone, where the equations do not fix them: a linear
+    programme over their solutions (in floating point, SciPy's HiGHS) that asks the
+    least friction (the sum of |P_t|), whose vertex is then solved again from its own
+    equations (the states', the bounds it meets and the frictions it leaves at zero),
+    exactly or in the rounded numbers' digits. None where no such impulses exist."""
+    from scipy.optimize import linprog
+
+    n = len(pattern)
+    A = np.array(matrix.evalf(20).tolist(), dtype=float)
+    b = np.array(rhs.evalf(20).tolist(), dtype=float).ravel()
+    bounds: list[list[float]] = []  # each row r: r . P <= 0
+    for i, state in enumerate(pattern):
+        if state == "off":
+            continue
+        bounds.append([-1.0 if k == i else 0.0 for k in range(2 * n)])
+        if state == "stick" and mu[i] is not None:
+            cone = float(mu[i])
+            for sign in (1.0, -1.0):
+                bounds.append([-cone if k == i else sign if k == n + i else 0.0
+                               for k in range(2 * n)])
+    if not bounds:
+        return None
+    # the unknowns P and, for each tangential impulse, a bound s_i >= |P_t,i|
+    rows = [[*r, *([0.0] * n)] for r in bounds]
+    for i in range(n):
+        for sign in (1.0, -1.0):
+            rows.append([sign if k == n + i else 0.0 for k in range(2 * n)]
+                        + [-1.0 if k == i else 0.0 for k in range(n)])
+    found = linprog(np.r_[np.zeros(2 * n), np.ones(n)], A_ub=np.array(rows),
+                    b_ub=np.zeros(len(rows)), A_eq=np.c_[A, np.zeros((len(b), n))],
+                    b_eq=b, bounds=[(None, None)] * (3 * n), method="highs")
+    if found.status != 0:
+        return None
+    x = found.x[:2 * n]
+    size = max(1.0, float(np.abs(x).max()))
+    tight = [r for r in bounds if abs(np.dot(r, x)) <= 1e-9 * size] + [
+        [1.0 if k == n + i else 0.0 for k in range(2 * n)] for i in range(n)
+        if pattern[i] != "off" and abs(x[n + i]) <= 1e-9 * size]
+    extra = sp.Matrix([[sp.nsimplify(x) for x in r] for r in tight]) if tight else \
+        sp.zeros(0, 2 * n)
+    if rounded:
+        extra = extra.applyfunc(lambda x: sp.Float(x, 50))
+    system, values = sp.Matrix.vstack(matrix, extra), sp.Matrix.vstack(
+        rhs, sp.zeros(len(tight), 1))
+    return rounded_solve(system, values)[0] if rounded else least_norm(system, values)
 
 
 def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
