@@ -49,6 +49,7 @@ def test_failed_export_leaves_nothing_behind(tmp_path, monkeypatch):
         raise RuntimeError("pdflatex failed on derivations.tex: ! Emergency stop")
 
     monkeypatch.setattr(latex, "compile_pdf", broken)
+    monkeypatch.setattr(latex, "has_pdflatex", lambda: True)  # as where it is installed
     with pytest.raises(RuntimeError):
         latex.write_export(tmp_path / "out", [derive("discs")], pdf=True)
     assert list(tmp_path.iterdir()) == []  # no folder, no staging left behind
@@ -62,6 +63,7 @@ def test_failed_export_keeps_the_previous_one_whole(tmp_path, monkeypatch):
         raise RuntimeError("pdflatex failed on derivations.tex: ! Emergency stop")
 
     monkeypatch.setattr(latex, "compile_pdf", broken)
+    monkeypatch.setattr(latex, "has_pdflatex", lambda: True)  # as where it is installed
     with pytest.raises(RuntimeError):
         latex.write_export(tmp_path / "out", [derive("barbell")], pdf=True)
     assert {p.name: p.read_text() for p in first} == before
@@ -209,3 +211,19 @@ def test_a_scene_setup_sets_its_values_as_mathematics(tmp_path, capsys):
     capsys.readouterr()
     assert r"velocity $\left(v \cos{\left(\phi \right)}, v \sin{\left(\phi \right)}\right)$" \
         in tex
+
+
+def test_pdf_without_pdflatex_writes_the_tex_and_says_so(tmp_path, monkeypatch, capsys):
+    """Where pdflatex is missing, ``export --pdf`` writes the document all the same and
+    says in one line what the PDF needs (as ``make run`` does)."""
+    from rigidimpact.cli import main
+
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))  # no pdflatex on this PATH
+    assert latex.has_pdflatex() is False
+    assert main(["export", "--out", str(tmp_path / "out"), "--pdf", "discs"]) == 0
+    out, err = capsys.readouterr()
+    assert (tmp_path / "out" / "derivations.tex").read_text().startswith("\\documentclass")
+    assert not (tmp_path / "out" / "derivations.pdf").exists()
+    assert "derivations.pdf" not in out
+    assert len(err.strip().splitlines()) == 1
+    assert "pdflatex" in err and "texlive-latex-base" in err

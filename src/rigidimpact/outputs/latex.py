@@ -193,6 +193,9 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
                  pdf: bool = False) -> list[Path]:
     """Write every fragment and ``derivations.tex`` (and ``.pdf``) as the folder `out_dir`.
 
+    With `pdf` the document is compiled where ``pdflatex`` is installed
+    (:func:`has_pdflatex`); where it is not, the ``.tex`` is written all the same.
+
     Everything is rendered (and, with `pdf`, compiled) in a staging folder beside
     `out_dir`, which is then swapped in with one atomic rename: a reader sees the old
     export or the new one, never a mix, also when the process is killed (see
@@ -213,7 +216,7 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
         for name, text in files.items():
             (staging / name).write_text(text, encoding="utf-8")
         names = list(files)
-        if pdf:
+        if pdf and has_pdflatex():
             compile_pdf(staging / "derivations.tex")
             names.append("derivations.pdf")
             for leftover in ("derivations.aux", "derivations.log", "derivations.out"):
@@ -224,12 +227,19 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
 
 
 LATEX_OUTPUT = (".tex", ".pdf", ".aux", ".log", ".out")  # what export writes
+PDFLATEX_PACKAGE = "texlive-latex-base"  # the Debian package that gives pdflatex
+
+
+def has_pdflatex() -> bool:
+    """Whether ``pdflatex`` is on the PATH (without it `write_export` writes the
+    ``.tex`` alone)."""
+    return shutil.which("pdflatex") is not None
 
 
 def compile_pdf(tex: Path) -> Path:
     """Run pdflatex twice on `tex` in its folder; raise RuntimeError if it fails."""
-    if shutil.which("pdflatex") is None:
-        raise RuntimeError("pdflatex is not installed")
+    if not has_pdflatex():
+        raise RuntimeError(f"pdflatex is not installed (Debian: {PDFLATEX_PACKAGE})")
     for _ in range(2):
         run = subprocess.run(
             ["pdflatex", "-interaction=nonstopmode", "-halt-on-error", tex.name],
