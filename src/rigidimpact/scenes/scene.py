@@ -314,7 +314,7 @@ class Scene:
         equations = first.equations or (collision.equations(first) if printed else ())
         if len(outcomes) > 1:
             equations = tuple(eq for eq in equations if eq.law == "momentum")
-        setup = tuple(_described(b) for b in self.bodies)
+        setup: tuple[str, ...] = tuple(_described(b) for b in self.bodies)
         setup += tuple(_contact_line(c) for c in self.contacts)
         setup += tuple(Given(f"joint {j.name}: {j.first} and {j.second} pinned at {{}}, "
                              "a frictionless hinge", (j.point[0], j.point[1]))
