@@ -185,7 +185,7 @@ def test_a_pivoted_rod_struck_at_two_contacts_prints_its_equations(tmp_path, cap
         in labels
     assert sum("Poisson's law" in label for label in labels) == 2
     assert {"rod.pivot_impulse_x", "rod.pivot_impulse_y"} <= set(out["results"])
-    assert "omega_rodfz" in out["unknowns"] and "Pn_b" in out["unknowns"]
+    assert "omega_z^+_rod" in out["unknowns"] and "P_n^b" in out["unknowns"]
     assert main(["derive", scene_file(tmp_path, text)]) == 0
     printed = capsys.readouterr().out
     assert "poisson restitution 4/5, smooth" in printed

@@ -275,7 +275,7 @@ def _cmd_verify(args: argparse.Namespace) -> int:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from rigidimpact.outputs.latex import write_export
+    from rigidimpact.outputs.latex import PDFLATEX_PACKAGE, write_export
     from rigidimpact.paper.problems import PROBLEMS
     from rigidimpact.verify import run_checks
 
@@ -291,6 +291,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
     else:
         for path in written:
             print(path)
+    if args.pdf and not any(p.suffix == ".pdf" for p in written):  # no pdflatex here
+        print(f"rigidimpact: note: no PDF: it needs pdflatex, which is not installed "
+              f"(Debian: apt-get install {PDFLATEX_PACKAGE}); derivations.tex is written",
+              file=sys.stderr)
     return 0
 
 
@@ -831,7 +835,10 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("targets", nargs="*", metavar="NAME-OR-SCENE",
                    help="what to export (default: every built-in problem)")
     p.add_argument("--out", required=True, metavar="DIR")
-    p.add_argument("--pdf", action="store_true", help="also compile with pdflatex")
+    p.add_argument("--pdf", action="store_true",
+                   help="also compile with pdflatex where it is installed (Debian: "
+                        "texlive-latex-base); without it the .tex is written and a note "
+                        "says so")
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_export)
 

@@ -57,6 +57,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws import ends as ends_of
+from rigidimpact.symbolic.notation import Given
 
 if TYPE_CHECKING:  # numpy is imported where a path is integrated
     import numpy as np
@@ -205,7 +206,7 @@ def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> C
         else:
             tangential = sp.Matrix([sp.Piecewise((a, slides), (b, True))
                                     for a, b in zip(slide, stick, strict=True)])
-            course = f"slides throughout where {slides}; otherwise slides, then sticks"
+            course = Given("slides throughout where {}; otherwise slides, then sticks", slides)
     impulse = sp.Matrix([p_final, *tangential]).applyfunc(sp.radsimp)
     after = (v0 + W * impulse).applyfunc(lambda x: sp.piecewise_fold(sp.radsimp(x)))
     return ConeImpact(impulse, after, course, exact=True)

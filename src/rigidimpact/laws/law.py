@@ -29,7 +29,7 @@ from rigidimpact.laws import cone, ends, routh
 from rigidimpact.laws.walton import walton
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross
-from rigidimpact.symbolic.notation import escape_text, to_latex
+from rigidimpact.symbolic.notation import Given, escape_text, to_latex
 
 __all__ = [
     "ContactImpulse",
@@ -306,9 +306,10 @@ class ContactImpulse:
                                             for r in regimes[:-1]),
                                           (sp.sympify(regimes[-1].impulse[i]), True))
                              for i in range(size)])
-        course = "; otherwise ".join(f"{r.name} where {sp.And(*r.conditions)}"
-                                     for r in regimes[:-1])
-        return cls(impulse, f"{course}; otherwise {regimes[-1].name}")
+        course = Given("")
+        for r in regimes[:-1]:
+            course += Given(f"{r.name} where {{}}; otherwise ", sp.And(*r.conditions))
+        return cls(impulse, course + regimes[-1].name)
 
 
 class ContactLaw:

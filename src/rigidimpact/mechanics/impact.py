@@ -74,6 +74,7 @@ from rigidimpact.solve.collision import (
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.rules.simultaneous import simultaneous_cases
 from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.notation import labelled
 from rigidimpact.symbolic.rewrite import pythagorean
 
 # a closed form (symbols left) is sought where its work is at most this: the symbols
@@ -739,7 +740,7 @@ class SystemImpact:
         after = [sp.Symbol(f"{_name(s)}^+") for s in self.u]
         pushes = []
         for c in self.contacts:
-            pushes += [sp.Symbol(f"P_n,{c.name}"), sp.Symbol(f"P_t,{c.name}")]
+            pushes += [labelled("P", "n", c.name), labelled("P", "t", c.name)]
         U, U0, P = sp.Matrix(after), self.u_before, sp.Matrix(pushes)
         balance = self.M * (U - U0)
         generalized = self.J.T * P

@@ -28,6 +28,7 @@ from rigidimpact.solve.derivation import Derivation
 from rigidimpact.symbolic.notation import (
     PRINTER_SETTINGS,
     SYMBOLS,
+    Given,
     escape_text,
     latex_name,
     result_lhs,
@@ -78,14 +79,32 @@ def fragments(derivation: Derivation) -> dict[str, str]:
 
 
 def _prose(text: str) -> str:
-    """Plain text with the problem's symbol names set as mathematics."""
+    """Plain text with the problem's symbol names set as mathematics (a name with an
+    underscore upright, as its label in the formulas); a
+    :class:`~rigidimpact.solve.derivation.Given` line's values are typeset whole."""
+    if isinstance(text, Given):
+        return "".join(_math(part) if k % 2 else _prose(str(part))
+                       for k, part in enumerate(text.parts))
     out = []
-    for token in re.split(r"(\w+)", text):
-        if token in SYMBOLS and token not in ("a", "b", "d", "l"):
+    for token in re.split(r"(\w+|->)", text):
+        if token == "->":
+            out.append("$\\to$")
+        elif "_" in token and token not in SYMBOLS:  # a name, set as the formulas set it
+            out.append(f"$\\mathrm{{{escape_text(token)}}}$")
+        elif token in SYMBOLS and token not in ("a", "b", "d", "l"):
             out.append(f"${latex_name(SYMBOLS[token])}$")
         else:
             out.append(escape_text(token))
     return "".join(out)
+
+
+def _math(value: object) -> str:
+    """A given value as inline mathematics: a tuple in parentheses, a list in brackets."""
+    if isinstance(value, (tuple, list)):
+        left, right = ("(", ")") if isinstance(value, tuple) else ("[", "]")
+        inner = ", ".join(to_latex(sp.sympify(v)) for v in value)
+        return f"$\\left{left}{inner}\\right{right}$"
+    return f"${to_latex(sp.sympify(value))}$"
 
 
 def _display(lines: Sequence[str]) -> str:
@@ -104,22 +123,30 @@ def _section(derivation: Derivation, checks: Iterable) -> str:
         parts.append(f"\\noindent {_prose(eq.label)}:\n"
                      f"\\begin{{equation*}}\n  {equation_latex(eq)}\n\\end{{equation*}}\n")
     unknowns = ", ".join(f"${to_latex(u)}$" for u in derivation.unknowns)
+    defined = derivation.definitions.keys() - derivation.results.keys()
     parts.append(f"\\paragraph{{Solution.}} The laws are linear in {unknowns}; solving them "
-                 "and putting each result over one denominator gives\n")
+                 "and putting each result over one denominator gives"
+                 + (" the named group\n" if defined else "\n"))
+    if defined:  # a named group is defined before a result uses it
+        parts.append(_display([f"{latex_name(sp.Symbol(k))} = "
+                               f"{to_latex(derivation.definitions[k])}"
+                               for k in derivation.definitions if k in defined])
+                     + "and through it the results\n")
     lines = []
     for key, value in derivation.results.items():
         shown = derivation.named.get(key)
-        if shown is not None and sp.count_ops(value) > 40:
+        if shown is not None and (defined or sp.count_ops(value) > 40):
             lines.append(f"{result_lhs(key)} = {to_latex(shown)}")
         else:
             lines.append(f"{result_lhs(key)} = {to_latex(value)}")
     parts.append(_display(lines))
-    if derivation.definitions:
-        defs = [f"{latex_name(sp.Symbol(k))} = {to_latex(v)}"
-                for k, v in derivation.definitions.items()]
-        named = [f"{result_lhs(k)} = {to_latex(v)}" for k, v in derivation.named.items()]
-        parts.append("With the named group\n" + _display(defs)
-                     + "the results read\n" + _display(named))
+    shorter = [k for k in derivation.named if k in derivation.results and not defined]
+    if shorter:  # a named group that is itself a result: the results again, through it
+        parts.append("or, through "
+                     + ", ".join(f"${latex_name(sp.Symbol(k))}$"
+                                 for k in derivation.definitions)
+                     + ",\n" + _display([f"{result_lhs(k)} = {to_latex(derivation.named[k])}"
+                                         for k in shorter]))
     rows = [c for c in checks if c.id.split(".")[0] == derivation.problem]
     if rows:
         parts.append("\\paragraph{Checked against the paper.}\n\\begin{tabular}{lll}\n"
@@ -166,6 +193,9 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
                  pdf: bool = False) -> list[Path]:
     """Write every fragment and ``derivations.tex`` (and ``.pdf``) as the folder `out_dir`.
 
+    With `pdf` the document is compiled where ``pdflatex`` is installed
+    (:func:`has_pdflatex`); where it is not, the ``.tex`` is written all the same.
+
     Everything is rendered (and, with `pdf`, compiled) in a staging folder beside
     `out_dir`, which is then swapped in with one atomic rename: a reader sees the old
     export or the new one, never a mix, also when the process is killed (see
@@ -186,7 +216,7 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
         for name, text in files.items():
             (staging / name).write_text(text, encoding="utf-8")
         names = list(files)
-        if pdf:
+        if pdf and has_pdflatex():
             compile_pdf(staging / "derivations.tex")
             names.append("derivations.pdf")
             for leftover in ("derivations.aux", "derivations.log", "derivations.out"):
@@ -197,12 +227,19 @@ def write_export(out_dir: Path, derivations: Sequence[Derivation], checks: Itera
 
 
 LATEX_OUTPUT = (".tex", ".pdf", ".aux", ".log", ".out")  # what export writes
+PDFLATEX_PACKAGE = "texlive-latex-base"  # the Debian package that gives pdflatex
+
+
+def has_pdflatex() -> bool:
+    """Whether ``pdflatex`` is on the PATH (without it `write_export` writes the
+    ``.tex`` alone)."""
+    return shutil.which("pdflatex") is not None
 
 
 def compile_pdf(tex: Path) -> Path:
     """Run pdflatex twice on `tex` in its folder; raise RuntimeError if it fails."""
-    if shutil.which("pdflatex") is None:
-        raise RuntimeError("pdflatex is not installed")
+    if not has_pdflatex():
+        raise RuntimeError(f"pdflatex is not installed (Debian: {PDFLATEX_PACKAGE})")
     for _ in range(2):
         run = subprocess.run(
             ["pdflatex", "-interaction=nonstopmode", "-halt-on-error", tex.name],

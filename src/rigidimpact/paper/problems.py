@@ -31,7 +31,7 @@ from rigidimpact.model.bodies import Body, join
 from rigidimpact.solve.derivation import Derivation
 from rigidimpact.solve.impact import Impact
 from rigidimpact.solve.solution import Solution
-from rigidimpact.symbolic.notation import symbol
+from rigidimpact.symbolic.notation import Given, symbol
 from rigidimpact.symbolic.rewrite import recognise, solve_linear, tidy
 
 __all__ = [
@@ -100,6 +100,16 @@ def _timed(build: Callable[[], Derivation]) -> Callable[[], Derivation]:
     return run
 
 
+# the givens the paper's problems share, their symbols set as mathematics
+_BALL = Given("ball: point mass {} moving along x with speed {}", symbol("m"), symbol("v_ix"))
+_BARBELL = Given("barbell: masses {} at both ends of a massless rod of length 2{}, at rest, "
+                 "rod at angle {} to x", symbol("M"), symbol("L"), symbol("theta"))
+# body k of the two (k = 1, 2): placeholders for either body's data
+_BODY_K = Given("body k: mass {}, central inertia {}, centre {} = {} from O, velocity {}, "
+                "spin {}", *sp.symbols("m_k I_k R_k"), sp.symbols("R_kx R_ky"),
+                sp.symbols("V_kix V_kiy"), sp.Symbol("omega_kiz"))
+
+
 @_timed
 def barbell() -> Derivation:
     """The ball and the barbell of section 1: eqs. (1), (2), (4) solved, (5) and (7).
@@ -126,10 +136,9 @@ def barbell() -> Derivation:
     return Derivation(
         "barbell",
         "A ball strikes one end of a barbell at an angle (section 1)",
-        ("ball: point mass m moving along x with speed v_ix",
-         "barbell: masses M at both ends of a massless rod of length 2L, at rest, "
-         "rod at angle theta to x; sphere A is struck at O",
-         "contact: smooth, Newton restitution e along x"),
+        (_BALL,
+         _BARBELL + Given("; sphere A is struck at O"),
+         Given("contact: smooth, Newton restitution {} along x", e)),
         impact.equations(),
         impact.unknowns,
         results,
@@ -247,11 +256,10 @@ def sticking() -> Derivation:
     return Derivation(
         "sticking",
         "A clay ball sticks to one end of a barbell (figure 2)",
-        ("ball: point mass m moving along x with speed v_ix; it sticks to sphere A",
-         "barbell: masses M at both ends of a massless rod of length 2L, at rest, "
-         "rod at angle theta to x",
-         "after: ball and barbell move as one rigid body with centre S, velocity u and "
-         "spin omega_z"),
+        (_BALL + Given("; it sticks to sphere A"),
+         _BARBELL,
+         Given("after: ball and barbell move as one rigid body with centre S, velocity {} "
+               "and spin {}", symbol("u"), symbol("omega_z"))),
         equations,
         (symbol("u_x"), symbol("u_y"), symbol("omega_z")),
         results,
@@ -287,8 +295,11 @@ def discs() -> Derivation:
     return Derivation(
         "discs",
         "Two equal smooth discs collide (eq. 16)",
-        ("discs: equal masses m and radii r, not spinning, centres on the normal",
-         "velocities (V_1ix, V_1iy) and (V_2ix, V_2iy); smooth contact, restitution e"),
+        (Given("discs: equal masses {} and radii {}, not spinning, centres on the normal",
+               symbol("m"), symbol("r")),
+         Given("velocities {} and {}; smooth contact, restitution {}",
+               (symbol("V_1ix"), symbol("V_1iy")), (symbol("V_2ix"), symbol("V_2iy")),
+               symbol("e"))),
         impact.equations(),
         impact.unknowns,
         results,
@@ -329,9 +340,7 @@ def two_body() -> Derivation:
     return Derivation(
         "two-body",
         "Two rigid bodies, smooth contact (section 3)",
-        ("body k: mass m_k, central inertia I_k, centre R_k = (R_kx, R_ky) from O, "
-         "velocity (V_kix, V_kiy), spin omega_kiz",
-         "contact: smooth, normal along x, Newton restitution e"),
+        (_BODY_K, Given("contact: smooth, normal along x, Newton restitution {}", e)),
         impact.equations(),
         impact.unknowns,
         results,

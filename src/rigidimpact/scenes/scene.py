@@ -60,7 +60,7 @@ from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
 from rigidimpact.symbolic.distributions import RandomInputs, random_table
 from rigidimpact.symbolic.geometry import spin_cross
-from rigidimpact.symbolic.notation import SYMBOLS, make_symbol
+from rigidimpact.symbolic.notation import SYMBOLS, Given, make_symbol, speed_names
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Scene", "load_scene", "parse_scene", "parse_expression", "is_spatial",
@@ -183,7 +183,9 @@ class Scene:
         if len(self.contacts) > 1:
             raise InputError("contacts", "this scene has several contacts: derive and "
                              "evaluate solve it; this command follows one contact")
-        return Impact(*self.pair, self.contact)
+        first, second = self.pair
+        return Impact(first, second, self.contact, unknown_names=(
+            speed_names(first.name), speed_names(second.name)))
 
     @property
     def data_symbols(self) -> dict[str, sp.Symbol]:
@@ -312,10 +314,10 @@ class Scene:
         equations = first.equations or (collision.equations(first) if printed else ())
         if len(outcomes) > 1:
             equations = tuple(eq for eq in equations if eq.law == "momentum")
-        setup = tuple(_described(b) for b in self.bodies)
+        setup: tuple[str, ...] = tuple(_described(b) for b in self.bodies)
         setup += tuple(_contact_line(c) for c in self.contacts)
-        setup += tuple(f"joint {j.name}: {j.first} and {j.second} pinned at "
-                       f"({j.point[0]}, {j.point[1]}), a frictionless hinge"
+        setup += tuple(Given(f"joint {j.name}: {j.first} and {j.second} pinned at {{}}, "
+                             "a frictionless hinge", (j.point[0], j.point[1]))
                        for j in self.joints)
         if several:
             setup += (f"rule: {self.rule}" + ("" if self.order is None
@@ -389,29 +391,35 @@ def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
     return sp.Piecewise(*zip(parts, conditions, strict=True))
 
 
-def _contact_line(c: Contact) -> str:
+def _contact_line(c: Contact) -> Given:
     """One line of the givens for a contact: where, between which bodies, its laws."""
     label = "contact" if c.name == "contact" else f"contact {c.name}"
-    return (f"{label}: {c.first} -> {c.second} at ({c.point[0]}, {c.point[1]}), "
-            f"normal ({c.normal[0]}, {c.normal[1]}), {c.law} restitution {c.restitution}, "
-            + _tangential_words(c))
+    return Given(f"{label}: {c.first} -> {c.second} at {{}}, normal {{}}, {c.law} "
+                 "restitution {}, ", (c.point[0], c.point[1]), (c.normal[0], c.normal[1]),
+                 c.restitution) + _tangential_words(c)
 
 
-def _tangential_words(c: Contact) -> str:
+def _tangential_words(c: Contact) -> Given:
     """The contact's tangential law in words, with its coefficients."""
-    words = {"smooth": "smooth", "stick": "sticking", "coulomb": f"Coulomb friction {c.friction}",
-             "rough": f"rough (Walton), friction {c.friction}, tangential restitution "
-                      f"{c.tangential_restitution}"}
-    return words[c.tangential]
+    if c.tangential == "coulomb":
+        return Given("Coulomb friction {}", c.friction)
+    if c.tangential == "rough":
+        friction = Given("without a friction limit") if c.friction is None \
+            else Given("friction {}", c.friction)
+        return Given("rough (Walton), ") + friction + Given(
+            ", tangential restitution {}", c.tangential_restitution)
+    return Given({"smooth": "smooth", "stick": "sticking"}[c.tangential])
 
 
-def _described(b: Body) -> str:
+def _described(b: Body) -> Given:
     """One line of the givens for a body."""
     if b.support == "fixed":
-        return f"{b.name}: fixed (immovable)"
-    pivot = "" if b.pivot is None else f", on a pivot at ({b.pivot[0]}, {b.pivot[1]})"
-    return (f"{b.name}: {b.shape}, mass {b.mass}, centre ({b.position[0]}, {b.position[1]}) "
-            f"from O, velocity ({b.velocity[0]}, {b.velocity[1]}), spin {b.spin}{pivot}")
+        return Given(f"{b.name}: fixed (immovable)")
+    line = Given(f"{b.name}: {b.shape}, mass {{}}, centre {{}} from O, velocity {{}}, spin {{}}",
+                 b.mass, (b.position[0], b.position[1]), (b.velocity[0], b.velocity[1]),
+                 b.spin)
+    return line if b.pivot is None else line + Given(", on a pivot at {}",
+                                                     (b.pivot[0], b.pivot[1]))
 
 
 def _table(data: Mapping[str, Any], key: str, form: str) -> dict[str, Any]:

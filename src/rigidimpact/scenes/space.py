@@ -50,6 +50,7 @@ from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
 from rigidimpact.symbolic.distributions import RandomInputs, random_table
+from rigidimpact.symbolic.notation import COMPONENTS, Given, labelled
 
 __all__ = ["SpaceScene", "parse_space_scene", "space_scene_from_data", "load_space_scene",
            "load_any", "is_spatial"]
@@ -133,11 +134,11 @@ class SpaceScene:
             f"joint {j.name}: {j.first} and {j.second} at {list(j.point)}, " + (
                 "a ball joint" if j.axis is None else f"a hinge about {list(j.axis)}")
             for j in self.joints)
-        setup += tuple(f"plane {p.name} (struck later, by simulate): "
-                       + _contact_words(p).split(": ", 1)[1] for p in self.planes)
-        setup += tuple(f"pair {p.name}: {p.first} and {p.second} when they meet (by "
-                       f"simulate), {_law_words(p)}" for p in self.pairs)
-        setup += tuple(f"course: {c.split(': ', 1)[1]}" for c in solution.courses)
+        setup += tuple(_contact_words(p, "plane", " (struck later, by simulate)")
+                       for p in self.planes)
+        setup += tuple(Given(f"pair {p.name}: {p.first} and {p.second} when they meet (by "
+                             "simulate), ") + _law_words(p) for p in self.pairs)
+        setup += tuple(Given("course: ") + _unnamed(c) for c in solution.courses)
         equations = _equations(collision) if printed else ()
         return Derivation(self.name, self.title, setup + notes + solution.notes, equations,
                           tuple(unknowns_at(collision, solution)),
@@ -172,28 +173,41 @@ class SpaceScene:
 RULE_WORDS = {"driven": "one strikes, the others rest"}
 
 
-def _described(b: Body3) -> str:
+def _described(b: Body3) -> Given:
     if b.support == "fixed":
-        return f"{b.name}: fixed"
-    shape = f"sphere of radius {b.radius}" if b.radius is not None else "rigid body"
-    return (f"{b.name}: {shape}, mass {b.mass}, central inertia {list(b.inertia)}, centre "
-            f"{list(b.position)}, velocity {list(b.velocity)}, spin {list(b.spin)}")
+        return Given(f"{b.name}: fixed")
+    shape = Given("sphere of radius {}", b.radius) if b.radius is not None \
+        else Given("rigid body")
+    return Given(f"{b.name}: ") + shape + Given(
+        ", mass {}, central inertia {}, centre {}, velocity {}, spin {}", b.mass,
+        list(b.inertia), list(b.position), list(b.velocity), list(b.spin))
 
 
-def _law_words(c: Contact) -> str:
+def _unnamed(course: str) -> str:
+    """A contact's course without the contact's name before it (``name: course``)."""
+    name = course.split(": ", 1)[0] + ": "
+    if isinstance(course, Given):
+        return Given(course.template[len(name):], *course.values)
+    return course[len(name):]
+
+
+def _law_words(c: Contact) -> Given:
     """A contact's laws in words: restitution, then the tangential law."""
-    law = {"smooth": "smooth", "stick": "sticking (no slip after)",
-           "coulomb": f"Coulomb friction, circular cone, mu = {c.friction}",
-           "rough": f"Walton's rough law, beta = {c.tangential_restitution}, "
-                    f"mu = {c.friction}"}[c.tangential]
-    return f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {c.restitution}, {law}"
+    law = {"smooth": Given("smooth"), "stick": Given("sticking (no slip after)"),
+           "coulomb": Given("Coulomb friction, circular cone, mu = {}", c.friction),
+           "rough": Given("Walton's rough law, beta = {}", c.tangential_restitution) + (
+               Given(", without a friction limit") if c.friction is None
+               else Given(", mu = {}", c.friction))}[c.tangential]
+    return Given(f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {{}}, ", c.restitution) + law
 
 
-def _contact_words(c: Contact) -> str:
-    return (f"contact {c.name}: {c.first} and {c.second} at {list(c.point)}, normal "
-            f"{list(c.normal)}, {_law_words(c)}; "
-            "tangents "
-            "t1 (the x axis across n, or the y axis's), t2 = n x t1")
+def _contact_words(c: Contact, kind: str = "contact", note: str = "") -> Given:
+    """A contact's (or a plane's) line of the givens: where, and its laws."""
+    t_1, t_2 = sp.symbols("t_1 t_2")
+    return Given(f"{kind} {c.name}{note}: {c.first} and {c.second} at {{}}, normal {{}}, ",
+                 list(c.point), list(c.normal)) + _law_words(c) + Given(
+        "; tangents {} (the x axis across the normal, or the y axis's) and {} (the normal "
+        "across {})", t_1, t_2, t_1)
 
 
 def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
@@ -202,12 +216,12 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
     ``P = P_n n + P_t1 t1 + P_t2 t2`` (world frame), and the contact's restitution law
     where it is Newton's (with several contacts: the striking one's)."""
     out = []
-    impulses = {c.name: sp.Matrix(c.frame).T * sp.Matrix(_impulse(collision, c))
+    impulses = {c.name: sp.Matrix(c.frame).T * sp.Matrix(_impulse(c))
                 for c in collision.contacts}
     held = collision.G.T * sp.Matrix([x for j in collision.joints for x in _held(j)]) \
         if collision.joints else sp.zeros(6 * len(collision.free), 1)
     for k, body in enumerate(collision.free):
-        after = sp.Matrix(_after(collision, body))
+        after = sp.Matrix(_after(body))
         force, moment = held[6 * k:6 * k + 3, 0], held[6 * k + 3:6 * k + 6, 0]
         for c in collision.contacts:
             sign = 1 if body.name == c.second else -1 if body.name == c.first else 0
@@ -223,7 +237,7 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
                                 after[3:, 0] - sp.Matrix(body.spin))),
                             sp.ImmutableMatrix(moment), law="momentum"))
     c = collision.contacts[0]
-    after = sp.Matrix([x for b in collision.free for x in _after(collision, b)])
+    after = sp.Matrix([x for b in collision.free for x in _after(b)])
     if len(collision.contacts) == 1 and not c.laws[0].splits_on_compression:
         J = collision.rows(c)  # a kinematic law: its normal velocity after, as it asks
         out.append(Equation(f"{RESTITUTION_WORDS.get(c.law, c.law)} at {c.name}".replace(
@@ -243,38 +257,36 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
 
 def _held(j: Joint) -> tuple[sp.Symbol, ...]:
     """A joint's printed impulse on its second body (x, y, z; a hinge's two moments)."""
-    return tuple(sp.Symbol(f"{x}^{j.name}") for x in (
-        "Q_x", "Q_y", "Q_z", *(() if j.axis is None else ("M_1", "M_2"))))
+    return tuple(labelled(*COMPONENTS[k][:2], j.name) for k in (
+        "impulse_x", "impulse_y", "impulse_z",
+        *(() if j.axis is None else ("moment_1", "moment_2"))))
 
 
-def _impulse(collision: SpaceCollision, c: Contact) -> tuple[sp.Symbol, ...]:
-    """The printed impulse of contact c along n, t1, t2 (named by the contact where
-    there are several)."""
-    if len(collision.contacts) == 1:
-        return IMPULSE
-    return tuple(sp.Symbol(f"{x}^{c.name}") for x in ("P_n", "P_t1", "P_t2"))
+def _impulse(c: Contact) -> tuple[sp.Symbol, ...]:
+    """The printed impulse of contact c along n, t1, t2 (named by the contact, as its
+    result keys are)."""
+    return tuple(labelled(*COMPONENTS[k][:2], c.name) for k in (
+        "normal_impulse", "tangential_impulse_1", "tangential_impulse_2"))
 
 
-IMPULSE = sp.symbols("P_n P_t1 P_t2")  # the contact's impulse along n, t1, t2
-AFTER = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+AFTER = ("vx", "vy", "vz", "omega_x", "omega_y", "omega_z")  # result keys, as SPEEDS
 
 
-def _after(collision: SpaceCollision, body: Body3) -> list[sp.Symbol]:
-    """The printed unknowns: a body's speeds after (named by the body where several
-    move)."""
-    named = len(collision.free) > 1
-    return [sp.Symbol(f"{s}^+" + (f"_{body.name}" if named else "")) for s in AFTER]
+def _after(body: Body3) -> list[sp.Symbol]:
+    """The printed unknowns: a body's speeds after, named by the body (as its result
+    keys are)."""
+    return [labelled(*COMPONENTS[k][:2], body.name, after=True) for k in AFTER]
 
 
 def unknowns_at(collision: SpaceCollision, solution: Solution) -> dict[sp.Symbol, sp.Expr]:
     """The printed equations' unknowns at the solution (for checking them)."""
     r = solution.results()
     values = {x: r[f"{b.name}.{s}"] for b in collision.free
-              for x, s in zip(_after(collision, b), SPEEDS, strict=True)}
+              for x, s in zip(_after(b), SPEEDS, strict=True)}
     for c in collision.contacts:
         found = [r.get(f"{c.name}.{k}", sp.Integer(0)) for k in (
             "normal_impulse", "tangential_impulse_1", "tangential_impulse_2")]
-        values |= dict(zip(_impulse(collision, c), found, strict=True))
+        values |= dict(zip(_impulse(c), found, strict=True))
     for j in collision.joints:
         names = ["impulse_x", "impulse_y", "impulse_z"] + (
             [] if j.axis is None else ["moment_1", "moment_2"])

@@ -75,6 +75,7 @@ from rigidimpact.solve.rules import (
     whole_number,
 )
 from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.symbolic.notation import speed_names
 
 __all__ = ["Collision", "ImpactProblem", "Outcome", "RULES", "RULE_LAWS", "MAX_PASSES",
            "MAX_ENUMERATED", "chain", "fan", "cluster", "sequential_passes", "certified",
@@ -175,7 +176,8 @@ class Collision(ImpactProblem):
         (c,) = self.contacts
         point = sp.ImmutableMatrix(c.point)
         first, second = (self._body(n).shifted(-point) for n in (c.first, c.second))
-        solution = Impact(first, second, c).solve()
+        solution = Impact(first, second, c, unknown_names=(
+            speed_names(first.name), speed_names(second.name))).solve()
 
         def world(s: Solution) -> Solution:
             after = {b.name: b.shifted(point) for b in s.after}

@@ -57,7 +57,8 @@ class Derivation:
     title : str
         One line saying what collides.
     setup : tuple of str
-        The givens in words.
+        The givens in words (a :class:`~rigidimpact.symbolic.notation.Given` line holds
+        its values, to be typeset).
     equations : tuple of Equation
         The laws, in order, with the paper's numbers.
     unknowns : tuple of Symbol

@@ -31,7 +31,7 @@ from rigidimpact.model.bodies import Body
 from rigidimpact.model.impulse import ImpulseProblem
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import spin_cross
-from rigidimpact.symbolic.notation import make_symbol
+from rigidimpact.symbolic.notation import labelled, make_symbol
 from rigidimpact.symbolic.rewrite import tidy
 
 __all__ = ["Impact"]
@@ -227,8 +227,8 @@ class Impact:
         supported (no conservation law then holds without them)."""
         if self.first.support == "free" or self.second.support == "free":
             return ()
-        names = ("P_n", "P_t") if self.contact.laws[1].unknown_tangential else ("P_n",)
-        return tuple(make_symbol(n, real=True) for n in names)
+        names = ("n", "t") if self.contact.laws[1].unknown_tangential else ("n",)
+        return tuple(labelled("P", n, self.contact.name, real=True) for n in names)
 
     @property
     def unknowns(self) -> tuple[sp.Symbol, ...]:

@@ -29,6 +29,7 @@ from rigidimpact.model.joints import Joint, off_body
 from rigidimpact.solve.conditions import sample_points, tidied
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import perp
+from rigidimpact.symbolic.notation import COMPONENTS, labelled
 from rigidimpact.symbolic.rewrite import tidy
 
 MAX_ENUMERATED = 12
@@ -521,15 +522,16 @@ class ImpactProblem:
 
     def unknowns(self) -> tuple[sp.Symbol, ...]:
         """What the printed equations are solved for: each generalized velocity after
-        (``V_BODYfx``, ``V_BODYfy``, ``omega_BODYfz``), then each contact's normal and
-        (with friction) tangential impulse (``Pn_CONTACT``, ``Pt_CONTACT``)."""
-        speeds = [sp.Symbol(f"omega_{c.body}fz" if c.kind == "omega"
-                            else f"V_{c.body}f{c.kind[1]}", real=True)
+        (``v_x^+_BODY``, ``v_y^+_BODY``, ``omega_z^+_BODY``), then each contact's normal
+        and (with friction) tangential impulse (``P_n^CONTACT``, ``P_t^CONTACT``), then
+        each joint's (``Q_x^JOINT``, ``Q_y^JOINT``): the names of
+        :func:`~rigidimpact.symbolic.notation.labelled`."""
+        speeds = [labelled(*COMPONENTS[c.kind][:2], c.body, after=True, real=True)
                   for c in self.coordinates]
-        pushes = [sp.Symbol(f"Pn_{t.name}", real=True) for t in self.contacts]
+        pushes = [labelled("P", "n", t.name, real=True) for t in self.contacts]
         if self.frictional:
-            pushes += [sp.Symbol(f"Pt_{t.name}", real=True) for t in self.contacts]
-        pushes += [sp.Symbol(f"J{axis}_{j.name}", real=True) for j in self.joints
+            pushes += [labelled("P", "t", t.name, real=True) for t in self.contacts]
+        pushes += [labelled("Q", axis, j.name, real=True) for j in self.joints
                    for axis in "xy"]
         return tuple(speeds + pushes)
 
@@ -545,7 +547,7 @@ class ImpactProblem:
         >>> from rigidimpact.solve.collision import chain
         >>> c = chain(2)
         >>> [str(eq.as_sympy()) for eq in c.equations(c.simultaneous())][-1]
-        'Eq(-V_ball0fx + V_ball1fx, 1)'
+        'Eq(-v_x^+_ball0 + v_x^+_ball1, 1)'
         """
         n, size = len(self.contacts), len(self.coordinates)
         symbols = self.unknowns()

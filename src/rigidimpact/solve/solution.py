@@ -271,8 +271,8 @@ class Solution:
         >>> from rigidimpact.laws.contact import Contact
         >>> from rigidimpact.solve.impact import Impact
         >>> print(Impact(Body.particle(1, (2, 0), "a"), Body.particle(1, name="b"),
-        ...       Contact(restitution=1)).solve()._repr_latex_()[:41])
-        $$\begin{aligned} V_x^{(\mathrm{a})} &= 0
+        ...       Contact(restitution=1)).solve()._repr_latex_()[:43])
+        $$\begin{aligned} v_{x,\mathrm{a}}^{+} &= 0
         """
 
         if self.speeds_after is not None:

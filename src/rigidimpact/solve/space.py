@@ -59,6 +59,7 @@ from rigidimpact.solve.rules.driven import driven
 from rigidimpact.solve.rules.sequential import sequential
 from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.symbolic.notation import Given
 
 if TYPE_CHECKING:
     import numpy as np
@@ -325,7 +326,7 @@ class SpaceCollision:
             before=(), after=(), impulses={c.name: P[0]},
             tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
             acted=(c.name,), regime=regime,
-            courses=(f"{c.name}: {course}",) if regime else (),
+            courses=(Given(f"{c.name}: ") + course,) if regime else (),
             energies=(before, lost, sp.simplify(lost / before)), notes=tuple(notes),
             speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
             tangent_impulses={c.name: (P[1], P[2])}, given_checks=checks,

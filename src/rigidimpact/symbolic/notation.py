@@ -17,13 +17,16 @@ True
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from types import MappingProxyType
+from typing import Any
 
 import sympy as sp
 
-__all__ = ["SYMBOLS", "symbol", "make_symbol", "latex_name", "latex_names", "GREEK",
-           "PRINTER_SETTINGS", "to_latex", "result_lhs", "escape_text", "aligned"]
+__all__ = ["SYMBOLS", "symbol", "make_symbol", "labelled", "latex_name", "latex_names", "GREEK",
+           "PRINTER_SETTINGS", "to_latex", "result_lhs", "escape_text", "aligned", "COMPONENTS",
+           "speed_names", "Given"]
 
 GREEK = frozenset(
     "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
@@ -148,8 +151,58 @@ def make_symbol(name: str, **assumptions: bool) -> sp.Symbol:
     return sp.Symbol(name, **assumptions)
 
 
+def labelled(head: str, sub: str, label: str, after: bool = False,
+             **assumptions: bool) -> sp.Symbol:
+    r"""A quantity of one body, contact or joint: ``head`` with subscript ``sub``, the
+    label, and a ``+`` for a value after the impact. Every such symbol in 2-D and 3-D
+    is made here, so one name typesets one way.
+
+    Its name is ``head_sub^+_label`` after the impact and ``head_sub^label`` otherwise;
+    :func:`latex_name` reads it back as ``head_{sub,\mathrm{label}}^{+}``.
+
+    Examples
+    --------
+    >>> labelled("v", "x", "cue", after=True)
+    v_x^+_cue
+    >>> latex_name(labelled("P", "n", "cloth_object"))
+    'P_{n,\\mathrm{cloth\\_object}}'
+    """
+    return sp.Symbol(f"{head}_{sub}" + (f"^+_{label}" if after else f"^{label}"),
+                     **assumptions)
+
+
+def speed_names(label: str) -> tuple[str, str, str]:
+    """The names of a planar body's (vx, vy, omega) after the impact, by its label.
+
+    Examples
+    --------
+    >>> speed_names("ball")
+    ('v_x^+_ball', 'v_y^+_ball', 'omega_z^+_ball')
+    """
+    vx, vy, omega = (labelled(*COMPONENTS[k][:2], label, after=True).name
+                     for k in ("vx", "vy", "omega"))
+    return vx, vy, omega
+
+
+def _plain_name(name: str) -> tuple[str, str]:
+    """``V_1ix`` -> (``V``, ``1ix``) in LaTeX: the head and its subscript. A subscript
+    that is a word (``e_balls``, ``mu_cloth_object``) is set upright, as a label is;
+    one of letters that each stand for something (``ix``, ``1fz``, ``kix``: body k,
+    initial, along x) is not."""
+    head, _, tail = name.partition("_")
+    head_tex = "\\" + head if head in GREEK else head
+    if tail in GREEK:
+        return head_tex, "\\" + tail
+    if "_" in tail or (len(tail) > 2 and tail.isalpha()
+                       and not re.fullmatch(r"[A-Za-z]?[if][xyz]", tail)):
+        return head_tex, rf"\mathrm{{{escape_text(tail)}}}"
+    return head_tex, tail
+
+
 def latex_name(sym: sp.Symbol) -> str:
-    r"""LaTeX for a symbol name in the paper's style: ``V_1ix`` -> ``V_{1ix}``.
+    r"""LaTeX for a symbol name in the paper's style: ``V_1ix`` -> ``V_{1ix}``; a name
+    from :func:`labelled` sets its label upright after the subscript, and its sign as a
+    superscript: ``v_x^+_cue`` -> ``v_{x,\mathrm{cue}}^{+}``.
 
     Examples
     --------
@@ -157,13 +210,25 @@ def latex_name(sym: sp.Symbol) -> str:
     '\\theta'
     >>> latex_name(symbol("R_2y"))
     'R_{2y}'
+    >>> latex_name(sp.Symbol("omega_z^+_cue"))
+    '\\omega_{z,\\mathrm{cue}}^{+}'
+    >>> latex_name(sp.Symbol("u1^+"))
+    'u_{1}^{+}'
     """
-    head, _, tail = sym.name.partition("_")
-    head_tex = "\\" + head if head in GREEK else head
-    if not tail:
-        return head_tex
-    tail_tex = "\\" + tail if tail in GREEK else tail
-    return f"{head_tex}_{{{tail_tex}}}"
+    stem, hat, rest = sym.name.partition("^")
+    sign = ""
+    if hat and rest[:1] in ("+", "-"):
+        sign, rest = rest[0], rest[1:].removeprefix("_")
+    head, sub = _plain_name(stem)
+    if not sub and not hat:
+        return head
+    if not sub:  # a mechanics speed ``u1``: its digits are its subscript
+        found = re.fullmatch(r"([A-Za-z]+)(\d+)", stem)
+        if found:
+            head, sub = _plain_name(found[1])[0], found[2]
+    parts = [p for p in (sub, rf"\mathrm{{{escape_text(rest)}}}" if rest else "") if p]
+    text = f"{head}_{{{','.join(parts)}}}" if parts else head
+    return text + (f"^{{{sign}}}" if sign else "")
 
 
 def latex_names(expr: sp.Basic) -> dict[sp.Symbol, str]:
@@ -190,8 +255,20 @@ _LHS = {
     "impulse": "J",
     "impulse_t": "J_t",
 }
-_COMPONENT = {"vx": "V_x", "vy": "V_y", "omega": r"\omega", "normal_impulse": "P_n",
-              "tangential_impulse": "P_t"}
+# a result key's component -> the symbol, its subscript, and whether it is a value after
+# the impact; the equations' unknowns are made from the same table (labelled), so a
+# key prints the same in the laws and in the results, in 2-D and 3-D
+COMPONENTS: Mapping[str, tuple[str, str, bool]] = MappingProxyType({
+    "vx": ("v", "x", True), "vy": ("v", "y", True), "vz": ("v", "z", True),
+    "omega": ("omega", "z", True), "omega_x": ("omega", "x", True),
+    "omega_y": ("omega", "y", True), "omega_z": ("omega", "z", True),
+    "normal_impulse": ("P", "n", False), "tangential_impulse": ("P", "t", False),
+    "tangential_impulse_1": ("P", "t1", False), "tangential_impulse_2": ("P", "t2", False),
+    "impulse_x": ("Q", "x", False), "impulse_y": ("Q", "y", False),
+    "impulse_z": ("Q", "z", False), "moment_1": ("M", "1", False),
+    "moment_2": ("M", "2", False), "pivot_impulse_x": ("R", "x", False),
+    "pivot_impulse_y": ("R", "y", False),
+})
 
 
 def to_latex(expr: sp.Basic) -> str:
@@ -207,21 +284,23 @@ def to_latex(expr: sp.Basic) -> str:
 
 
 def result_lhs(key: str) -> str:
-    """The left-hand side for a result key: ``V_1fx`` -> ``V_{1fx}``, ``ball.vx`` ->
-    ``V_x^{(\\mathrm{ball})}``.
+    r"""The left-hand side for a result key: ``V_1fx`` -> ``V_{1fx}``, ``ball.vx`` ->
+    ``v_{x,\mathrm{ball}}^{+}`` (the same symbol the laws solve for).
 
     Examples
     --------
     >>> result_lhs("ball.omega")
-    '\\\\omega^{(\\\\mathrm{ball})}'
+    '\\omega_{z,\\mathrm{ball}}^{+}'
     >>> result_lhs("v_fx")
     'v_{fx}'
     """
     if key in _LHS:
         return _LHS[key]
-    body, dot, component = key.partition(".")
+    label, dot, component = key.partition(".")
     if dot:
-        return rf"{_COMPONENT.get(component, component)}^{{(\mathrm{{{escape_text(body)}}})}}"
+        head, sub, after = COMPONENTS.get(component, (component, "", False))
+        return latex_name(labelled(head, sub, label, after)) if sub else \
+            rf"{latex_name(sp.Symbol(head))}_{{\mathrm{{{escape_text(label)}}}}}"
     if key in SYMBOLS:
         return latex_name(SYMBOLS[key])
     return latex_name(sp.Symbol(key))
@@ -237,9 +316,61 @@ def escape_text(text: str) -> str:
     """
     for char, repl in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"),
                        ("$", r"\$"), ("#", r"\#"), ("_", r"\_"), ("{", r"\{"),
-                       ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}")):
+                       ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}"),
+                       ("<", r"\textless{}"), (">", r"\textgreater{}")):
         text = text.replace(char, repl)
     return text
+
+
+class Given(str):
+    """One line of a problem's givens: words with values in them. It reads as its text
+    (values in SymPy's plain form); the LaTeX document sets each value as mathematics.
+
+    A tuple is a vector in parentheses, a list one in brackets.
+
+    Examples
+    --------
+    >>> line = Given("ball: mass {}, velocity {}", sp.Symbol("m"), (sp.Symbol("v"), 0))
+    >>> line
+    'ball: mass m, velocity (v, 0)'
+    >>> line.parts
+    ('ball: mass ', m, ', velocity ', (v, 0), '')
+    >>> (line + Given(", spin {}", 0)).values
+    (m, (v, 0), 0)
+    """
+
+    template: str
+    values: tuple[Any, ...]
+
+    def __new__(cls, template: str, *values: Any) -> Given:
+        line = super().__new__(cls, template.format(*(_plain(v) for v in values)))
+        line.template, line.values = template, values
+        return line
+
+    def __add__(self, other: str) -> Given:  # type: ignore[override]
+        if isinstance(other, Given):
+            return Given(self.template + other.template, *self.values, *other.values)
+        return Given(self.template + other.replace("{", "{{").replace("}", "}}"),
+                     *self.values)
+
+    @property
+    def parts(self) -> tuple[Any, ...]:
+        """Words and values in turn: text, value, text, ..., text."""
+        words = self.template.split("{}")
+        out: list[Any] = [words[0]]
+        for value, text in zip(self.values, words[1:], strict=True):
+            out += [value, text]
+        return tuple(out)
+
+
+def _plain(value: Any) -> str:
+    """A value as the text line shows it."""
+    if isinstance(value, tuple):
+        return "(" + ", ".join(_plain(v) for v in value) + ")"
+    if isinstance(value, list):
+        return "[" + ", ".join(_plain(v) for v in value) + "]"
+    return str(value)
+
 
 
 def aligned(rows: list[tuple[str, str, str]]) -> str:
