@@ -245,3 +245,50 @@ def test_a_double_pendulums_tip_stopped_in_a_corner_by_two_sticking_contacts():
         assert np.allclose(on_tip, force, rtol=1e-12)
         assert any("impulses are not" in note for note in solution.notes)
         assert not solution.warnings
+
+
+def _fan_of_radicals() -> str:
+    """A striker (mass 1, inertia 1) meeting twelve bodies at once along the normals
+    (sqrt(k), +-1), k = 1..6: W's entries hold sqrt(2), sqrt(3), sqrt(5), sqrt(6) and
+    sqrt(7), a field of degree 16."""
+    text = ('[[bodies]]\nname = "s"\nshape = "rigid"\nmass = "1"\ninertia = "1"\n'
+            'position = ["0", "0"]\nvelocity = ["1", "1/3"]\n')
+    i = 0
+    for sign in ("1", "-1"):
+        for k in range(1, 7):
+            x, y = f"sqrt({k})/sqrt({k + 1})", f"{sign}/sqrt({k + 1})"
+            text += (f'[[bodies]]\nname = "b{i}"\nshape = "rigid"\nmass = "1"\n'
+                     f'inertia = "1"\nposition = ["2*{x}", "2*{y}"]\n'
+                     f'[[contacts]]\nname = "c{i}"\nbodies = ["s", "b{i}"]\n'
+                     f'point = ["{x}", "{y}"]\nnormal = ["sqrt({k})", "{sign}"]\n'
+                     'restitution = "1/2"\n')
+            i += 1
+    return text
+
+
+def test_a_fan_of_radical_normals_is_confirmed_in_one_field(tmp_path, capsys, monkeypatch):
+    """The acting set found in floating point is confirmed exactly in the field of the
+    data's roots, made once: two fields made apart and unified searched for an
+    isomorphism between them (PSLQ) for minutes at some hash seeds. Held against the
+    laws solved apart: momentum, and Newton's law (e = 1/2) at every contact, all
+    acting."""
+    import numpy as np
+    from sympy.polys.numberfields import subfield
+
+    from helpers import evaluated
+
+    def refuse(*_args, **_kwargs):
+        raise AssertionError("an isomorphism of number fields was searched for")
+
+    monkeypatch.setattr(subfield, "field_isomorphism", refuse)
+    got = evaluated(capsys, ["evaluate", scene_file(tmp_path, _fan_of_radicals())])
+    normals = [np.array([k**0.5, s]) / (k + 1) ** 0.5 for s in (1, -1) for k in range(1, 7)]
+    striker = np.array([got["s.vx"], got["s.vy"]])
+    pushes = [got[f"c{i}.normal_impulse"] for i in range(12)]
+    assert np.allclose(striker, [1, 1 / 3] - sum(p * n for p, n in zip(pushes, normals,
+                                                                        strict=True)))
+    for i, n in enumerate(normals):
+        other = np.array([got[f"b{i}.vx"], got[f"b{i}.vy"]])
+        assert np.allclose(other, pushes[i] * n) and pushes[i] > 0
+        closing = n @ np.array([1, 1 / 3])
+        assert abs((other - striker) @ n - closing / 2) < 1e-12

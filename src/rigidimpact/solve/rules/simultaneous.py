@@ -779,30 +779,31 @@ def _confirm_in_field(W: sp.Matrix, v: sp.Matrix, target: sp.Matrix,
         return sp.zeros(n, 1) if all(sp.N(v[i] - target[i], 50) >= 0 for i in range(n)) \
             else None
     A = list(acting)
-    block = W.extract(A, A)
-    rhs = sp.Matrix([target[i] - v[i] for i in A])
-    M, b = block.to_DM(extension=True), rhs.to_DM(extension=True)
-    M, b = M.unify(b)
+    # W and the speeds taken into one field at once: two fields made apart and unified
+    # cost a search for an isomorphism between them (PSLQ), minutes for four roots
+    whole = sp.Matrix.hstack(W, v - target).to_DM(extension=True).to_field()
+    K, rows = whole.domain, whole.to_list()
+    block = DomainMatrix([[rows[i][j] for j in A] for i in A], (len(A), len(A)), K)
+    rhs = DomainMatrix([[-rows[i][n]] for i in A], (len(A), 1), K)
     try:
-        solved = M.to_field().lu_solve(b.to_field()).to_Matrix()
+        solved = block.lu_solve(rhs).to_list()
     except (ZeroDivisionError, ValueError, sp.polys.matrices.exceptions.DMError):
         return None  # a singular block
-    P = sp.zeros(n, 1)
+    P = [K.zero] * n
     for k, i in enumerate(A):
-        P[i] = sp.nsimplify(solved[k]) if solved[k].has(sp.Float) else solved[k]
-    after = (W * P + v - target).to_DM(extension=True).to_Matrix()
+        P[i] = solved[k][0]
 
-    def positive(x: sp.Expr, strict: bool) -> bool:
-        x = sp.expand(x)
-        if x == 0:
+    def positive(x: Any, strict: bool) -> bool:
+        if x == K.zero:
             return not strict
-        return bool(sp.N(x, 50) > 0)
+        return bool(sp.N(K.to_sympy(x), 50) > 0)
 
     if not all(positive(P[i], True) for i in A):
         return None
-    if not all(positive(after[i], False) for i in range(n) if i not in A):
+    if not all(positive(sum((rows[i][j] * P[j] for j in A), rows[i][n]), False)
+               for i in range(n) if i not in A):
         return None
-    return P.applyfunc(sp.radsimp)
+    return sp.Matrix([sp.radsimp(K.to_sympy(x)) for x in P])
 
 
 def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
