@@ -699,11 +699,23 @@ def _in_field(*matrices: Any) -> tuple[Any, ...] | None:
     """
     if any(m.free_symbols or m.atoms(sp.sin, sp.cos, sp.tan) for m in matrices):
         return None
-    found = [sp.Matrix(m).to_DM(extension=True) for m in matrices]
-    first = found[0]
-    for m in found[1:]:
-        first, _ = first.unify(m)
-    return tuple(m.convert_to(first.domain) for m in found)
+    from sympy.polys.constructor import construct_domain
+    from sympy.polys.matrices import DomainMatrix
+
+    # one field for every entry at once: fields made apart and unified cost a search
+    # for an isomorphism between them (PSLQ), minutes for a few roots
+    shaped = [sp.Matrix(m) for m in matrices]
+    nonzero = [m.todok() for m in shaped]  # sparse: only the entries there are
+    field, entries = construct_domain([x for d in nonzero for x in d.values()],
+                                      extension=True)
+    out, at = [], 0
+    for m, d in zip(shaped, nonzero, strict=True):
+        rows: dict[int, dict[int, Any]] = {}
+        for (i, j), x in zip(d, entries[at:at + len(d)], strict=True):
+            rows.setdefault(i, {})[j] = x
+        at += len(d)
+        out.append(DomainMatrix(rows, m.shape, field))
+    return tuple(out)
 
 
 def _full_rank(S: sp.Matrix) -> bool:
