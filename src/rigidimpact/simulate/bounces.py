@@ -373,6 +373,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     t = sp.Integer(0)
     exact = all(x.is_Rational for s in ones for x in (*s.c, *s.v, *s.w, s.R)) and \
         all(x.is_Rational for x in a)
+    _not_through(ones, flats, exact)
     events: list[Event] = []
     snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
     count = 0
@@ -594,6 +595,20 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             due = ("plane", s.name, f[0].name)
         else:
             due = ("pair", first[1].name, first[2].name)
+
+
+def _not_through(ones: Sequence[_Sphere], flats: Sequence[tuple], exact: bool) -> None:
+    """Refuse, in one line naming the two, a sphere that starts through a plane: its
+    centre nearer the plane than its radius, or on the far side (touching is lying)."""
+    for s in ones:
+        for f in flats:
+            gap = _gap(f, s.c, s.R)
+            slack = 0 if exact else sp.Float(10) ** (5 - DIGITS) * (1 + max(abs(x) for x in s.c))
+            if gap < -slack:
+                raise InputError(f"{f[0].name}.point", f"{s.name} starts through the plane "
+                                 f"{f[0].name}: its centre is {float(gap + s.R):.6g} from "
+                                 f"the plane on the sphere's side, less than its radius "
+                                 f"{float(s.R):.6g}")
 
 
 def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:
