@@ -3,9 +3,14 @@ to rolling where a bounce leaves it lying on the floor; against hand derivations
 
 from __future__ import annotations
 
+import random
+from pathlib import Path
+
 import pytest
 import sympy as sp
 
+from helpers import scene_file
+from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import Body3
@@ -156,3 +161,41 @@ def test_a_sliding_ball_strikes_a_cushion_at_an_irrational_time():
     assert abs(hit.position[0] - R(1, 20)) < 1e-30 and hit.velocity[0] < 0
     assert all(e.position[0] <= R(1, 20) + 1e-30 for e in run.events)
     assert run.position[0] < R(1, 20)
+
+
+def test_a_ball_that_starts_through_a_rail_is_refused_naming_both(tmp_path, capsys):
+    # the stun shot with its far rail moved from y = 1/2 to y = -0.01: the cue ball's
+    # centre (y = 0) is on the rail's far side, the object ball's (y = 0.0342) 0.0442
+    # beyond it; the run used to ignore the rail and roll the object ball on to y = 2.26
+    text = Path("derivations/stun-shot.toml").read_text(encoding="utf-8")
+    moved = text.replace('point = ["0", "1/2", "0"]', 'point = ["0", "-0.01", "0"]', 1)
+    assert moved != text
+    assert main(["simulate", scene_file(tmp_path, moved)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "far_rail" in err and "cue starts through" in err
+
+
+def test_random_starts_near_a_plane_are_refused_exactly_when_through():
+    # seed 2: a sphere of radius r whose centre is s from a plane, on the side the
+    # plane's normal points to for the sphere (normal along a rational unit vector; the
+    # contact names the sphere first or second); it starts through the plane exactly
+    # when s < r, touching (lying, or leaving) when s = r
+    rng = random.Random(2)
+    for _ in range(40):
+        p, q = R(rng.randint(-9, 9), rng.randint(1, 9)), R(rng.randint(-9, 9), rng.randint(1, 9))
+        k = 1 + p * p + q * q
+        n = sp.Matrix([2 * p / k, 2 * q / k, (p * p + q * q - 1) / k])
+        r = R(rng.randint(1, 20), 10)
+        s = r * rng.choice((R(-3, 2), 0, R(1, 2), R(99, 100), 1, R(101, 100), 2))
+        at = sp.Matrix([rng.randint(-5, 5) for _ in range(3)])
+        first = rng.random() < 0.5
+        ball = Body3.sphere(1, r, tuple(at + s * n), name="ball")
+        plane = Contact(normal=tuple(-n if first else n),
+                        bodies=("ball", "wall") if first else ("wall", "ball"),
+                        point=tuple(at), name="wall", restitution=R(1, 2))
+        if s < r:
+            with pytest.raises(InputError, match="ball starts through the plane wall"):
+                bounces(ball, (plane,), gravity=(0, 0, 0), horizon=1)
+        else:
+            assert bounces(ball, (plane,), gravity=(0, 0, 0), horizon=1).stopped in \
+                ("horizon", "flying", "rolling", "rest")

@@ -185,8 +185,10 @@ def _first_root(a: sp.Expr, b: sp.Expr, c: sp.Expr, after: sp.Expr) -> sp.Expr |
         disc = b * b - 4 * a * c
         if disc < 0:
             return None
-        root = sp.sqrt(disc)
-        roots = [(-b - root) / (2 * a), (-b + root) / (2 * a)]
+        # the two roots as q/a and c/q: the textbook formula loses the small root to
+        # cancellation in floating point when b^2 is much larger than |4 a c|
+        q = -(b + (1 if b >= 0 else -1) * sp.sqrt(disc)) / 2
+        roots = [q / a, c / q] if q != 0 else [sp.Integer(0)]
     best = None
     for t in roots:
         t = sp.nsimplify(t) if t.is_Rational else t
@@ -201,29 +203,77 @@ def _meeting(d: sp.Matrix, u: sp.Matrix, acc: sp.Matrix, reach: sp.Expr,
     """The earliest time t > 0 at which two centres, `d` apart (second less first), the
     second moving at `u` and accelerating at `acc` relative to the first, come within
     `reach` of each other: the first root of odd multiplicity (a crossing, not a graze)
-    of the quartic ``|d + u t + acc t^2/2|^2 - reach^2``. Exact (rational or an
-    algebraic root) where the data are rational; else in floating point, a root where
-    the distance is closing."""
+    of the quartic ``|d + u t + acc t^2/2|^2 - reach^2`` where the distance is closing
+    (:func:`first_closing_root`). Exact (rational, or an algebraic root to
+    :data:`DIGITS` digits) where the data are rational; else the root of the quartic
+    whose coefficients are the floats' own values, to :data:`DIGITS` digits."""
+    def rational(x: sp.Expr) -> sp.Rational:
+        """A datum as an exact rational: itself, a float's own binary value, or an
+        algebraic number to DIGITS + 10 digits."""
+        x = x if x.is_Rational or x.is_Float else sp.N(x, DIGITS + 10)
+        if not (x.is_Rational or (x.is_Float and x.is_finite)):
+            raise InputError("bodies", "two spheres' paths are not finite real numbers")
+        return sp.Rational(x)
+
+    exact = exact and all(x.is_Rational for x in (*d, *u, *acc, reach))
+    d, u, acc = (sp.Matrix([rational(x) for x in y]) for y in (d, u, acc))
+    # |d + u t + acc t^2/2|^2 - reach^2, its coefficients from the highest power down
+    coeffs = [acc.dot(acc) / 4, u.dot(acc), u.dot(u) + d.dot(acc), 2 * d.dot(u),
+              d.dot(d) - rational(reach) ** 2]
+    return first_closing_root(coeffs, factor=exact)
+
+
+def first_closing_root(coeffs: Sequence[Any], factor: bool = True) -> sp.Expr | None:
+    """The first root t > 0 of the polynomial with these coefficients (highest power
+    first; exact rationals, or floats taken at their exact binary values) at which it
+    goes from positive to negative: a crossing of odd multiplicity, never a graze.
+
+    The real roots are isolated exactly (SymPy's real-root isolation on the
+    square-free factors, no numerical root finder that may fail to converge), and the
+    root is a rational where it is one (with `factor`, the factors irreducible over
+    the rationals) or else refined by bisection to :data:`DIGITS` digits.
+
+    Examples
+    --------
+    >>> first_closing_root([1, -5, 6])   # (t - 2)(t - 3): below zero from 2 to 3
+    2
+    >>> first_closing_root([1, -2, 1])   # (t - 1)^2 touches zero and rises: a graze
+    >>> first_closing_root([-1, 0, 2])   # 2 - t^2 goes down through sqrt(2)
+    1.414213562373095048801688724209698078570
+    """
     t = sp.Dummy("t")
-    gap = (d + u * t + acc * t ** 2 / 2)
-    quartic = sp.Poly(sp.expand(gap.dot(gap) - reach ** 2), t)
-    if quartic.degree() < 1:
+    poly = sp.Poly([sp.Rational(x) for x in coeffs], t, domain=sp.QQ)
+    if poly.is_zero or poly.degree() < 1:
         return None
-    if exact and all(x.is_Rational for x in quartic.all_coeffs()):
-        roots = [r for factor, times in quartic.sqf_list()[1] if times % 2
-                 for r in factor.real_roots()]
-        ahead = [r for r in roots if r > 0]
-        return min(ahead) if ahead else None
-    quartic = sp.Poly([sp.N(x, DIGITS + 10) for x in quartic.all_coeffs()], t)
-    slope = quartic.diff(t)
-    best = None
-    for r in quartic.nroots(n=DIGITS, maxsteps=200):
-        if abs(sp.im(r)) > sp.Float(10) ** (5 - DIGITS) * (1 + abs(r)):
+    factors = poly.factor_list()[1] if factor else poly.sqf_list()[1]
+    odd = [part for part, times in factors if times % 2]  # even roots: grazes
+    if not odd:
+        return None
+    # the sign just after t = 0: the lowest-order term that is not zero
+    sign = next(sp.sign(c) for c in reversed(poly.all_coeffs()) if c != 0)
+    # isolated together, so the intervals of different factors do not overlap
+    for (lo, hi), which in sp.intervals(odd):
+        if hi <= 0:
             continue
-        r = sp.re(r)
-        if r > 0 and slope.eval(r) < 0 and (best is None or r < best):
-            best = r
-    return best
+        if sign > 0:
+            part = odd[next(iter(which))]
+            if part.degree() == 1:  # a rational root, exactly
+                low, high = part.all_coeffs()
+                return -high / low
+            return lo if lo == hi else _refined(part, lo, hi)
+        sign = -sign
+    return None
+
+
+def _refined(part: sp.Poly, lo: sp.Rational, hi: sp.Rational) -> sp.Float:
+    """The one root of the square-free `part` in (lo, hi), hi > 0, to DIGITS digits:
+    the interval halved until its width is below 10^-(DIGITS + 5) of its upper end."""
+    lo = max(lo, sp.Integer(0))
+    while hi - lo > hi * sp.Rational(1, 10 ** (DIGITS + 5)):
+        lo, hi = part.refine_root(lo, hi, steps=8)
+        if lo == hi:
+            return sp.Float(lo, DIGITS)
+    return sp.Float((lo + hi) / 2, DIGITS)
 
 
 class _Sphere:
@@ -323,6 +373,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     t = sp.Integer(0)
     exact = all(x.is_Rational for s in ones for x in (*s.c, *s.v, *s.w, s.R)) and \
         all(x.is_Rational for x in a)
+    _not_through(ones, flats, exact)
     events: list[Event] = []
     snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
     count = 0
@@ -544,6 +595,20 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             due = ("plane", s.name, f[0].name)
         else:
             due = ("pair", first[1].name, first[2].name)
+
+
+def _not_through(ones: Sequence[_Sphere], flats: Sequence[tuple], exact: bool) -> None:
+    """Refuse, in one line naming the two, a sphere that starts through a plane: its
+    centre nearer the plane than its radius, or on the far side (touching is lying)."""
+    for s in ones:
+        for f in flats:
+            gap = _gap(f, s.c, s.R)
+            slack = 0 if exact else sp.Float(10) ** (5 - DIGITS) * (1 + max(abs(x) for x in s.c))
+            if gap < -slack:
+                raise InputError(f"{f[0].name}.point", f"{s.name} starts through the plane "
+                                 f"{f[0].name}: its centre is {float(gap + s.R):.6g} from "
+                                 f"the plane on the sphere's side, less than its radius "
+                                 f"{float(s.R):.6g}")
 
 
 def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:

@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -76,17 +76,20 @@ class Trajectory:
     t: np.ndarray
     y: np.ndarray
     parts: tuple
+    # the contact point in the scene's frame: the run is followed seen from it
+    origin: np.ndarray = field(default_factory=lambda: np.zeros(2))
 
     def points(self) -> dict[str, np.ndarray]:
-        """Each body's tracked points over time: name -> array (samples, 2)."""
+        """Each body's tracked points over time, in the scene's frame: name -> array
+        (samples, 2)."""
         out = {}
         for p in self.parts:
             s = p.slot
             if p.kind == "spring":
-                out[f"{p.name}.A"] = self.y[:, s:s + 2]
-                out[f"{p.name}.B"] = self.y[:, s + 2:s + 4]
+                out[f"{p.name}.A"] = self.y[:, s:s + 2] + self.origin
+                out[f"{p.name}.B"] = self.y[:, s + 2:s + 4] + self.origin
             else:
-                out[p.name] = self.y[:, s:s + 2]
+                out[p.name] = self.y[:, s:s + 2] + self.origin
         return out
 
     def contact_velocity(self, name: str) -> np.ndarray:
@@ -251,8 +254,9 @@ def _energy(parts: list[_Part], y: np.ndarray, g: float = 0.0) -> tuple[float, f
     return kinetic, stored
 
 
-def _final(part: _Part, y: np.ndarray) -> dict[str, float]:
-    """Centre velocity and spin (angular momentum about the centre over rigid inertia)."""
+def _final(part: _Part, y: np.ndarray, origin: np.ndarray) -> dict[str, float]:
+    """Centre velocity and spin (angular momentum about the centre over rigid inertia),
+    and the centre in the scene's frame (the run's seen from the contact point `origin`)."""
     s = part.slot
     if part.kind == "point":
         v, w, c = y[s + 2:s + 4], 0.0, y[s:s + 2]
@@ -264,8 +268,8 @@ def _final(part: _Part, y: np.ndarray) -> dict[str, float]:
         each = part.mass / 2
         w = each * (_cross(a - c, va - v) + _cross(b - c, vb - v)) / part.inertia
     return {f"{part.name}.vx": float(v[0]), f"{part.name}.vy": float(v[1]),
-            f"{part.name}.omega": float(w), f"{part.name}.x": float(c[0]),
-            f"{part.name}.y": float(c[1])}
+            f"{part.name}.omega": float(w), f"{part.name}.x": float(c[0] + origin[0]),
+            f"{part.name}.y": float(c[1] + origin[1])}
 
 
 def choose_integrator(fast: float, slow: float, tolerance: float) -> dict[str, Any]:
@@ -650,8 +654,9 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
                          " (a rigid contact with e near 0 sticks; ask for contact-compliance)")
     events.append({"kind": "end", "t": t, "why": why})
     final: dict[str, float] = {}
+    origin = as_array(scene.contact.point, values)
     for p in parts:
-        final |= _final(p, y)
+        final |= _final(p, y, origin)
     final["t"] = t
     kinetic0, stored0 = _energy(parts, y0, g)
     kinetic, stored = _energy(parts, y, g)
@@ -663,7 +668,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
               "balance_error": balanced - (kinetic0 + stored0) - float(y[-1])}
     _check_balance(energy, plan.settings["tolerance"], integrator["method"])
     details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
-    track = Trajectory(np.array(times), np.array(states), tuple(parts))
+    track = Trajectory(np.array(times), np.array(states), tuple(parts), origin)
     return Outcome(plan, final, events, time.perf_counter() - start, steps, details, track)
 
 

@@ -17,6 +17,8 @@ import time
 from dataclasses import replace
 from typing import Any
 
+import sympy as sp
+
 from rigidimpact.errors import InputError
 from rigidimpact.model.shapes import is_segment
 from rigidimpact.scenes.scene import Scene
@@ -132,7 +134,9 @@ def run(scene: Scene | SpaceScene) -> Outcome:
     if any(step.model == "compliant" for step in plan.steps):
         return finite(run_compliant(scene, plan, values, start))
     solution = scene.impact().solve()
-    after = (solution.first_after, solution.second_after)
+    # solved seen from the contact point (Scene.pair); followed in the scene's own frame
+    origin = sp.ImmutableMatrix(scene.contact.point)
+    after = (solution.first_after.shifted(origin), solution.second_after.shifted(origin))
     g = plan.settings["g"] if "gravity" in plan.effects else 0.0
     flyers = [replace(flyer(b, values), gravity=g) for b in after]
     events: list[dict[str, Any]] = [{"kind": "impact", "t": 0.0}]
