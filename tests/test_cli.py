@@ -18,6 +18,7 @@ KEYS = {
     "discs": {"V_1fx", "V_2fx"},
     "two-body": {"V_1fx", "V_1fy", "omega_1fz", "V_2fx", "V_2fy", "omega_2fz"},
 }
+KEYS_ORDER = ["v_fx", "V_x", "omega_z", "f", "energy_loss_fraction"]
 SYMBOLS = {
     "barbell": {"m", "M", "L", "theta", "e", "v_ix"},
     "sticking": {"m", "M", "L", "theta", "v_ix"},
@@ -290,11 +291,102 @@ def test_a_sweep_of_chosen_keys_names_only_the_files_it_wrote(tmp_path, capsys):
                  "V_x", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     written = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
-    assert written == ["V_x.npy", "summary.json"]
+    assert written == ["V_x.npy", "summary.json", "table.csv"]
+    assert (out / "table.csv").read_text().splitlines()[0] == "theta,V_x"
     named = [line.split(".npy")[0].strip() + ".npy" for line in printed.splitlines()
              if ".npy:" in line]
     assert named == ["V_x.npy"]
     assert "energy_loss_fraction (checked for the warnings, not written)" in printed
+
+
+_BARBELL_SET = ["--set", "m=1", "--set", "M=2", "--set", "e=1/2", "--set", "v_ix=1",
+                "--set", "L=1"]
+
+
+def _paper_barbell(theta, m=1.0, M=2.0, e=0.5, v=1.0, L=1.0):
+    """The paper's eq. (5) and (7), typed here: f, then the motion after and the loss."""
+    import math
+
+    s2 = math.sin(theta) ** 2
+    f = (1 + e) * m / (2 * M + m * (1 + s2))
+    V = f * v
+    return {"v_fx": v - 2 * M * V / m, "V_x": V, "omega_z": V * math.sin(theta) / L,
+            "f": f, "energy_loss_fraction": (1 - e * e) / (1 + m / (2 * M) * (1 + s2))}
+
+
+def test_a_sweep_writes_a_table_and_draws_each_result(tmp_path, capsys):
+    import csv
+    import math
+
+    import numpy as np
+
+    out, png = tmp_path / "sweep", tmp_path / "curves.png"
+    assert main(["sweep", "barbell", "--grid", "theta=0:pi/2:9", *_BARBELL_SET,
+                 "--out", str(out), "--plot", str(png)]) == 0
+    assert "table.csv: one row a set" in capsys.readouterr().out
+    with open(out / "table.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert list(rows[0]) == ["theta", *KEYS_ORDER]
+    assert [float(r["theta"]) for r in rows] == list(np.linspace(0, math.pi / 2, 9))
+    for row in rows:  # each value against the paper, and the same number as the .npy
+        expected = _paper_barbell(float(row["theta"]))
+        for key, value in expected.items():
+            assert float(row[key]) == pytest.approx(value, rel=1e-12, abs=1e-15)
+    for key in KEYS_ORDER:
+        assert [float(r[key]) for r in rows] == np.load(out / f"{key}.npy").tolist()
+    assert json.loads((out / "summary.json").read_text())["table"] == "table.csv"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_sweep_solved_set_by_set_writes_its_table_and_figure(tmp_path, capsys):
+    import csv
+
+    out, png = tmp_path / "sweep", tmp_path / "rod.png"
+    assert main(["sweep", str(DERIVATIONS / "rod-slides-flat.toml"), "--grid",
+                 "mu=0:1/4:3", "--out", str(out), "--plot", str(png)]) == 0
+    with open(out / "table.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [float(r["mu"]) for r in rows] == [0.0, 0.125, 0.25]
+    for row in rows:  # both ends slide: Coulomb's friction is mu times the normal impulse
+        for end in ("left", "right"):
+            normal = float(row[f"{end}.normal_impulse"])
+            assert normal > 0
+            assert abs(float(row[f"{end}.tangential_impulse"])) == pytest.approx(
+                float(row["mu"]) * normal, abs=1e-12)
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_sweep_curves_draw_every_output_against_the_symbol():
+    import numpy as np
+
+    from rigidimpact.outputs.plots import SWEEP_POINTS, sweep_curves
+
+    x = np.linspace(0.0, 2.0, 3 * SWEEP_POINTS)
+    fig = sweep_curves("theta", x, {"a": np.sin(x), "b": x ** 2, "c": np.cos(x)})
+    assert [ax.get_ylabel() for ax in fig.axes] == ["a", "b", "c"]
+    for ax, f in zip(fig.axes, (np.sin, np.square, np.cos), strict=True):
+        [line] = ax.get_lines()
+        xs, ys = line.get_xdata(), line.get_ydata()
+        assert len(xs) <= SWEEP_POINTS + 1 and xs[0] == 0.0 and xs[-1] == 2.0
+        assert np.array_equal(ys, f(xs))
+
+
+@pytest.mark.parametrize("extra, said", [
+    (["--plot", "{tmp}/nowhere/c.png"], "--plot: no such folder"),
+    (["--plot", "{tmp}/c.pdf"], "--plot: expected a .png"),
+    (["--plot", "{tmp}/c.png", "--grid", "e=0:1:3"], "exactly one --grid (got 2)"),
+    (["--plot", "{tmp}/out/c.png"], "put the figure beside it"),
+])
+def test_a_sweep_refuses_a_bad_plot_before_writing_anything(tmp_path, capsys, extra, said):
+    argv = ["sweep", "barbell", "--grid", "theta=0:1:3", *_BARBELL_SET,
+            "--out", str(tmp_path / "out"), *(a.replace("{tmp}", str(tmp_path)) for a in extra)]
+    if "e=0:1:3" in extra:  # e is swept, not set
+        i = argv.index("e=1/2")
+        del argv[i - 1:i + 1]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and said in err[0] and "Traceback" not in err[0]
+    assert list(tmp_path.iterdir()) == []  # no folder, no figure, nothing half-written
 
 
 def test_a_linkage_explains_its_flight_and_counts_its_steps(capsys):

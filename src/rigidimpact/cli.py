@@ -634,7 +634,8 @@ def _check_plot_path(path: Path, suffixes: tuple[str, ...] = (".png",),
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
-    """Evaluate over a grid, chunk by chunk, into DIR/KEY.npy and DIR/summary.json."""
+    """Evaluate over a grid, chunk by chunk, into DIR/KEY.npy, DIR/summary.json and
+    DIR/table.csv; with --plot, every written result against the swept symbol."""
     import itertools
     import time
 
@@ -642,6 +643,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from rigidimpact.paper.problems import PROBLEMS
     from rigidimpact.scenes.scene import load_scene
 
+    _check_sweep_plot(args)
     defaults: Mapping[Any, Any] = {}
     if args.target in PROBLEMS:
         derivation = _derivation(args.target)
@@ -693,6 +695,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if summary.get("workers"):
         print(f"rigidimpact: note: {summary['workers']}", file=sys.stderr)
+    _sweep_plot(args, summary, [k for k in summary["results"]
+                                if not args.keys or k in chosen])
     if args.json:
         _print_json(summary)
         return 0
@@ -705,7 +709,54 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                   f" to {stat['max']!r}{extra}")
         else:
             print(f"  {key}.npy: from {stat['min']!r} to {stat['max']!r}{extra}")
+    _say_table(args, summary)
     return 0
+
+
+def _check_sweep_plot(args: argparse.Namespace) -> None:
+    """--plot is checked before any work: a PNG in a folder that exists, one --grid."""
+    if not args.plot:
+        return
+    if Path(args.out).resolve() in Path(args.plot).resolve().parents:
+        raise InputError("--plot", "the --out folder is replaced whole; put the figure "
+                         "beside it, not in it")
+    _check_plot_path(Path(args.plot))
+    if len(args.grid) != 1:
+        raise InputError("--plot", f"draws each result against one swept symbol; give "
+                         f"exactly one --grid (got {len(args.grid)})")
+
+
+def _sweep_plot(args: argparse.Namespace, summary: dict[str, Any], keys: list[str]) -> None:
+    """Each written result against the swept symbol, read back from the --out folder."""
+    if not args.plot:
+        return
+    import numpy as np
+
+    _files_only()
+    from rigidimpact.figures import close
+    from rigidimpact.outputs.atomic import write_file
+    from rigidimpact.outputs.plots import sweep_curves
+
+    [name] = summary["order"]
+    span = summary["grid"][name]
+    x = np.linspace(span["start"], span["stop"], span["count"])
+    outputs = {k: np.load(Path(args.out) / f"{k}.npy", mmap_mode="r") for k in keys}
+    figure = sweep_curves(name, x, outputs,
+                          f"{Path(args.target).name}: every result against {name}")
+    write_file(Path(args.plot), lambda temporary: figure.savefig(temporary, format="png"),
+               "--plot")
+    close(figure)
+    print(f"rigidimpact: figure written to {args.plot}", file=sys.stderr)
+
+
+def _say_table(args: argparse.Namespace, summary: dict[str, Any]) -> None:
+    from rigidimpact.outputs.sweep import MAX_TABLE, TABLE
+
+    if summary.get("table"):
+        print(f"  {TABLE}: one row a set (the swept symbols, then each result)")
+    else:
+        print(f"  {TABLE} not written: {summary['sets']} sets is past {MAX_TABLE:.0e} rows "
+              "(the .npy files hold every value)")
 
 
 def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
@@ -719,6 +770,7 @@ def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
     if args.keys or args.backend != "numpy":
         raise InputError("--keys" if args.keys else "--backend", "a scene with several "
                          "contacts is solved set by set: every result is written")
+    _check_sweep_plot(args)
     _check_workers(args)
     grid = parse_grid(args.grid, scene.symbols)
     fixed: dict[str, float] = {}
@@ -744,11 +796,13 @@ def _point_sweep(args: argparse.Namespace, scene: Any) -> int:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
     if summary.get("workers"):
         print(f"rigidimpact: note: {summary['workers']}", file=sys.stderr)
+    _sweep_plot(args, summary, list(summary["results"]))
     if args.json:
         _print_json(summary)
         return 0
     print(f"{summary['sets']} parameter sets, each solved with numbers, in "
           f"{summary['seconds']:.3g} s; written to {args.out}/")
+    _say_table(args, summary)
     return 0
 
 
@@ -888,7 +942,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_cmd_bench)
 
     p = sub.add_parser("sweep", help="every result over a grid of parameter sets, into "
-                                     ".npy files (chunked, bounded memory)")
+                                     ".npy files (chunked, bounded memory), a CSV table "
+                                     "and, with --plot, a figure")
     p.add_argument("target", metavar="NAME-OR-SCENE")
     p.add_argument("--grid", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                    help="a range for a symbol (repeat; the grid is their product)")
@@ -897,7 +952,11 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--keys", metavar="KEY,KEY", help="only these results (default: all)")
     p.add_argument("--backend", default="numpy", choices=("numpy", "numba"),
                    help="numba (an optional extra): a compiled loop over the cores")
-    p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--out", required=True, metavar="DIR",
+                   help="the folder written whole: KEY.npy, summary.json and table.csv "
+                        "(one row a set, up to 1e6 sets)")
+    p.add_argument("--plot", metavar="PNG", help="draw each result against the swept "
+                   "symbol (one --grid) to a PNG file")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--workers", type=int, metavar="N",
                    help="on N local Dask workers where the sets repay them (else "

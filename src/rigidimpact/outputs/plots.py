@@ -25,7 +25,7 @@ from rigidimpact.symbolic.notation import symbol
 __all__ = ["omega_vs_theta", "energy_loss_vs_theta", "critical_angle_graphical",
            "restrike_map", "strobe", "trajectories", "accuracy_vs_time", "oblique_discs",
     "convergence", "naive_vs_stable", "routh_diagram", "animation", "experiment_comparison",
-           "impact_picture", "draw_bodies", "space_views", "FIGSIZE", "DPI"]
+           "impact_picture", "draw_bodies", "space_views", "sweep_curves", "FIGSIZE", "DPI"]
 
 FIGSIZE = (8.0, 4.0)
 DPI = 100
@@ -401,6 +401,47 @@ def impulse_vs_offset(offsets: np.ndarray, impulses: dict[str, np.ndarray]) -> F
     ax.set_title("General smooth impact: an off-centre hit gives a smaller impulse")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+SWEEP_POINTS = 20_000  # points drawn a curve at most: a longer sweep is drawn strided
+
+
+def sweep_curves(name: str, x: np.ndarray, outputs: Mapping[str, np.ndarray],
+                 title: str = "") -> Figure:
+    """Each output of a sweep against the swept symbol `name`, one panel an output.
+
+    A sweep longer than :data:`SWEEP_POINTS` is drawn at evenly strided sets (its ends
+    kept); values that are not finite leave gaps.
+
+    Examples
+    --------
+    >>> x = np.linspace(0, 1, 5)
+    >>> fig = sweep_curves("theta", x, {"a": x, "b": x ** 2})
+    >>> [ax.get_ylabel() for ax in fig.axes], fig.axes[-1].get_xlabel()
+    (['a', 'b'], 'theta')
+    """
+    count = len(outputs)
+    columns = 1 if count <= 4 else 2
+    rows = -(-count // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(FIGSIZE[0], max(2.0, 1.8 * rows) + 0.8),
+                             dpi=DPI, sharex=True, squeeze=False)
+    step = max(1, -(-len(x) // SWEEP_POINTS))
+    picked = np.unique(np.r_[np.arange(0, len(x), step), len(x) - 1])
+    for ax, (key, values) in zip(axes.flat, outputs.items(), strict=False):
+        ax.plot(np.asarray(x)[picked], np.asarray(values)[picked], lw=1.2)
+        ax.set_ylabel(key, fontsize="small")
+        ax.grid(alpha=0.3)
+    for ax in list(axes.flat)[count:]:
+        ax.set_visible(False)
+    for ax in axes[-1]:
+        ax.set_xlabel(name)
+    if count > columns:  # the last row's empty panel leaves its neighbour above unlabelled
+        for ax in axes[-2][count % columns or columns:]:
+            ax.set_xlabel(name)
+            ax.xaxis.set_tick_params(labelbottom=True)
+    fig.suptitle(title or f"every result against {name}", fontsize="medium")
     fig.tight_layout()
     return fig
 

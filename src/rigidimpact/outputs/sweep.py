@@ -7,7 +7,9 @@ other symbols fixed by ``--set`` or the scene's ``[values]``. The fused kernel
 made from its indices (the grid itself is never built), and each result is written
 into a memory-mapped ``.npy`` file, so memory stays bounded however many sets there are.
 The folder is written whole or not at all, with ``summary.json`` (the grid, each
-result's least and greatest value and how many values were not finite, the time).
+result's least and greatest value and how many values were not finite, the time) and,
+up to :data:`MAX_TABLE` sets, ``table.csv``: one row a set, the swept symbols' values
+then each result (:func:`write_table`).
 
 Examples
 --------
@@ -39,7 +41,7 @@ from rigidimpact.symbolic.expr import parse_expression
 from rigidimpact.symbolic.numeric import fused
 
 __all__ = ["parse_grid", "run_sweep", "sweep_block", "run_point_sweep", "point_block",
-           "MAX_SETS", "BLOCK", "MAX_POINTS", "POINTS"]
+           "write_table", "MAX_SETS", "BLOCK", "MAX_POINTS", "POINTS", "MAX_TABLE", "TABLE"]
 
 BLOCK = 1 << 20  # sets a Dask task
 MAX_POINTS = 10**6  # scenes solved with numbers: each set is one solve (a compliant
@@ -47,6 +49,8 @@ POINTS = 64  # run takes about 0.1 s); sets a block in one process (a step of pr
 FEWEST = 8  # sets the smallest Dask task takes (its blocks shrink as the work ends)
 
 MAX_SETS = 10**9  # beyond this a sweep runs for many minutes and writes 8 GB per result
+MAX_TABLE = 10**6  # rows of table.csv at most (about 25 bytes a value); past it, .npy only
+TABLE = "table.csv"
 
 
 def parse_grid(specs: Sequence[str], symbols: Mapping[str, sp.Symbol]) -> dict[str, np.ndarray]:
@@ -173,13 +177,15 @@ def run_sweep(results: Mapping[str, sp.Expr], grid: Mapping[str, np.ndarray],
             "order": list(grid), "shape": list(shape), "sets": total, "backend": backend,
             "seconds": seconds, "sets_per_s": total / seconds if seconds > 0 else None,
             "results": stats, "warnings": sweep_warnings(stats, total)})
+        table = write_table(staging / TABLE, grid, {k: outputs[k] for k in written})
+        summary["table"] = TABLE if table else None
         del outputs
         (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
                                               encoding="utf-8")
-        return [f"{k}.npy" for k in written] + ["summary.json"]
+        return [f"{k}.npy" for k in written] + ["summary.json"] + ([TABLE] if table else [])
 
     try:
-        replace_folder(Path(folder), fill, (".npy", ".json"))
+        replace_folder(Path(folder), fill, (".npy", ".json", ".csv"))
     finally:
         if scratch is not None:
             scratch.cleanup()
@@ -294,12 +300,51 @@ def run_point_sweep(path: str, grid: Mapping[str, np.ndarray], fixed: Mapping[st
     def fill(staging: Path) -> list[str]:
         for k, v in arrays.items():
             np.save(staging / f"{k}.npy", v)
+        table = write_table(staging / TABLE, grid, arrays)
+        summary["table"] = TABLE if table else None
         (staging / "summary.json").write_text(json.dumps(summary, indent=2) + "\n",
                                               encoding="utf-8")
-        return [f"{k}.npy" for k in keys] + ["summary.json"]
+        return [f"{k}.npy" for k in keys] + ["summary.json"] + ([TABLE] if table else [])
 
-    replace_folder(Path(folder), fill, (".npy", ".json"))
+    replace_folder(Path(folder), fill, (".npy", ".json", ".csv"))
     return summary
+
+
+def write_table(path: Path, grid: Mapping[str, np.ndarray], results: Mapping[str, np.ndarray],
+                block: int = 1 << 16) -> bool:
+    """Write ``path`` as CSV: a header of the swept symbols then the result keys, one row
+    a set in the grid's flat order (the last range fastest), each number in its shortest
+    form that reads back exactly; a value that is not finite is ``nan``, ``inf`` or
+    ``-inf``.
+    Nothing is written past :data:`MAX_TABLE` sets (False); the ``.npy`` files hold them.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> write_table(folder / "t.csv", {"x": np.array([0.0, 0.5])}, {"y": np.array([1.0, 2.0])})
+    True
+    >>> print((folder / "t.csv").read_text(), end="")
+    x,y
+    0.0,1.0
+    0.5,2.0
+    """
+    names = list(grid)
+    shape = tuple(len(a) for a in grid.values())
+    total = int(np.prod(shape)) if shape else 1
+    if total > MAX_TABLE:
+        return False
+    axes = [np.asarray(grid[n], dtype=np.float64) for n in names]
+    with open(path, "w", encoding="utf-8", newline="") as out:
+        out.write(",".join([*names, *results]) + "\n")
+        for start in range(0, total, block):
+            stop = min(start + block, total)
+            coordinates = np.unravel_index(np.arange(start, stop), shape) if shape else ()
+            columns = [a[c] for a, c in zip(axes, coordinates, strict=True)]
+            columns += [np.asarray(v[start:stop], dtype=np.float64) for v in results.values()]
+            out.writelines(",".join(map(repr, row)) + "\n"
+                           for row in np.column_stack(columns).tolist())
+    return True
 
 
 NEGATIVE = 1e-12  # below this a value counts as negative (a warning), not as rounding
