@@ -12,6 +12,7 @@ mu_p g/(k R) (k = 2/5). Two equal smooth balls meeting with restitution e exchan
 from __future__ import annotations
 
 import functools
+import json
 import math
 from pathlib import Path
 from typing import Any
@@ -397,3 +398,95 @@ def test_a_row_of_touching_balls_passes_the_blow_on_exactly_and_in_floating_poin
     for name, (c, v, _) in run.states.items():
         assert abs(c[0] - places[name]) < 1e-30, name
         assert abs(v[0] - (speed if name == "d" else 0)) < 1e-30, name
+
+
+_SHIPPED_STUN = Path(__file__).resolve().parents[1] / "derivations" / "stun-shot.toml"
+
+
+def _draw_shot(tmp_path, extra_values: str = "") -> str:
+    """The shipped stun shot made a draw (backspin on the cue ball), its cloth under the
+    cue named `cloth_cue` and the object's `cloth_object`: one plane, two names."""
+    text = _SHIPPED_STUN.read_text(encoding="utf-8")
+    text = text.replace('velocity = ["3/2", "0", "0"]              # sliding, no spin: a stun',
+                        'velocity = ["3/2", "0", "0"]\nspin = ["0", "-60", "0"]')
+    text = text.replace('name = "cloth"\n', 'name = "cloth_cue"\n')
+    text = text.replace("until = 8", "until = 2")
+    text = text.replace("[values]\n", "[values]\n" + extra_values)
+    assert 'spin = ["0", "-60", "0"]' in text and '"cloth_cue"' in text
+    return scene_file(tmp_path, text, "draw.toml")
+
+
+def test_a_plane_written_for_each_ball_keeps_the_names_the_scene_gave(tmp_path, capsys):
+    from rigidimpact.cli import main
+
+    path = _draw_shot(tmp_path)
+    data = evaluated(capsys, ["simulate", path])
+    text = json.dumps(data)
+    assert "cloth_cue_cue" not in text and "cloth_cue_object" not in text
+    on_cloth = {(e.get("ball"), e.get("plane")) for e in data["events"]
+                if e.get("plane", "").startswith("cloth")}
+    assert on_cloth >= {("cue", "cloth_cue"), ("object", "cloth_object")}
+    assert main(["simulate", path]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "cloth_cue: stays closed" in first and "cloth_object: stays closed" in first
+
+
+def _rolling_pair(R: float = 0.0285):
+    import numpy as np
+
+    t = np.linspace(0.0, 1.0, 50)
+    paths = {"cue": np.c_[0.1 * t, -0.4 * t, R + 0 * t],
+             "object": np.c_[1.5 * t, 0.4 * t, R + 0 * t]}
+    cloth = ("cloth_cue, cloth_object", np.zeros(3), np.array([0.0, 0.0, 1.0]))
+    rail = ("far_rail", np.array([0.0, 0.5, 0.0]), np.array([0.0, -1.0, 0.0]))
+    return t, paths, [cloth, rail], R
+
+
+def test_the_side_view_spans_what_moves_and_draws_the_balls_at_their_size():
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+
+    from rigidimpact.outputs.plots import space_views
+
+    _, paths, planes, R = _rolling_pair()
+    fig = space_views(paths, "draw", planes=planes, radii={"cue": R, "object": R})
+    top, side = fig.axes[:2]
+    low, high = side.get_ylim()
+    # the balls lie on the cloth: the side view holds the cloth (z = 0) and the balls'
+    # tops (z = 2R), and is of their size, not the metres the balls travel
+    assert low < 0 < 2 * R < high and high - low < 10 * R
+    assert top.get_ylim()[1] > 0.5  # the rail the object runs toward is in view
+    for ax in (top, side):
+        circles = [p for p in ax.patches if isinstance(p, Circle)]
+        assert len(circles) == 4 and all(c.radius == R for c in circles)
+        assert ax.get_aspect() == 1.0  # one scale: a ball is round
+    cloth = [line for line in side.lines if list(line.get_ydata()) == [0.0, 0.0]]
+    assert cloth and tuple(cloth[0].get_xdata()) == side.get_xlim()
+    labels = [t.get_text() for t in side.texts]
+    assert "cloth_cue, cloth_object" in labels
+    plt.close(fig)
+
+
+def test_the_animation_draws_the_planes_and_the_balls_at_their_size():
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+
+    from rigidimpact.outputs.plots import _animated_views
+
+    t, paths, planes, R = _rolling_pair()
+    fig, draw = _animated_views(t, paths, "draw", 5, planes, {"cue": R, "object": R})
+    top, side = fig.axes[:2]
+    moved = draw(4)
+    balls = [a for a in moved if isinstance(a, Circle)]
+    assert len(balls) == 4 and all(b.radius == R for b in balls)
+    assert {tuple(round(x, 9) for x in b.center) for b in balls} >= {(1.5, R), (1.5, 0.4)}
+    assert side.get_ylim()[1] - side.get_ylim()[0] < 10 * R
+    assert any(list(line.get_ydata()) == [0.5, 0.5] for line in top.lines)  # the rail
+    assert any(list(line.get_ydata()) == [0.0, 0.0] for line in side.lines)  # the cloth
+    plt.close(fig)
+
+
+def test_g_under_values_is_told_to_go_under_simulate(tmp_path, capsys):
+    path = _draw_shot(tmp_path, "g = 9.8\n")
+    err = refused(capsys, ["simulate", path], "values.g")
+    assert "[simulate]" in err and "g = 9.8" in err and "[symbols]" not in err

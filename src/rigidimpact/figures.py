@@ -38,22 +38,30 @@ def plot_space(scene: Any, outcome: Any, path: Path) -> None:
     said = {"impact": "impact", "rolls": "starts to roll", "stops": "stops"}
     marks = [(said[e.kind], np.array([float(x) for x in e.position]))
              for e in track.run.events if e.kind in said]
-    planes = [(name, np.array([float(x) for x in p]), np.array([float(x) for x in n]))
-              for name, p, n in track.run.planes]  # the run's own, each once
     figure = space_views({f"{name}'s centre": path for name, path in points.items()},
-                         scene.title, marks, planes=planes)
+                         scene.title, marks, planes=_planes(track),
+                         radii={f"{b.name}'s centre": float(b.radius) for b in track.balls})
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
     finally:
         close(figure)
 
 
+def _planes(track: Any) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """The run's planes, each once, as (name, point, unit normal) in floats."""
+    return [(name, np.array([float(x) for x in p]), np.array([float(x) for x in n]))
+            for name, p, n in track.run.planes]
+
+
 def animate_space(scene: Any, outcome: Any, path: Path) -> None:
     """A 3-D run seen from above and from the side, animated to a GIF, whole or not at
     all."""
-    times, points = outcome.trajectory.every()
+    track = outcome.trajectory
+    times, points = track.every()
     write_file(path, lambda temporary: write_gif(
-        times, points, scene.title, temporary, fps=20, axes="views"), "--animate")
+        times, points, scene.title, temporary, fps=20, axes="views",
+        planes=_planes(track), radii={b.name: float(b.radius) for b in track.balls}),
+        "--animate")
 
 
 def animate_outcome(scene: Any, outcome: Any, path: Path) -> None:

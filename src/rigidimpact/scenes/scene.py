@@ -454,11 +454,21 @@ def _symbols_table(table: Mapping[str, Any]) -> dict[str, sp.Symbol]:
     return symbols
 
 
+# the settings of a run, read under [simulate] only (the planner checks their values)
+SIMULATE_SETTINGS = frozenset({
+    "until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g", "integrator",
+    "stiffness_ratio", "impacts", "rolling_resistance", "pivot_friction"})
+
+
 def _values_table(table: Mapping[str, Any],
                   symbols: Mapping[str, sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
     values: dict[sp.Symbol, sp.Expr] = {}
     for name, raw in table.items():
         where = f"values.{name}"
+        if name not in symbols and name in SIMULATE_SETTINGS:
+            shown = f'"{raw}"' if isinstance(raw, str) else raw
+            raise InputError(where, f"{name} is a setting of the run, not a symbol: write "
+                             f"it under [simulate] ({name} = {shown})")
         if name not in symbols:
             raise InputError(where, "unknown symbol; declare it under [symbols]")
         value = parse_expression(raw, where, {})  # numbers only: a value names no symbol

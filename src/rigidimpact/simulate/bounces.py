@@ -125,8 +125,9 @@ class Bounces:
 
 def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
     """Each contact with its plane's point, its unit normal toward the spheres' side (the
-    side of the sphere it names: every sphere of the run may strike every plane) and
-    the spheres' names."""
+    side of the sphere it names: every sphere of the run may strike every plane), the
+    spheres' names, and the name the scene gave the plane's contact with each sphere it
+    names (one plane written twice, as the cloth under each ball, keeps both names)."""
     names = {b.name for b in balls}
     found: list[tuple] = []
     for c in planes:
@@ -144,13 +145,27 @@ def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
         p = sp.Matrix(c.point)
         same = next((f for f in found if sp.simplify((f[2] - n).norm()) == 0
                      and sp.simplify(n.dot(p - f[1])) == 0), None)
+        own = {b: c.name for b in c.bodies if b in names}
         if same is not None:  # one plane written twice (the cloth under each ball)
             if _laws(same[0]) != _laws(c):
                 raise InputError(f"{c.name}.bodies", f"is the plane of {same[0].name} with "
                                  "other laws: a plane has one set of laws")
+            for ball, name in own.items():
+                same[4].setdefault(ball, name)
             continue
-        found.append((c, p, n, frozenset(names)))
+        found.append((c, p, n, frozenset(names), own))
     return found
+
+
+def _named(flat: tuple, ball: str) -> str:
+    """The plane's contact with sphere `ball` by the name the scene gave it, else the
+    plane's own name."""
+    return flat[4].get(ball, flat[0].name)
+
+
+def _label(flat: tuple) -> str:
+    """The plane as a picture names it: every name the scene gave it, once each."""
+    return ", ".join(dict.fromkeys([flat[0].name, *flat[4].values()]))
 
 
 def _laws(c: Contact) -> tuple:
@@ -392,7 +407,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         return Bounces(tuple(events), when, first.c, first.v, first.w, stopped, exact,
                        max(tolerance) if tolerance else None,
                        {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots),
-                       tuple((f[0].name, f[1], f[2]) for f in flats))
+                       tuple((_label(f), f[1], f[2]) for f in flats))
 
     def floats(*xs: sp.Matrix) -> tuple[sp.Matrix, ...]:
         return tuple(x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in xs)
@@ -492,7 +507,8 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                     if n.dot(s.v) == 0 and n.dot(a) < 0:  # it lies there, pressed in
                         s.lying = f
                 count += 1
-                events.append(Event(t, "impact", f[0].name, s.c, s.v, s.w, course, s.name))
+                events.append(Event(t, "impact", _named(f, s.name), s.c, s.v, s.w, course,
+                                    s.name))
             else:
                 _, p, q = what
                 law = laws.get(frozenset((p.name, q.name)))
@@ -530,7 +546,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                 # it comes to lie already rolling: said once, as a rolling that starts
                 # (a sphere at rest rests, said of nothing)
                 if s.v != sp.zeros(3, 1):
-                    events.append(Event(t, "rolls", s.lying[0].name, s.c, s.v, s.w,
+                    events.append(Event(t, "rolls", _named(s.lying, s.name), s.c, s.v, s.w,
                                         "rolls", s.name))
                 s.said = True
             if phase.t > 0:
@@ -586,7 +602,8 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                 s.w = s.lying[2].dot(s.w) * s.lying[2]
             elif kind == "stops spinning":
                 s.w = s.w - s.lying[2].dot(s.w) * s.lying[2]
-            events.append(Event(t, kind, s.lying[0].name, s.c, s.v, s.w, kind, s.name))
+            events.append(Event(t, kind, _named(s.lying, s.name), s.c, s.v, s.w, kind,
+                                s.name))
             s.said = s.said or kind == "rolls"
             snap()
         elif first[0] == "plane":
@@ -630,13 +647,15 @@ def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:
 def _at_plane(flat: tuple, s: _Sphere,
               own: bool = False) -> Contact:
     """The plane's contact with sphere `s`, at its touching point (the sphere in place
-    of the one the plane names, the normal's sense kept); `own`: named for the sphere
-    too, where several spheres touch the plane at once."""
+    of the one the plane names, the normal's sense kept), by the name the scene gave
+    it; a plane the scene names for other spheres only is named for the sphere too
+    where `own` (several spheres touch it at once: their names must differ)."""
     c = flat[0]
     fixed = c.first if c.first not in flat[3] else c.second
     bodies = (fixed, s.name) if c.first == fixed else (s.name, fixed)
+    name = flat[4].get(s.name) or (f"{c.name}_{s.name}" if own else c.name)
     return replace(c, point=sp.ImmutableMatrix(s.c - s.R * flat[2]), bodies=bodies,
-                   name=f"{c.name}_{s.name}" if own else c.name)
+                   name=name)
 
 
 def _gap(flat: tuple, c: sp.Matrix, R: sp.Expr) -> sp.Expr:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from rigidimpact.errors import InputError
+from rigidimpact.scenes.scene import SIMULATE_SETTINGS
 
 __all__ = ["Plan", "Step", "make_plan", "EFFECTS", "SETTINGS"]
 
@@ -40,9 +41,7 @@ EFFECTS = {
 }
 # the effects that need a coefficient of their own, and the setting that gives it
 COEFFICIENTS = {"rolling-resistance": "rolling_resistance", "pivot-friction": "pivot_friction"}
-SETTINGS = {"until", "effects", "rod_stiffness", "contact_stiffness", "tolerance", "g",
-            "integrator", "stiffness_ratio", "impacts", "rolling_resistance",
-            "pivot_friction"}
+SETTINGS = SIMULATE_SETTINGS  # the scene's schema names them: a value put elsewhere is told
 INTEGRATORS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")  # scipy's solve_ivp methods
 UNTIL = ("separation", "restrike")
 DEFAULTS = {"rod_stiffness": 1e7, "contact_stiffness": 1e5, "tolerance": 1e-6, "g": 9.81,
