@@ -341,3 +341,49 @@ def test_a_chain_of_200_hinged_rods_against_its_constrained_equations(tmp_path, 
     for i in range(n):
         for k, key in enumerate(("vx", "vy", "omega")):
             assert abs(got[f"r{i}.{key}"] - u[2 + 3 * i + k]) < 1e-9, (i, key)
+
+
+_TILTED_DROP = """
+[values]
+e = 0.5
+theta = "30 deg"
+[random]
+theta = { LAW }
+outputs = ["ball.vy"]
+samples = 20000
+seed = 1
+[[bodies]]
+name = "ball"
+shape = "particle"
+mass = "1"
+velocity = ["cos(theta)", "-sin(theta)"]
+[[bodies]]
+name = "floor"
+shape = "fixed"
+[contact]
+bodies = ["ball", "floor"]
+normal = ["0", "-1"]
+restitution = "e"
+"""
+
+
+def test_an_end_of_a_continuous_support_where_the_ball_grazes_is_drawn(tmp_path, capsys):
+    """theta uniform on [0, pi/2], approach speed sin(theta): at the end 0 the ball only
+    grazes, a draw of probability zero. By hand, vy = e sin(theta) has the density
+    2 / (pi e sqrt(1 - y^2/e^2)) on (0, e) and the mean 2 e / pi. A discrete input with
+    a grazing value, and a continuous one whose draws move apart, are still refused."""
+    import sympy as sp
+
+    from helpers import evaluated
+
+    path = scene_file(tmp_path, _TILTED_DROP.replace("LAW", 'uniform = ["0", "pi/2"]'))
+    got = evaluated(capsys, ["derive", path])["distributions"]["ball.vy"]
+    e, y = sp.symbols("e y")
+    assert sp.simplify(sp.sympify(got["mean"]) - 2 * e / sp.pi) == 0
+    density = sp.sympify(got["density"]).subs(e, sp.Rational(1, 2))
+    want = 2 / (sp.pi * sp.Rational(1, 2) * sp.sqrt(1 - 4 * y**2))
+    assert sp.simplify(density - want) == 0
+    for law, where in (('discrete = ["0", "pi/4"]', "at theta = 0"),
+                       ('uniform = ["-1/10", "pi/2"]', "at theta = -0.1")):
+        path = scene_file(tmp_path, _TILTED_DROP.replace("LAW", law), "refused.toml")
+        refused(capsys, ["derive", path], where)

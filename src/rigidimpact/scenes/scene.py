@@ -864,7 +864,11 @@ def _approaches_throughout(approach: sp.Expr, values: dict, symbol: sp.Symbol,
                            law: Any) -> None:
     """Refuse a random input whose draws include impacts that do not happen (the bodies
     not approaching: a pulling impulse), judged at its support's ends and at points
-    between (a normal or log-normal input: within six spreads of its centre)."""
+    between (a normal or log-normal input: within six spreads of its centre). A value
+    of a discrete input is drawn with its own probability, so no approach there is
+    refused; a single value of a continuous one is drawn with probability zero, so only
+    bodies moving apart there are (by continuity, so do the draws around it), not a
+    speed of exactly zero (theta uniform on [0, pi/2] with an approach speed sin(theta))."""
     if law.kind == "discrete":
         points = list(law.parameters)
     else:
@@ -878,7 +882,10 @@ def _approaches_throughout(approach: sp.Expr, values: dict, symbol: sp.Symbol,
         points = [low + (high - low) * sp.Rational(k, 8) for k in range(9)]
     for x in points:
         speed = approach.xreplace({**values, symbol: x})
-        if speed.is_number and sp.N(speed, 30) <= 0:
+        if not speed.is_number:
+            continue
+        size = sp.N(speed, 30)
+        if size < 0 or size == 0 and law.kind == "discrete":
             raise InputError(f"random.{symbol.name}", f"at {symbol.name} = {sp.N(x, 6)} "
                              f"the bodies are not approaching (normal approach speed "
                              f"{sp.N(speed, 6)}): such draws are no impact; give a "
