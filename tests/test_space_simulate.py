@@ -74,7 +74,11 @@ def test_a_spinning_ball_bounces_slides_and_rolls_as_its_kept_quantity_says(caps
     assert times[2] - times[1] == pytest.approx((times[1] - times[0]) / 2, rel=1e-12)
     courses = [e["course"] for e in out["events"] if e["kind"] == "impact"]
     assert courses[:3] == ["slides throughout", "slides, then sticks", "sticks"]
-    assert "comes to lie" in courses[-1]
+    # the bounces from the third (each sticks, rolling) are summed: the rises from the
+    # first landing at 2 are 1, 1/2, ..., whose flights 2 v / g add up to 4 / 9.81 in all
+    assert kinds[-3:-1] == ["settles", "rolls"]
+    assert "infinitely many bounces summed" in out["events"][-3]["course"]
+    assert out["events"][-3]["t"] == pytest.approx(4 / 9.81, rel=1e-14)
 
 
 def test_the_figure_and_the_animation_are_written(tmp_path, capsys):
