@@ -203,3 +203,25 @@ def test_bounces_through_the_compliant_contact_keep_the_rolling_speed(tmp_path, 
     first = [e["t"] for e in out["events"] if e["kind"] == "impact"][1]
     assert first != pytest.approx([e["t"] for e in rigid["events"]
                                    if e["kind"] == "impact"][1], rel=1e-6)
+
+
+def test_a_cue_ball_faster_than_light_is_refused_before_any_impact(tmp_path, capsys,
+                                                                   monkeypatch):
+    # at 1e30 m/s the stun shot's balls would cross the table a thousand times in 1e-27 s;
+    # under gravity (m/s^2) the run is in SI units, where no rigid body moves that fast:
+    # refused in one line naming the field, before any impact is solved
+    import rigidimpact.simulate.bounces as bounces
+
+    def never(*args, **kwargs):
+        raise AssertionError("an impact was solved")
+    monkeypatch.setattr(bounces, "_impact", never)
+    text = (ROOT / "derivations" / "stun-shot.toml").read_text().replace(
+        'velocity = ["3/2", "0", "0"]', 'velocity = ["1e30", "0", "0"]')
+    assert "1e30" in text
+    err = refused(capsys, ["simulate", scene_file(tmp_path, text)])
+    assert "cue.velocity" in err and "speed of light" in err
+    # a spin whose surface moves that fast, too
+    text = (ROOT / "derivations" / "stun-shot.toml").read_text().replace(
+        'velocity = ["3/2", "0", "0"]', 'velocity = ["3/2", "0", "0"]\nspin = ["0", "0", "1e11"]')
+    err = refused(capsys, ["simulate", scene_file(tmp_path, text)])
+    assert "cue.spin" in err and "speed of light" in err

@@ -424,7 +424,15 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                rule: str | None) -> str:
         """Each of `who` after the impact at `contacts` (the first strikes; the planes
         the spheres lie on rest, by the driven rule): its course."""
-        after, course, accuracy = _impact([s.moved() for s in who], contacts, rule)
+        try:
+            after, course, accuracy = _impact([s.moved() for s in who], contacts, rule)
+        except InputError as error:
+            if "none approaches" not in str(error):
+                raise
+            raise InputError("simulate", f"at t = {float(t):.6g} s {who[0].name} meets "
+                             f"{contacts[0].name} moving toward it too slowly to tell from "
+                             "rounding, next to the speeds in play: the run's speeds span "
+                             "more than its arithmetic can follow") from None
         tolerance.extend([accuracy] if accuracy else [])
         for s in who:
             s.v, s.w = after[s.name]

@@ -120,9 +120,29 @@ def run_in_plane(scene: Scene) -> Outcome:
         c = c.at(values)
         planes.append(replace(c, normal=(*c.normal, 0), point=(*c.point, 0)))
     g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
+    if g:
+        _slower_than_light((ball,))
     run = spheres((ball,), tuple(planes), (), (0, -g, 0), None, sp.Rational(str(plan.until)))
     return _reported(run, (ball,), None, (0, -g), plan, start,
                      ("x", "y", "vx", "vy", "omega"))
+
+
+LIGHT = 299_792_458  # m/s: no rigid body's point moves this fast
+
+
+def _slower_than_light(balls: tuple) -> None:
+    """Refuse, in one line, a sphere whose centre or surface moves at the speed of light
+    or faster: under gravity (in m/s^2) the run is in SI units, and a rigid body's
+    mechanics means nothing there (its bounces would also run past any budget)."""
+    for b in balls:
+        v, w = sp.Matrix(b.velocity), sp.Matrix(b.spin)
+        for what, part, speed in (("velocity", "centre", sp.sqrt(v.dot(v))),
+                                  ("spin", "surface", sp.sqrt(w.dot(w)) * b.radius)):
+            if speed >= LIGHT:
+                raise InputError(f"{b.name}.{what}", f"{b.name} moves at "
+                                 f"{float(speed):.3g} m/s (its {part}), not below the "
+                                 f"speed of light ({LIGHT:.4g} m/s): rigid bodies' "
+                                 "mechanics does not hold there")
 
 
 def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str, float]:
@@ -191,6 +211,8 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
         raise InputError("simulate.impacts", f"a whole number from 1 to {MAX_IMPACTS}, "
                          f"got {impacts!r}")
     g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
+    if g:
+        _slower_than_light(balls)
     horizon = None if plan.until == "separation" else sp.Rational(str(plan.until))
     wear = {key: sp.Rational(str(plan.settings[key])) if key in plan.settings else 0
             for key in ("rolling_resistance", "pivot_friction")}
