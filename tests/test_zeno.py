@@ -198,3 +198,26 @@ def test_a_slip_reversed_at_every_bounce_without_bound_has_no_limit():
                     tangential_restitution=1)
     with pytest.raises(InputError, match="reverses at every bounce without shrinking"):
         bounces(ball, (floor,), gravity=(0, 0, -10), horizon=10)
+
+
+def test_walton_bounces_that_return_a_quarter_of_the_slip_are_summed():
+    # rough, beta = 1/4 <= e = 1/2, no bound: each bounce sends the slip s to -s/4 and
+    # moves the centre by -(1 + beta) k s / (1 + k); summed by hand bounce by bounce
+    e, beta, k = F(1, 2), F(1, 4), F(2, 5)
+    u, slip, landing, t, x = F(1), F(3), F(5), F(0), F(0)
+    for _ in range(200):  # 2^-200 of the first flight: beyond 40 digits
+        u -= (1 + beta) * k / (1 + k) * slip
+        slip *= -beta
+        flight = 2 * e * landing / 10
+        t, x, landing = t + flight, x + u * flight, landing * e
+    ball = Body3.sphere(1, R(1, 10), (0, 0, R(1, 10)), (1, 0, -5), (0, -20, 0), name="ball")
+    floor = Contact(normal=(0, 0, 1), bodies=("floor", "ball"), point=(0, 0, 0),
+                    name="floor", restitution=R(e), tangential="rough",
+                    tangential_restitution=R(beta))
+    run = bounces(ball, (floor,), gravity=(0, 0, -10), horizon=10)
+    (settle,) = [x for x in run.events if x.kind == "settles"]
+    assert "returns -1/4 of the slip" in settle.course
+    assert settle.t == R(1) and abs(settle.position[0] - R(x)) < R(1, 10 ** 40)
+    # the slip dies out: it rolls at (v + k R w x n)/(1 + k) = (1 - 4/5)/(7/5) = 1/7
+    assert settle.velocity.T == sp.Matrix([[R(1, 7), 0, 0]])
+    assert run.position[0] == settle.position[0] + R(9, 7)
