@@ -74,7 +74,11 @@ def test_a_spinning_ball_bounces_slides_and_rolls_as_its_kept_quantity_says(caps
     assert times[2] - times[1] == pytest.approx((times[1] - times[0]) / 2, rel=1e-12)
     courses = [e["course"] for e in out["events"] if e["kind"] == "impact"]
     assert courses[:3] == ["slides throughout", "slides, then sticks", "sticks"]
-    assert "comes to lie" in courses[-1]
+    # the bounces from the third (each sticks, rolling) are summed: the rises from the
+    # first landing at 2 are 1, 1/2, ..., whose flights 2 v / g add up to 4 / 9.81 in all
+    assert kinds[-3:-1] == ["settles", "rolls"]
+    assert "infinitely many bounces summed" in out["events"][-3]["course"]
+    assert out["events"][-3]["t"] == pytest.approx(4 / 9.81, rel=1e-14)
 
 
 def test_the_figure_and_the_animation_are_written(tmp_path, capsys):
@@ -201,3 +205,25 @@ def test_bounces_through_the_compliant_contact_keep_the_rolling_speed(tmp_path, 
     first = [e["t"] for e in out["events"] if e["kind"] == "impact"][1]
     assert first != pytest.approx([e["t"] for e in rigid["events"]
                                    if e["kind"] == "impact"][1], rel=1e-6)
+
+
+def test_a_cue_ball_faster_than_light_is_refused_before_any_impact(tmp_path, capsys,
+                                                                   monkeypatch):
+    # at 1e30 m/s the stun shot's balls would cross the table a thousand times in 1e-27 s;
+    # under gravity (m/s^2) the run is in SI units, where no rigid body moves that fast:
+    # refused in one line naming the field, before any impact is solved
+    import rigidimpact.simulate.bounces as bounces
+
+    def never(*args, **kwargs):
+        raise AssertionError("an impact was solved")
+    monkeypatch.setattr(bounces, "_impact", never)
+    text = (ROOT / "derivations" / "stun-shot.toml").read_text().replace(
+        'velocity = ["3/2", "0", "0"]', 'velocity = ["1e30", "0", "0"]')
+    assert "1e30" in text
+    err = refused(capsys, ["simulate", scene_file(tmp_path, text)])
+    assert "cue.velocity" in err and "speed of light" in err
+    # a spin whose surface moves that fast, too
+    text = (ROOT / "derivations" / "stun-shot.toml").read_text().replace(
+        'velocity = ["3/2", "0", "0"]', 'velocity = ["3/2", "0", "0"]\nspin = ["0", "0", "1e11"]')
+    err = refused(capsys, ["simulate", scene_file(tmp_path, text)])
+    assert "cue.spin" in err and "speed of light" in err

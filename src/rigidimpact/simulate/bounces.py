@@ -58,6 +58,7 @@ Matrix([[-333/343, 0, 1]])
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -71,6 +72,7 @@ from rigidimpact.laws.contact import Contact
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.simulate.sphere import flight, sliding
 from rigidimpact.simulate.tangential import STEPS
+from rigidimpact.simulate.zeno import Tail, bounce_map, geometric_tail
 from rigidimpact.solve.space import SpaceCollision
 
 __all__ = ["Event", "Bounces", "bounces", "spheres", "MAX_IMPACTS", "DIGITS"]
@@ -81,6 +83,7 @@ MAX_IMPACTS = 1000  # a budget of impacts: past it a run is refused, never cut s
 # (with e < 1 the bounces pile up at a finite time, Zeno-like, with ever smaller ones)
 SETTLE = sp.Rational(1, 10**12)
 DIGITS = 40  # the floating point a run goes on in once a time is irrational
+SUMMED = 10_000  # a budget: bounces summed in closed form up to a horizon inside a pile-up
 
 
 @dataclass(frozen=True)
@@ -121,6 +124,9 @@ class Bounces:
     snapshots: tuple = ()
     # each distinct plane of the run: (name, a point on it, its unit normal)
     planes: tuple = ()
+    summed: int = 0  # bounces summed in closed form up to the horizon (a pile-up's)
+    # (sphere, start, end) of each span of bounces summed, for pictures
+    piles: tuple = ()
 
 
 def _planes(balls: Sequence[Body3], planes: Sequence[Contact]) -> list[tuple]:
@@ -306,6 +312,7 @@ class _Sphere:
         self.lying: tuple | None = None
         self.fastest = sp.Integer(0)
         self.said = False  # its rolling on the plane it lies on has been said
+        self.regime: tuple = ()  # (plane, regime) of its last bounce the tail's laws gave
 
     def moved(self) -> Body3:
         return replace(self.body, position=sp.ImmutableMatrix(self.c),
@@ -391,7 +398,8 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
     _not_through(ones, flats, exact)
     events: list[Event] = []
     snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
-    count = 0
+    count = summed = 0
+    piles: list[tuple[str, sp.Expr, sp.Expr]] = []
     # a sphere that starts lying on a plane gravity presses it into slides or rolls there
     for s in ones:
         s.lying = next((f for f in flats if _gap(f, s.c, s.R) == 0 and f[2].dot(s.v) == 0
@@ -407,7 +415,8 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         return Bounces(tuple(events), when, first.c, first.v, first.w, stopped, exact,
                        max(tolerance) if tolerance else None,
                        {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots),
-                       tuple((_label(f), f[1], f[2]) for f in flats))
+                       tuple((_label(f), f[1], f[2]) for f in flats), summed,
+                       tuple(piles))
 
     def floats(*xs: sp.Matrix) -> tuple[sp.Matrix, ...]:
         return tuple(x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in xs)
@@ -430,7 +439,15 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                rule: str | None) -> str:
         """Each of `who` after the impact at `contacts` (the first strikes; the planes
         the spheres lie on rest, by the driven rule): its course."""
-        after, course, accuracy = _impact([s.moved() for s in who], contacts, rule)
+        try:
+            after, course, accuracy = _impact([s.moved() for s in who], contacts, rule)
+        except InputError as error:
+            if "none approaches" not in str(error):
+                raise
+            raise InputError("simulate", f"at t = {float(t):.6g} s {who[0].name} meets "
+                             f"{contacts[0].name} moving toward it too slowly to tell from "
+                             "rounding, next to the speeds in play: the run's speeds span "
+                             "more than its arithmetic can follow") from None
         tolerance.extend([accuracy] if accuracy else [])
         for s in who:
             s.v, s.w = after[s.name]
@@ -487,6 +504,7 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                     leave_or_lie(s)
                 else:
                     n = f[2]
+                    landed = (s.v, s.w)
                     s.fastest = max(s.fastest, -n.dot(s.v))
                     if compliance is None:
                         course = struck((s,), (_at_plane(f, s),), None)
@@ -509,6 +527,25 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                 count += 1
                 events.append(Event(t, "impact", _named(f, s.name), s.c, s.v, s.w, course,
                                     s.name))
+                tail, s.regime = None, s.regime if s.lying is None else ()
+                if s.lying is None and compliance is None and len(ones) == 1:
+                    tail = _summed(f, s, landed, a, flats, exact,
+                                   None if end is None else end - t)
+                if tail is not None:  # the bounces to come, summed (to the horizon)
+                    snap()
+                    piles.append((s.name, t, t + tail.t))
+                    t = t + tail.t
+                    s.c = s.c + tail.displacement
+                    s.v, s.w = tail.velocity, tail.spin
+                    if not exact:
+                        s.c, s.v, s.w = floats(s.c, s.v, s.w)
+                    if n.dot(s.v) == 0:
+                        s.lying, s.said = f, False
+                        events.append(Event(t, "settles", _named(f, s.name), s.c, s.v, s.w,
+                                            "infinitely many bounces summed "
+                                            f"({tail.said}): it lies on the plane", s.name))
+                    else:
+                        summed += tail.bounces or 0
             else:
                 _, p, q = what
                 law = laws.get(frozenset((p.name, q.name)))
@@ -612,6 +649,85 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             due = ("plane", s.name, f[0].name)
         else:
             due = ("pair", first[1].name, first[2].name)
+
+
+def _summed(f: tuple, s: _Sphere, landed: tuple[sp.Matrix, sp.Matrix], a: sp.Matrix,
+            flats: Sequence[tuple], exact: bool, left: sp.Expr | None) -> Tail | None:
+    """The bounces still to come of sphere `s`, just risen from plane `f` of the run
+    after landing with velocity and spin `landed`, summed (:mod:`rigidimpact.simulate.zeno`)
+    where gravity presses it into `f`, the bounce just solved is the one the tail's law
+    gives (exactly, or to rounding once the run is in floating point) in the regime of
+    the bounce before it, that regime holds for every bounce to come, and no other plane
+    is within the tail's reach; with the time `left` to the horizon shorter than the
+    tail's, the bounces before it."""
+    n, contact = f[2], f[0]
+    g = -n.dot(a)
+    last, s.regime = s.regime, ()
+    e = sp.sympify(contact.restitution)
+    if not (g > 0 and n.dot(s.v) > 0 and e.is_number and 0 < e < 1) or \
+            _across(a, n) != sp.zeros(3, 1):
+        return None
+    law = bounce_map(contact, n, *landed, s.R, s.k)
+    if law is None:
+        return None
+    pairs = zip((*law[0], *law[1]), (*s.v, *s.w), strict=True)
+    if exact:
+        if any(x != y and sp.simplify(x - y) != 0 for x, y in pairs):
+            return None
+    else:
+        scale = max(1, *(abs(x) for x in (*s.v, *(s.R * y for y in s.w))))
+        if any(abs(sp.N(x - y, DIGITS)) > sp.Float(10) ** (5 - DIGITS) * scale
+               for x, y in pairs):
+            return None
+    s.regime = (contact.name, law[2])
+    if last != s.regime:  # the second bounce in a row of one regime
+        return None
+    rise = n.dot(s.v)
+    whole = None  # the bounces before the horizon, where it comes first
+    if left is not None and left * g * (1 - e) < 2 * rise:
+        whole = _before(e, 2 * rise / g, left)
+        if whole == 0:
+            return None
+    tail = geometric_tail(contact, n, g, s.v, s.w, s.R, s.k, whole)
+    if tail is None or tail.regime != law[2]:
+        return None
+    # every centre of the tail lies within its highest rise plus the time times the
+    # fastest it may move across n of where it rose (a bound, taken in float with room)
+    u = _across(s.v, n)
+    slip = u - s.R * s.w.cross(n)
+    across = max(float(_length(u)), float(_length(_across(tail.velocity, n)))) + \
+        2 * float(_length(slip) * s.k / (1 + s.k))
+    reach = float(rise ** 2 / (2 * g)) + float(tail.t) * across
+    if any(float(_gap(other, s.c, s.R)) <= 1.01 * reach + 1e-30 for other in flats
+           if other is not f):
+        return None
+    return tail
+
+
+def _before(e: sp.Expr, first: sp.Expr, left: sp.Expr) -> int:
+    """How many whole flights of ``first, e first, e^2 first, ...`` end by time
+    `left` (less than their sum): estimated by logarithms, then settled exactly."""
+    def within(m: int) -> bool:
+        return first * (1 - e ** m) / (1 - e) <= left
+    estimate = math.log(max(1e-300, 1 - float(left * (1 - e) / first))) / math.log(float(e))
+    m = max(0, int(estimate))
+    if m > SUMMED:
+        raise InputError("simulate.until", f"the time asked falls about {m} bounces into "
+                         f"a pile-up of bounces (more than {SUMMED} to sum one by one): "
+                         "ask for a time after they pile up, or an earlier one")
+    while within(m + 1):
+        m += 1
+    while m > 0 and not within(m):
+        m -= 1
+    return m
+
+
+def _across(x: sp.Matrix, n: sp.Matrix) -> sp.Matrix:
+    return x - n.dot(x) * n
+
+
+def _length(x: sp.Matrix) -> sp.Expr:
+    return sp.sqrt(x.dot(x))
 
 
 def _not_through(ones: Sequence[_Sphere], flats: Sequence[tuple], exact: bool) -> None:

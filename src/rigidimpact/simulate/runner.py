@@ -30,7 +30,7 @@ from rigidimpact.simulate.numbers import as_float, scene_values
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.several import run_several
-from rigidimpact.simulate.space import run_space
+from rigidimpact.simulate.space import bounces_in_plane, run_in_plane, run_space
 from rigidimpact.simulate.tangential import run_tangential
 from rigidimpact.solve.collision import rule_laws
 from rigidimpact.solve.derivation import model_name, physics_warnings
@@ -113,6 +113,8 @@ def run(scene: Scene | SpaceScene) -> Outcome:
     if "impacts" in scene.simulate:
         raise InputError("simulate.impacts", "a count of impacts is read by a 3-D scene's "
                          "bouncing sphere; a planar scene runs until a time")
+    if bounces_in_plane(scene):  # a round body among fixed ones: its bounces
+        return finite(run_in_plane(scene))
     effects = scene.simulate.get("effects")
     if isinstance(effects, list) and {"rolling-resistance", "pivot-friction"} & set(effects):
         raise InputError("simulate.effects", "rolling-resistance and pivot-friction wear a "

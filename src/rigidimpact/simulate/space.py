@@ -21,7 +21,7 @@ tangential motion.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -29,14 +29,16 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import sphere_bounce
-from rigidimpact.model.space import SPEEDS
+from rigidimpact.model.space import SPEEDS, Body3
+from rigidimpact.scenes.scene import Scene
 from rigidimpact.scenes.space import SpaceScene
 from rigidimpact.simulate.bounces import MAX_IMPACTS, Bounces, spheres
+from rigidimpact.simulate.numbers import scene_values
 from rigidimpact.simulate.outcome import Outcome
 from rigidimpact.simulate.planner import make_plan
 from rigidimpact.simulate.tangential import STEPS
 
-__all__ = ["run_space", "BounceTrack"]
+__all__ = ["run_space", "run_in_plane", "bounces_in_plane", "BounceTrack"]
 
 
 def run_space(scene: SpaceScene, values: dict | None = None) -> Outcome:
@@ -77,6 +79,70 @@ def run_space(scene: SpaceScene, values: dict | None = None) -> Outcome:
                "rigid": rigid}
     return Outcome(plan, {**final, "t": 0.0}, events, time.perf_counter() - start, 0,
                    details)
+
+
+def bounces_in_plane(scene: Scene) -> bool:
+    """Whether a planar scene is a round body (disc, ring, sphere) among fixed bodies,
+    asked past its impact until a time: a bounce run (:func:`run_in_plane`)."""
+    free = [b for b in scene.bodies if b.support != "fixed"]
+    until = scene.simulate.get("until")
+    return (len(free) == 1 and free[0].support == "free" and not scene.joints
+            and free[0].shape in ("disc", "ring", "sphere")
+            and isinstance(until, (int, float, str)) and not isinstance(until, bool)
+            and until not in ("separation", "restrike"))
+
+
+def run_in_plane(scene: Scene) -> Outcome:
+    """A planar scene of one round body among fixed bodies (:func:`bounces_in_plane`),
+    followed as the 3-D bounce run of the same scene written in space: the plane z = 0,
+    each contact a plane through its point with its normal, the spin about z, gravity
+    along -y (g, with ``effects = ["gravity"]``); reported in the plane's keys (``x, y,
+    vx, vy, omega``). The body's motion stays in the plane: every impulse, velocity and
+    normal does, and its one moment of inertia is the one about z."""
+    start = time.perf_counter()
+    plan = make_plan(scene.simulate)
+    if not set(plan.effects) <= {"gravity"}:
+        raise InputError("simulate.effects", "a round body among fixed bodies is followed "
+                         "past its impact under gravity alone in the plane")
+
+    def exact(x: Any) -> Any:  # a decimal as the number it spells
+        return sp.Rational(str(x)) if isinstance(x, (float, sp.Float)) else x
+    values = {k: exact(v) for k, v in scene_values(scene).items()}
+    (body,) = (b.at(values) for b in scene.bodies if b.support != "fixed")
+    radius = dict(body.dimensions)["radius"]
+    ball = Body3.sphere(body.mass, radius, (*body.position, 0), (*body.velocity, 0),
+                        (0, 0, body.spin), name=body.name, inertia=body.inertia)
+    planes = []
+    for c in scene.contacts or (scene.contact,):
+        if body.name not in (c.first, c.second) or c.bodies is None:
+            raise InputError(f"{c.name}.bodies", f"each contact is a fixed body's plane "
+                             f"{body.name} may strike: name {body.name}")
+        c = c.at(values)
+        planes.append(replace(c, normal=(*c.normal, 0), point=(*c.point, 0)))
+    g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
+    if g:
+        _slower_than_light((ball,))
+    run = spheres((ball,), tuple(planes), (), (0, -g, 0), None, sp.Rational(str(plan.until)))
+    return _reported(run, (ball,), None, (0, -g), plan, start,
+                     ("x", "y", "vx", "vy", "omega"))
+
+
+LIGHT = 299_792_458  # m/s: no rigid body's point moves this fast
+
+
+def _slower_than_light(balls: tuple) -> None:
+    """Refuse, in one line, a sphere whose centre or surface moves at the speed of light
+    or faster: under gravity (in m/s^2) the run is in SI units, and a rigid body's
+    mechanics means nothing there (its bounces would also run past any budget)."""
+    for b in balls:
+        v, w = sp.Matrix(b.velocity), sp.Matrix(b.spin)
+        for what, part, speed in (("velocity", "centre", sp.sqrt(v.dot(v))),
+                                  ("spin", "surface", sp.sqrt(w.dot(w)) * b.radius)):
+            if speed >= LIGHT:
+                raise InputError(f"{b.name}.{what}", f"{b.name} moves at "
+                                 f"{float(speed):.3g} m/s (its {part}), not below the "
+                                 f"speed of light ({LIGHT:.4g} m/s): rigid bodies' "
+                                 "mechanics does not hold there")
 
 
 def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str, float]:
@@ -145,12 +211,21 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
         raise InputError("simulate.impacts", f"a whole number from 1 to {MAX_IMPACTS}, "
                          f"got {impacts!r}")
     g = sp.Rational(str(plan.settings["g"])) if "gravity" in plan.effects else 0
+    if g:
+        _slower_than_light(balls)
     horizon = None if plan.until == "separation" else sp.Rational(str(plan.until))
     wear = {key: sp.Rational(str(plan.settings[key])) if key in plan.settings else 0
             for key in ("rolling_resistance", "pivot_friction")}
     run = spheres(balls, planes, pairs, (0, 0, -g), impacts, horizon, **wear,
                   compliance=plan.settings["stiffness_ratio"]
                   if "tangential-compliance" in plan.effects else None)
+    return _reported(run, balls, impacts, (0, 0, -g), plan, start)
+
+
+def _reported(run: Bounces, balls: tuple, impacts: Any, gravity: tuple, plan: Any,
+              start: float, keys: tuple[str, ...] = ("x", "y", "z", *SPEEDS)) -> Outcome:
+    """A bounce run as `simulate` reports it: its events, each sphere's state at the
+    end in `keys` (a planar scene's lifted run: x, y and vx, vy, omega), and notes."""
     events: list[dict[str, Any]] = []
     for e in run.events:
         event: dict[str, Any] = {"kind": e.kind, "t": float(e.t), "plane": e.plane}
@@ -158,7 +233,7 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
             event["ball"] = e.ball
         if e.other:
             event["with"] = e.other
-        if e.kind == "impact":
+        if e.kind in ("impact", "settles"):
             event["course"] = e.course
         events.append(event)
     events.append({"kind": "end", "t": float(run.t), "why": {
@@ -170,10 +245,15 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
     final: dict[str, float] = {}
     for name, state in run.states.items():
         final.update({f"{name}.{k}": float(sp.N(x, 17)) for k, x in zip(
-            ("x", "y", "z", *SPEEDS), (*state[0], *state[1], *state[2]), strict=True)})
+            ("x", "y", "z", *SPEEDS), (*state[0], *state[1], *state[2]), strict=True)
+            if k in keys})
+    if "omega" in keys:  # in the plane: the spin about z
+        final.update({f"{name}.omega": float(sp.N(state[2][2], 17))
+                      for name, state in run.states.items()})
     details: dict[str, Any] = {"exact": run.exact,
                                "impacts": sum(e.kind == "impact" for e in run.events),
-               "gravity": [0.0, 0.0, -float(g)], "stopped": run.stopped}
+                               "gravity": [float(x) for x in gravity],
+                               "stopped": run.stopped}
     if run.tolerance is not None:
         details["tolerance"] = run.tolerance
         details["notes"] = [f"an impact was struck with a sphere lying on a plane (the "
@@ -182,14 +262,28 @@ def _bouncing(scene: SpaceScene, values: dict, plan: Any, start: float) -> Outco
     elif not run.exact:
         details["notes"] = ["a time of the run is irrational: from there on it is "
                             "followed in 40-digit floating point"]
+    if run.summed:
+        details["summed"] = run.summed
+        details.setdefault("notes", []).append(
+            f"{run.summed} bounces before the time asked, in a pile-up of bounces, were "
+            "summed in closed form (a geometric series)")
+    settles = [e for e in run.events if e.kind == "settles"]
+    if settles:
+        details["settles"] = float(settles[0].t)
+        details.setdefault("notes", []).append(
+            "infinitely many bounces summed: with e < 1 the bounces on a plane gravity "
+            "presses the sphere into pile up at a finite time (a geometric series, each "
+            "flight e times the last), where it lies on the plane with the limit of its "
+            "motion, in closed form")
     if "tangential-compliance" in plan.effects:
         details.setdefault("notes", []).append(
             f"each bounce of a flying sphere on a plane goes through the tangentially "
             f"compliant contact (k_t/k_n = {plan.settings['stiffness_ratio']:g}), "
             f"integrated to first order with {STEPS} steps a period, in float64; a "
             "cushion struck while lying and two spheres meeting stay rigid")
+    track = (BounceTrack if len(keys) > 5 else PlaneTrack)(balls, run)
     return Outcome(plan, {**final, "t": float(run.t)}, events, time.perf_counter() - start,
-                   0, details, BounceTrack(balls, run))
+                   0, details, track)
 
 
 @dataclass(frozen=True)
@@ -224,6 +318,9 @@ class BounceTrack:
         each, `count` samples spread over the run and every event's own instant."""
         states = self.states(name)
         end = states[-1][0]
+        # a span of bounces summed is drawn along the plane it piles up on
+        piled = {(float(t0), float(t1)) for who, t0, t1 in self.run.piles
+                 if who == (self.ball.name if name is None else name)}
         times = np.union1d(np.linspace(0.0, end, count) if end > 0 else np.zeros(1),
                            [s[0] for s in states])
         points = np.empty((len(times), 3))
@@ -233,6 +330,8 @@ class BounceTrack:
             (t0, c0, v0), (t1, c1, _) = states[k], states[k + 1]
             span = t1 - t0
             tau = t - t0
+            if (t0, t1) in piled:
+                v0 = (c1 - c0) / span
             a = 2 * (c1 - c0 - v0 * span) / span ** 2 if span > 0 else np.zeros(3)
             points[i] = c0 + v0 * tau + a * tau ** 2 / 2
         return times, points
@@ -248,3 +347,16 @@ class BounceTrack:
             points[b.name] = np.stack([np.interp(times, own, path[:, j]) for j in range(3)],
                                       axis=1)
         return times, points
+
+
+@dataclass(frozen=True)
+class PlaneTrack(BounceTrack):
+    """A planar scene's bounce run (:func:`run_in_plane`) as a planar run's track: its
+    times and each body's centre (x, y) at them."""
+
+    @property
+    def t(self) -> np.ndarray:
+        return self.sampled(200)[0]
+
+    def points(self) -> dict[str, np.ndarray]:
+        return {self.ball.name: self.sampled(200)[1][:, :2]}
