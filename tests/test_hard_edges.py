@@ -4,6 +4,11 @@ refused in one line naming what is wrong."""
 
 from __future__ import annotations
 
+import random
+from pathlib import Path
+
+import pytest
+
 from helpers import refused, scene_file
 
 _TURNED_BOX = """
@@ -387,3 +392,42 @@ def test_an_end_of_a_continuous_support_where_the_ball_grazes_is_drawn(tmp_path,
                        ('uniform = ["-1/10", "pi/2"]', "at theta = -0.1")):
         path = scene_file(tmp_path, _TILTED_DROP.replace("LAW", law), "refused.toml")
         refused(capsys, ["derive", path], where)
+
+
+def _three_rough(law: str) -> str:
+    """Three Coulomb contacts of a bar on a floor, one pass in order, mu a symbol."""
+    text = (Path(__file__).parent / "rough_scenes" / "b-three-energetic-sequential.toml"
+            ).read_text(encoding="utf-8")
+    text = text.replace('friction = "3/4"', 'friction = "mu"').replace(
+        'law = "energetic"', f'law = "{law}"')
+    return text + "\n[symbols]\nmu = { nonnegative = true }\n"
+
+
+@pytest.mark.parametrize("law", ["newton", pytest.param("poisson", marks=pytest.mark.slow)])
+def test_three_rough_contacts_in_turn_over_a_symbolic_mu(tmp_path, capsys, law):
+    """A pass over three rough contacts with mu a symbol: its cases' conditions are
+    sets of mu found exactly (a blanket simplification ran past a minute), they cover
+    every mu >= 0 once, and each case is the numeric rule's answer inside it; a
+    contact that does not close at its turn takes no step (each case had it act, so
+    no case held)."""
+    import sympy as sp
+
+    from rigidimpact.scenes.scene import parse_scene
+
+    scene = parse_scene(_three_rough(law))
+    mu = scene.symbols["mu"]
+    cases = scene.derivation().outcomes
+    assert cases and all("c2: does not close" in c.courses for c in cases)
+    rng = random.Random(68)
+    for value in [sp.Rational(rng.randint(0, 300), 100) for _ in range(6)]:
+        holding = [c for c in cases if all(bool(x.subs(mu, value)) for x in c.conditions)]
+        assert len(holding) == 1, value
+        (numeric,) = scene.derivation({mu: value}, printed=False).outcomes
+        for key, got in holding[0].results().items():
+            want = numeric.results()[key]
+            assert abs(sp.N(got.subs(mu, value) - want, 30)) < 1e-25, (value, key)
+
+
+def test_nested_roots_of_a_symbol_are_refused_in_one_line(tmp_path, capsys):
+    path = scene_file(tmp_path, _three_rough("energetic"))
+    refused(capsys, ["derive", path], "give [values] (or --set) for mu")

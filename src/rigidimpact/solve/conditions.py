@@ -64,7 +64,21 @@ def case_conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
             kept.append(relation)
     if not kept:
         return (sp.true,)
-    joint = sp.simplify(sp.And(*kept))
+    region = _on_a_line(kept)
+    if region is not None:
+        return region
+    if any(not (r.lhs - r.rhs).is_rational_function(*r.free_symbols)
+           if isinstance(r, sp.core.relational.Relational)
+           else any(not (a.lhs - a.rhs).is_rational_function(*a.free_symbols)
+                    for a in r.atoms(sp.core.relational.Relational))
+           for r in kept):
+        # roots of the symbols (the energetic law's courses): SymPy's simplification of
+        # their conjunction ran for minutes; each condition is given as it is
+        return tuple(kept)
+    try:
+        joint = sp.simplify(sp.And(*kept))
+    except (TypeError, ValueError, NotImplementedError):  # SymPy's simplification gave
+        return tuple(kept)  # up (a NaN compared at a radical's branch): kept as they are
     if joint == sp.false or isinstance(joint, sp.Eq) or (
             isinstance(joint, sp.And) and any(isinstance(a, sp.Eq) for a in joint.args)):
         return (sp.false,)
@@ -111,3 +125,74 @@ def sample_points(symbols: set[sp.Symbol]) -> list[dict[sp.Symbol, sp.Expr]]:
             point[s] = -x if s.is_negative else x
         points.append(point)
     return points
+
+
+def _on_a_line(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...] | None:
+    """Relations in one real symbol as the set of its values where all hold, found
+    exactly (each relation's real roots isolated by SymPy's univariate solver, the sets
+    intersected) within what the symbol's assumptions allow: ``(False,)`` where it is
+    empty, ``(True,)`` where it is all the symbol may be, else its bounds (none that the
+    assumptions give already). None where the relations hold several symbols or roots
+    of it, the solver cannot decide them, or they hold at single points only: a blanket
+    simplification of their conjunction took tens of seconds for three contacts'
+    courses in one symbol.
+
+    Examples
+    --------
+    >>> mu = sp.Symbol("mu", positive=True)
+    >>> _on_a_line([sp.Le(3 * mu - 2, 0), sp.Gt(mu, sp.Rational(1, 2))])
+    (mu <= 2/3, mu > 1/2)
+    >>> _on_a_line([sp.Le(mu, 1), sp.Gt(mu, 2)])
+    (False,)
+    """
+    from sympy.solvers.inequalities import solve_univariate_inequality
+
+    names = set().union(*(r.free_symbols for r in relations))
+    if len(names) != 1:
+        return None
+    (x,) = names
+    atoms = set().union(*(r.atoms(sp.core.relational.Relational) for r in relations))
+    if not x.is_real or not all((r.lhs - r.rhs).is_rational_function(x) for r in atoms):
+        return None  # roots of x (the energetic law's courses)
+    allowed = sp.Interval.open(0, sp.oo) if x.is_positive else \
+        sp.Interval(0, sp.oo) if x.is_nonnegative else sp.Reals
+
+    def where(condition: sp.Basic) -> sp.Set:
+        if isinstance(condition, sp.And):
+            return sp.Intersection(*(where(a) for a in condition.args))
+        if isinstance(condition, sp.Or):
+            return sp.Union(*(where(a) for a in condition.args))
+        if isinstance(condition, sp.Not):
+            return allowed - where(condition.args[0])
+        return solve_univariate_inequality(condition, x, relational=False, domain=allowed)
+
+    try:
+        region = sp.Intersection(allowed, *(where(r) for r in relations))
+    except (NotImplementedError, ValueError, TypeError, AttributeError):
+        return None
+    if region.is_empty:
+        return (sp.false,)
+    if isinstance(region, sp.FiniteSet) or region.measure == 0:
+        return None  # single points: a boundary between courses, or the one value where
+        # a case holds (e = 1): told apart as before
+    if region == allowed:
+        return (sp.true,)
+    pieces = region.args if isinstance(region, sp.Union) else (region,)
+    if not all(isinstance(p, sp.Interval) for p in pieces):
+        return None
+    bounds = [_bounds(p, x, allowed) for p in pieces]
+    if len(bounds) == 1:
+        return tuple(sp.And(*bounds[0]).args) if len(bounds[0]) > 1 else bounds[0]
+    return (sp.Or(*(sp.And(*b) for b in bounds)),)
+
+
+def _bounds(piece: sp.Interval, x: sp.Symbol, allowed: sp.Set) -> tuple[sp.Basic, ...]:
+    """An interval of `x` as its bounds, leaving out an end that `allowed` has too."""
+    low_given = isinstance(allowed, sp.Interval) and piece.start == allowed.start and \
+        piece.left_open == allowed.left_open
+    out = []
+    if piece.start.is_finite and not low_given:
+        out.append(sp.Gt(x, piece.start) if piece.left_open else sp.Ge(x, piece.start))
+    if piece.end.is_finite:
+        out.append(sp.Lt(x, piece.end) if piece.right_open else sp.Le(x, piece.end))
+    return tuple(out)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import itertools
 import math
 import random
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -301,8 +301,8 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
     A Coulomb or rough step can take several courses (Routh's and Walton's regimes,
     each with its conditions), so the pass is a tree of cases: one outcome per path
     through it, with every condition along the path (and the pass's own: each
-    contact closing at its turn, none closing after). A path whose conditions cannot
-    hold is dropped.
+    contact closing at its turn, or not closing and taking no step, none closing
+    after). A path whose conditions cannot hold is dropped.
 
     Examples
     --------
@@ -340,8 +340,14 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
         grown = []
         for u, total, along, conditions, courses in branches:
             v = (rows * u).applyfunc(tidy)
+            # where the contact does not close at its turn it takes no step
+            kept = case_conditions([*conditions, sp.Ge(v[0], 0)])
+            if kept != (sp.false,):
+                grown.append((u, total, along, [c for c in kept if c is not sp.true],
+                              [*courses, f"{name}: does not close"]))
             here = [*conditions, sp.Lt(v[0], 0)]
             if tangential.solved_by_regimes:  # each course a branch, with its conditions
+                _no_nested_roots(name, v, courses, problem.symbols)
                 steps = [(r.impulse, r.conditions, r.name)
                          for r in tangential.regimes(W, v, restitution)]
             else:  # the law's one face: its impact alone
@@ -362,17 +368,36 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
         kept = case_conditions([*conditions, *(sp.Ge(x, 0) for x in problem.closings(u))])
         if kept == (sp.false,):
             continue
+        acted = tuple(name for name, course in zip(order, courses, strict=True)
+                      if not course.endswith(": does not close"))
         cases.append(problem.outcome("sequential", tuple(order), u,
-                                   problem.named(total.applyfunc(tidy)), tuple(order),
+                                   problem.named(total.applyfunc(tidy)), acted,
                                    tangential=problem.named(along.applyfunc(tidy)),
                                    courses=tuple(courses), conditions=kept))
     if not cases:
         symbols = ", ".join(sorted(map(str, problem.symbols)))
         raise InputError("contacts", f"one pass in the order {', '.join(order)} does not "
                          "end the sequential rule for any value of the symbols (a "
-                         "contact closes again after it): the passes that follow need "
-                         f"numbers; give [values] (or --set) for {symbols}")
+                         "contact closes again after it, or no contact closes): the "
+                         "passes that follow need numbers; give [values] (or --set) for "
+                         f"{symbols}")
     return tuple(cases)
+
+
+def _no_nested_roots(name: str, v: sp.Matrix, courses: Sequence[str],
+                     symbols: Iterable[sp.Symbol]) -> None:
+    """Refuse a course by regimes taken over speeds that hold roots of the symbols (an
+    energetic course before it): its own roots would nest in them, and the work grows
+    past any bound (one such step of three contacts ran for minutes). A budget by the
+    kind of work, counted the same on every machine."""
+    roots = [p for x in v for p in sp.sympify(x).atoms(sp.Pow)
+             if not p.exp.is_Integer and p.base.free_symbols]
+    if roots:
+        given = ", ".join(sorted(map(str, symbols)))
+        raise InputError("contacts", f"the sequential rule with symbols: after the "
+                         f"courses ({'; '.join(courses)}) the speeds hold roots of {given}, "
+                         f"and {name}'s courses would nest roots in them, past what a "
+                         f"closed form can carry: give [values] (or --set) for {given}")
 
 
 def every_order(problem: ImpactProblem) -> tuple[Solution, ...]:
