@@ -452,8 +452,8 @@ class ImpactProblem:
         if self.dense:  # the joints spread each impulse over every joined body
             push = self.scaled_J.T * sp.Matrix(impulses)
             exact = self._joint_response(push) if self.joints else None
-            change = exact[0].to_Matrix() if exact else self.M_inverse * push
-            return (sp.Matrix(u) + change).applyfunc(tidy)
+            moved = exact[0].to_Matrix() if exact else self.M_inverse * push
+            return (sp.Matrix(u) + moved).applyfunc(tidy)
         change: dict[int, sp.Expr] = {}
         for i, row in enumerate(self.sparse_rows):
             if impulses[i] != 0:
