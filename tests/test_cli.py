@@ -436,3 +436,23 @@ def test_derive_keeps_its_answer_and_reads_it_back(tmp_path, monkeypatch, capsys
     assert main(["derive", str(tmp_path / "missing.toml")]) == 2
     monkeypatch.setenv("RIGIDIMPACT_CACHE", str(entry / "inside-a-file"))
     assert main(["derive", "barbell"]) == 0
+
+
+def test_evaluate_exact_prints_the_papers_numbers_exactly(capsys):
+    """--exact: the barbell at m = 1, M = 2, theta = 30 deg, e = 1/2, v_ix = 1 has, by the
+    paper's eq. (5), f = m (1 + e) / (2M + m sin^2 theta + m) = 2/7 and V_x = f v_ix,
+    and by eq. (7) the energy lost 2M (1 - e^2) / (2M + m sin^2 theta + m) = 4/7."""
+    import json
+
+    from rigidimpact.cli import main
+
+    argv = ["evaluate", "barbell", "--exact", *(x for s in ("m=1", "M=2", "L=1",
+                                                             "theta=30 deg", "e=0.5",
+                                                             "v_ix=1") for x in ("--set", s))]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "f = 2/7  (0.2857142857142857)" in out
+    assert "energy_loss_fraction = 4/7" in out
+    assert main([*argv, "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["exact"]["V_x"] == "2/7" and got["V_x"] == 2 / 7

@@ -311,18 +311,25 @@ def _settings(defaults: Any, settings: Sequence[str]) -> tuple[dict, dict]:
     return values, sources
 
 
-def _evaluation(target: str, settings: Sequence[str], dps: int | None):
-    """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE."""
+def _evaluation(target: str, settings: Sequence[str], dps: int | None,
+                exact: bool = False):
+    """Evaluate a problem or scene at its [values], overridden by each --set NAME=VALUE
+    (with `exact`, each result as an exact number too)."""
     from rigidimpact.paper.problems import PROBLEMS
     from rigidimpact.scenes.space import load_any
 
     if target in PROBLEMS:
         derivation = _derivation(target)
         values, sources = _settings({}, settings)
-        return derivation.evaluate(values, dps, sources)
+        return derivation.evaluate(values, dps, sources, exact)
     scene = load_any(target)
     values, sources = _settings(scene.values, settings)
-    return scene.evaluate(values, sources, dps)
+    return scene.evaluate(values, sources, dps, exact)
+
+
+def sp_is_float(x: Any) -> bool:
+    """Whether an exact result is a rounded one after all (a rule solved in floats)."""
+    return bool(getattr(x, "has", None)) and x.has(__import__("sympy").Float)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
@@ -332,7 +339,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         raise InputError("--dps", f"must lie between 5 and 10000, got {args.dps}")
     if args.plot:
         _check_plot_path(Path(args.plot))
-    result = _evaluation(args.target, args.set, args.dps)
+    result = _evaluation(args.target, args.set, args.dps, args.exact)
     if args.plot:
         if "sample" not in result.extra:
             raise InputError("--plot", "evaluate draws the spread of a sample of orders: "
@@ -363,9 +370,14 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
                  for k, v in result.extra.items()]
         if result.warnings:
             body.append(f'  "warnings": {json.dumps(list(result.warnings))}')
+        if result.exact is not None:
+            body.append(f'  "exact": {json.dumps({k: str(v) for k, v in result.exact.items()})}')
         print("{\n" + ",\n".join(body) + "\n}")
     else:
         for key, value in result.numbers.items():
+            if result.exact is not None and not sp_is_float(result.exact[key]):
+                print(f"{key} = {result.exact[key]}  ({literal(value)})")
+                continue
             print(f"{key} = {literal(value)}")
         if result.regime is not None:
             print(f"regime = {result.regime}")
@@ -901,6 +913,10 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a value for a symbol (repeat); a scene's [values] are defaults")
     p.add_argument("--dps", type=int, help="mpmath with this many significant digits")
+    p.add_argument("--exact", action="store_true",
+                   help="each result also as an exact number (rationals, roots), the "
+                   "scene's decimals read as the fractions they write (0.3 is 3/10); a "
+                   "result solved in floating point is printed as the float it is")
     p.add_argument("--json", action="store_true")
     p.add_argument("--plot", metavar="PNG", help="with a sample of orders: a histogram of "
                    "each output that varies over it")

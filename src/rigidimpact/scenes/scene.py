@@ -49,6 +49,7 @@ from rigidimpact.solve.collision import (
 from rigidimpact.solve.derivation import (
     Derivation,
     Evaluation,
+    exact_numbers,
     model_warnings,
     physics_warnings,
     read_values,
@@ -335,7 +336,7 @@ class Scene:
                           outcomes=outcomes if several else ())
 
     def evaluate(self, settings: Mapping[str, Any], sources: Mapping[str, str],
-                 dps: int | None = None) -> Evaluation:
+                 dps: int | None = None, exact: bool = False) -> Evaluation:
         """Every result in numbers at `settings` (names to values, each checked through
         the same door as ``[values]``; `sources` says where each came from).
 
@@ -354,7 +355,7 @@ class Scene:
         (1.0, 'sequential left, right')
         """
         if len(self.contacts) == 1 and not self.joints:
-            return self.derivation().evaluate(settings, dps, sources)
+            return self.derivation().evaluate(settings, dps, sources, exact)
         exact = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
         derivation = self.derivation(exact, printed=False)
         numbers = derivation.evaluate({}, dps).numbers
@@ -381,7 +382,8 @@ class Scene:
         warnings = (*warnings, *outcomes[0].notes)
         if outcomes[0].method:
             extra["method"] = outcomes[0].method
-        return Evaluation(numbers, warnings, None, extra)
+        return Evaluation(numbers, warnings, None, extra,
+                          exact_numbers(outcomes[0].results()) if exact else None)
 
 
 def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:

@@ -46,7 +46,7 @@ from rigidimpact.scenes.scene import (
     read_toml,
     scene_from_data,
 )
-from rigidimpact.solve.derivation import Derivation, Evaluation, read_values
+from rigidimpact.solve.derivation import Derivation, Evaluation, exact_numbers, read_values
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
 from rigidimpact.symbolic.distributions import RandomInputs, random_table
@@ -147,7 +147,7 @@ class SpaceScene:
                           warnings=tuple(solution.warnings))
 
     def evaluate(self, settings: Mapping[str, Any], sources: Mapping[str, str],
-                 dps: int | None = None) -> Evaluation:
+                 dps: int | None = None, exact: bool = False) -> Evaluation:
         """Every result in numbers at `settings` (names to values; the scene's
         ``[values]`` are the defaults), with the course and the checks."""
         exact = read_values(settings, dict(sources), self.data_symbols, (), self.name)
@@ -166,7 +166,8 @@ class SpaceScene:
             extra["courses"] = list(solution.courses)
         if solution.notes:
             extra["notes"] = list(solution.notes)
-        return Evaluation(numbers, tuple(solution.warnings), solution.regime, extra)
+        return Evaluation(numbers, tuple(solution.warnings), solution.regime, extra,
+                          exact_numbers(solution.results()) if exact else None)
 
 
 # the rule as evaluate --json has long named it in 3-D

@@ -179,8 +179,10 @@ class Derivation:
         return {s.name: v for s, v in exact.items() if s.name in self.symbols}
 
     def evaluate(self, values: Mapping[str, Any], dps: int | None = None,
-                 sources: Mapping[str, str] | None = None) -> Evaluation:
-        """Every result at `values`, checked first (see :meth:`checked`).
+                 sources: Mapping[str, str] | None = None,
+                 exact: bool = False) -> Evaluation:
+        """Every result at `values`, checked first (see :meth:`checked`); with `exact`,
+        each also as an exact number (:attr:`Evaluation.exact`).
 
         Returns an :class:`Evaluation`: the numbers, and warnings where the model cannot
         honour the physics at these values (kinetic energy created, a contact that
@@ -195,13 +197,15 @@ class Derivation:
         (1.0, ())
         """
 
-        exact = self.checked(values, sources)
+        given = self.checked(values, sources)
         extra: dict[str, Any] = {}
+        at = {self.symbols[k]: v for k, v in given.items()}
         if self.solution is None:
-            numbers = evaluate(self.results, exact, dps)
-            return Evaluation(numbers, physics_warnings(numbers, dps, "the model"))
+            numbers = evaluate(self.results, given, dps)
+            return Evaluation(numbers, physics_warnings(numbers, dps, "the model"),
+                              exact=exact_numbers(self.results, at) if exact else None)
         contact = self.solution.contact
-        at = {self.symbols[k]: v for k, v in exact.items()}
+        exactly = None
         if contact.frictional and (dps is None or dps <= _FRICTION_DIGITS):
             # numbers first, then the case analysis: one course, exact (or 50-digit)
             # arithmetic, and no formula over every course evaluated where most of its
@@ -212,11 +216,13 @@ class Derivation:
                 first, second = (b.at(at) for b in self.solution.before)
                 solved = Impact(first, second, contact.at(at)).solve()
             numbers = evaluate(solved.results(), {}, dps)
+            exactly = exact_numbers(solved.results()) if exact else None
             regime = solved.regime
             if solved.checks:  # each law's residual at these numbers
                 extra["checks"] = {k: float(v) for k, v in solved.checks.items()}
         else:
-            numbers = evaluate(self.results, exact, dps)
+            numbers = evaluate(self.results, given, dps)
+            exactly = exact_numbers(self.results, at) if exact else None
             regime = self.solution.regime_at(at)
         model = model_name(contact)
         if regime is not None:
@@ -227,7 +233,8 @@ class Derivation:
                          "kinematic law can create energy (the Kane-Levinson paradox); " \
                          "Poisson's or the energetic law would not"
             model += ")"
-        return Evaluation(numbers, physics_warnings(numbers, dps, model), regime, extra)
+        return Evaluation(numbers, physics_warnings(numbers, dps, model), regime, extra,
+                          exactly)
 
 
 @dataclass(frozen=True)
@@ -238,6 +245,19 @@ class Evaluation:
     warnings: tuple[str, ...] = ()
     regime: str | None = None  # with friction: the course the impact took
     extra: Mapping[str, Any] = field(default_factory=dict)  # several contacts: acted, orders
+    exact: Mapping[str, Any] | None = None  # asked for: each result as an exact number
+
+
+def exact_numbers(results: Mapping[str, Any], at: Mapping[Any, Any] | None = None
+                  ) -> dict[str, sp.Expr]:
+    """Each result with the exact numbers `at` put in, its roots tidied (a result solved
+    in floating point stays the float it is)."""
+    out = {}
+    for key, value in results.items():
+        x = sp.sympify(value)
+        x = x.xreplace(dict(at)) if at else x
+        out[key] = x if x.has(sp.Float) else sp.radsimp(sp.together(x))
+    return out
 
 
 def read_values(values: Mapping[str, Any], sources: dict[str, str],
