@@ -11,21 +11,24 @@ BUILD ?= build
 # share one kernel, in order)
 PARALLEL := -n auto --dist loadfile
 
+# the package's bytecode is compiled at install, as a wheel's install does (an editable
+# one does not): a command's first start does not compile it, nor every start where
+# Python may not write it
 $(STAMP): pyproject.toml constraints.txt
-	$(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -c constraints.txt -e '.[dev]'
-	# the package's bytecode now, as a wheel's install does (an editable one does not):
-	# a command's first start does not compile it, nor every start where Python may
-	# not write it
-	$(PY) -m compileall -q src
-	touch $(STAMP)
+	@echo "Setting up $(VENV) with the pinned packages (once; about a minute where pip's cache is warm)"
+	@$(PYTHON) -m venv $(VENV)
+	@$(PY) -m pip install --quiet --upgrade pip
+	@$(PY) -m pip install --quiet -c constraints.txt -e '.[dev]'
+	@$(PY) -m compileall -q src
+	@touch $(STAMP)
 
 run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and figures to build/
-	$(PY) derivations/run_all.py --out $(BUILD)
+	@echo "Deriving and verifying the paper's results into $(BUILD)/ (under a minute)"
+	@$(PY) derivations/run_all.py --out $(BUILD)
 
 test: $(STAMP)  ## unit tests, doctests and notebooks (nbval), over every core
-	$(PY) -m pytest $(PARALLEL)
+	@echo "Running the tests, doctests and notebooks on every core (about five minutes)"
+	@$(PY) -m pytest $(PARALLEL)
 
 test-slow: $(STAMP)  ## the slow tier alone: wide grids, whole benches, 1,000-disc clusters
 	$(PY) -m pytest $(PARALLEL) -m slow

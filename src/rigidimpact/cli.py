@@ -873,8 +873,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidimpact",
-                     description="Derive, verify and simulate impulsive planar collisions "
-                                 "of rigid bodies (after Mungan, Eur. J. Phys. 28, 2007).")
+                     description="Derive, verify and simulate impulsive collisions of "
+                                 "rigid bodies, in the plane and in space (after Mungan, "
+                                 "Eur. J. Phys. 28, 2007).")
     parser.add_argument("--version", action=_Version, nargs=0,
                         help="show the program's version number and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)

@@ -174,7 +174,7 @@ def document(derivations: Sequence[Derivation], checks: Iterable = ()) -> str:
         "\\usepackage[margin=2cm]{geometry}\n"
         "\\usepackage{amsmath}\n"
         "\\allowdisplaybreaks\n"
-        "\\title{Impulsive planar collisions: derivations}\n"
+        "\\title{Impulsive collisions of rigid bodies: derivations}\n"
         "\\author{rigidimpact}\n"
         "\\date{}\n"
         "\\begin{document}\n"
