@@ -129,12 +129,35 @@ def _check_workers(args: argparse.Namespace) -> None:
         raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
 
 
+def _distributions_figure(path: Path, scene: Any, results: dict, found: dict) -> None:
+    """Each [random] output's histogram of draws under its exact density, to `path`."""
+    from rigidimpact.analyses.distributions import distribution_curves
+    from rigidimpact.outputs.atomic import write_file
+    _files_only()
+    from rigidimpact.figures import close
+    from rigidimpact.outputs.plots import random_outputs
+
+    curves = distribution_curves(scene, results, found)
+    if not curves:
+        raise InputError("--plot", "no [random] output here is driven by one random input "
+                         "with every other symbol given: nothing to draw")
+    figure = random_outputs(curves, f"{scene.title or scene.name}: draws at [values] "
+                            f"(seed {scene.random.seed})")
+    write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    close(figure)
+
+
 def _cmd_derive(args: argparse.Namespace) -> int:
     _check_workers(args)
     d = _derivation(args.target)
     table, scene = _random_of(args.target)
     if (args.workers is not None or args.scheduler) and not table:
         raise InputError("--workers", "only a scene with a [random] table runs on Dask")
+    if args.plot:
+        if not table:
+            raise InputError("--plot", "derive draws the distributions of a scene's "
+                             "[random] outputs: this one has no [random] table")
+        _check_plot_path(Path(args.plot))
     found: dict = {}
     if table:  # numpy, scipy and Dask only where something is drawn
         from rigidimpact.analyses.distributions import (
@@ -144,6 +167,8 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         )
         found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
                                     progress=not args.json)
+        if args.plot:
+            _distributions_figure(Path(args.plot), scene, dict(d.results), found)
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
     for warning in d.warnings:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)
@@ -890,6 +915,8 @@ def _build_parser() -> argparse.ArgumentParser:
                         "its draws repay them (else here, said): the same answer")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="... or on the Dask cluster at ADDRESS (tcp://host:8786)")
+    p.add_argument("--plot", metavar="PNG", help="a scene with [random]: each output's "
+                   "histogram of draws under its exact density, to this PNG file")
     p.set_defaults(run=_cmd_derive)
 
     p = sub.add_parser("verify", help="check every result of the paper")

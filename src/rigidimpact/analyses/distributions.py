@@ -24,6 +24,7 @@ from rigidimpact.symbolic.distributions import (
     chunk_sizes,
     combine,
     draw_plan,
+    histogram,
     monte_carlo,
     pushforward,
     stream,
@@ -464,3 +465,40 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
             lines.append(f"      warning: at {mc['warned']} of {int(mc['samples'])} draws: "
                          f"{mc['warning']}")
     return lines
+
+
+def distribution_curves(scene: Any, results: Mapping[str, sp.Expr],
+                        found: Mapping[str, Mapping[str, Any]], samples: int = 10**6,
+                        bins: int = 60) -> list[tuple[str, Any, Any, Any, Any]]:
+    """What :func:`rigidimpact.outputs.plots.random_outputs` draws for each output of
+    `found` (:func:`scene_distributions`) driven by one random input, at the scene's
+    [values]: its histogram from `samples` seeded draws (the table's seed) and, where
+    found in closed form, its exact density between the ends of its support (else the
+    histogram alone, between the draws' own ends)."""
+    table = scene.random
+    inputs = dict(table.inputs)
+    values = {s: v for s, v in scene.values.items() if s not in inputs}
+    curves = []
+    for key, entry in found.items():
+        g = results[key]
+        drivers = g.free_symbols & set(inputs)
+        if len(drivers) != 1 or g.free_symbols - drivers - set(values):
+            continue  # two random inputs, or a symbol without a value: nothing to draw
+        count = min(samples, table.samples)
+        if "density" in entry:
+            low, high = (float(sp.N(e.subs(values))) for e in entry["support"])
+        else:
+            sample = draw_plan(g, inputs, values).values(np.random.default_rng(table.seed),
+                                                         min(count, 10**5))
+            low, high = float(np.min(sample)), float(np.max(sample))
+        if not low < high:
+            continue  # one value: a point, no density
+        edges = np.linspace(low, high, bins + 1)
+        sampled = histogram(g, inputs, values, count, table.seed, edges)
+        points = density = None
+        if "density" in entry:
+            points = np.linspace(low, high, 801)[1:-1]
+            exact = sp.lambdify(entry["variable"], entry["density"].subs(values), "numpy")
+            density = np.broadcast_to(np.asarray(exact(points), dtype=float), points.shape)
+        curves.append((key, edges, sampled, points, density))
+    return curves

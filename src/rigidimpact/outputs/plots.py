@@ -985,6 +985,38 @@ def order_spread(rows: Sequence[dict[str, float]], sample: dict) -> Figure:
     return fig
 
 
+def random_outputs(curves: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray | None,
+                                          np.ndarray | None]], title: str) -> Figure:
+    """Each random output in a panel of its own: the histogram of its draws and, where
+    it has one in closed form, its exact density over it. Each curve is (the output's
+    key, bin edges, sampled density per bin, points and exact density at them, or None
+    and None).
+
+    Examples
+    --------
+    >>> edges = np.linspace(0, 1, 11)
+    >>> fig = random_outputs([("ball.vy", edges, np.ones(10), edges[1:-1],
+    ...                        np.ones(9))], "a uniform output")
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['ball.vy']
+    """
+    fig, axes = plt.subplots(len(curves), 1, figsize=(7, 2.2 + 2.2 * len(curves)),
+                             squeeze=False)
+    for ax, (key, edges, sampled, points, exact) in zip(axes[:, 0], curves, strict=True):
+        ax.stairs(sampled, edges, color="C0", alpha=0.45, fill=True,
+                  label="Monte Carlo (histogram of the draws)")
+        top = float(np.max(sampled)) if len(sampled) else 1.0
+        if points is not None:
+            ax.plot(points, exact, color="C1", lw=1.4, label="exact density")
+        ax.set_ylim(0, 1.3 * top if top > 0 else 1.0)  # an infinite end of a density
+        ax.set_xlabel(key)
+        ax.set_ylabel("probability density")
+        ax.legend(fontsize="small")
+    axes[0, 0].set_title(title, fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
 def random_rebound(curves: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray,
                                           np.ndarray]], title: str) -> Figure:
     """Histograms of sampled outputs over their exact densities: each curve is (label,

@@ -356,8 +356,8 @@ class Scene:
         """
         if len(self.contacts) == 1 and not self.joints:
             return self.derivation().evaluate(settings, dps, sources, exact)
-        exact = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
-        derivation = self.derivation(exact, printed=False)
+        given = read_values(settings, dict(sources), self.data_symbols, self.roles, self.name)
+        derivation = self.derivation(given, printed=False)
         numbers = derivation.evaluate({}, dps).numbers
         outcomes = derivation.outcomes
         extra: dict[str, Any] = {"rule": outcomes[0].label, "acted": list(outcomes[0].acted)}

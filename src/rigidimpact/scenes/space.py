@@ -150,11 +150,11 @@ class SpaceScene:
                  dps: int | None = None, exact: bool = False) -> Evaluation:
         """Every result in numbers at `settings` (names to values; the scene's
         ``[values]`` are the defaults), with the course and the checks."""
-        exact = read_values(settings, dict(sources), self.data_symbols, (), self.name)
-        missing = sorted(str(s) for s in self.used if s not in exact)
+        given = read_values(settings, dict(sources), self.data_symbols, (), self.name)
+        missing = sorted(str(s) for s in self.used if s not in given)
         if missing:
             raise InputError("values", f"give a value for {', '.join(missing)}")
-        solution = self.collision(exact).solve()
+        solution = self.collision(given).solve()
         digits = dps or 17
         numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
         extra: dict[str, Any] = {"rule": "one contact" if len(self.contacts) == 1 else
