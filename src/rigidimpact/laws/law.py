@@ -93,7 +93,8 @@ class Equation:
         $\displaystyle V_{x} = 0 \qquad \text{restitution (4)}$
         """
 
-        note = escape_text(self.label + (f" {self.paper}" if self.paper else ""))
+        note = escape_text(self.label + (f" {self.paper}" if self.paper else ""),
+                           angles=False)
         return (rf"$\displaystyle {to_latex(self.lhs)} = {to_latex(self.rhs)} \qquad "
                 rf"\text{{{note}}}$")
 

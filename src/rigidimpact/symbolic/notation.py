@@ -306,18 +306,23 @@ def result_lhs(key: str) -> str:
     return latex_name(sp.Symbol(key))
 
 
-def escape_text(text: str) -> str:
-    """Text made safe inside LaTeX (its special characters escaped).
+def escape_text(text: str, angles: bool = True) -> str:
+    """Text made safe inside LaTeX (its special characters escaped); with `angles`, < and
+    > too, which pdflatex's default text font sets as other glyphs (Jupyter's MathJax
+    sets them as they are, and shows the escapes literally: its displays pass False).
 
     Examples
     --------
     >>> escape_text("a_b")
     'a\\\\_b'
+    >>> escape_text("x >= 0"), escape_text("x >= 0", angles=False)
+    ('x \\\\textgreater{}= 0', 'x >= 0')
     """
     for char, repl in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"),
                        ("$", r"\$"), ("#", r"\#"), ("_", r"\_"), ("{", r"\{"),
                        ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}"),
-                       ("<", r"\textless{}"), (">", r"\textgreater{}")):
+                       *((("<", r"\textless{}"), (">", r"\textgreater{}")) if angles
+                         else ())):
         text = text.replace(char, repl)
     return text
 
@@ -381,6 +386,7 @@ def aligned(rows: list[tuple[str, str, str]]) -> str:
     >>> print(aligned([("x", "1", "a note"), ("y", "2", "")]))
     $$\begin{aligned} x &= 1 && \text{a note} \\ y &= 2 \end{aligned}$$
     """
-    lines = [rf"{lhs} &= {rhs}" + (rf" && \text{{{escape_text(note)}}}" if note else "")
+    lines = [rf"{lhs} &= {rhs}" + (rf" && \text{{{escape_text(note, angles=False)}}}"
+                                   if note else "")
              for lhs, rhs, note in rows]
     return r"$$\begin{aligned} " + r" \\ ".join(lines) + r" \end{aligned}$$"
