@@ -127,7 +127,9 @@ def test_sweep_keys_writes_only_the_keys_asked_for(tmp_path, capsys):
     assert main(argv) == 0
     capsys.readouterr()
     written = sorted(p.name for p in folder.iterdir() if not p.name.startswith("."))
-    assert written == ["V_x.npy", "summary.json"]
+    assert written == ["V_x.npy", "summary.json", "table.csv"]
+    header = (folder / "table.csv").read_text().splitlines()[0]
+    assert header == "theta,V_x"  # the table too holds only the keys asked for
     summary = json.loads((folder / "summary.json").read_text())
     assert "energy_loss_fraction" in summary["results"]
     # eq. (7) at theta = 0, m/M = 1/2, e = 1/2: 2M(1 - e^2)/(2M + m) = 3/5 (the least
