@@ -166,7 +166,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
             scene_distributions,
         )
         found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
-                                    progress=not args.json)
+                                    progress=None if args.json else _tasks_bar)
         if args.plot:
             _distributions_figure(Path(args.plot), scene, dict(d.results), found)
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
@@ -853,6 +853,11 @@ def _progress_bar(done: int, total: int, label: str) -> None:
               flush=True)
     elif done == total or done % 10 == 0:
         print(line, file=sys.stderr, flush=True)
+
+
+def _tasks_bar(done: int, total: int) -> None:
+    """The bar of a Monte Carlo's Dask tasks (each a run of draws or of solves)."""
+    _progress_bar(done, total, "Dask tasks")
 
 
 def _files_only() -> None:

@@ -11,14 +11,14 @@ from __future__ import annotations
 import contextlib
 import random
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.outputs.workers import dask_client, guided, local_or_here
+from rigidimpact.outputs.workers import dask_client, gathered, guided, local_or_here
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
@@ -39,26 +39,29 @@ CHUNK = 1_000_000  # draws a chunk (a worker takes a run of them)
 # once a draw: 1000 draws by default, at most a million, 64 a task
 POINT_SAMPLES, MAX_POINT_SAMPLES, POINT_CHUNK = 1000, 10**6, 64
 
+Progress = Callable[[int, int], None]  # told (tasks done, tasks) as a Dask task ends
+
 
 def monte_carlo_on_dask(g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
                         values: dict[sp.Symbol, Any], samples: int, seed: int,
                         chunk: int = CHUNK, workers: int | None = None,
                         scheduler: str | None = None, processes: bool = True,
-                        progress: bool = False, client: Any = None) -> dict[str, float]:
+                        progress: Progress | None = None,
+                        client: Any = None) -> dict[str, float]:
     """:func:`rigidimpact.symbolic.distributions.monte_carlo` spread over Dask workers:
     one task a chunk, each drawing from its own stream of the seed, their sums added
     in the chunks' order, so the answer equals the one-process answer for the same
     seed and chunk, whatever the number of workers. On `client` where one is given (a
     command's several outputs share one cluster); else with no `scheduler` a local
     cluster of `workers` processes (default: one a core) is started and closed, and
-    with one (``tcp://host:8786``) its cluster is used. `progress` draws Dask's
-    progress bar on the standard error."""
+    with one (``tcp://host:8786``) its cluster is used. `progress(done, total)` is told
+    as each task ends."""
     if client is None:
         with dask_client(workers, scheduler, processes) as opened:
             return monte_carlo_on_dask(g, inputs, values, samples, seed, chunk,
                                        progress=progress, client=opened)
     return _gathered(client, _sent(client, g, inputs, values, samples, seed, chunk),
-                     samples, progress)
+                     samples, progress)[0]
 
 
 def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
@@ -80,14 +83,11 @@ def _sent(client: Any, g: sp.Expr, inputs: dict[sp.Symbol, Distribution],
 
 
 def _gathered(client: Any, futures: list[Any], samples: int,
-              progress: bool) -> dict[str, float]:
-    """The Monte Carlo's answer once the tasks of :func:`_sent` are done."""
-    if progress:
-        from dask.distributed import progress as bar
-
-        bar(futures)
-    sums = [part for run in client.gather(futures) for part in run]
-    return combine(sums, samples)
+              progress: Progress | None) -> tuple[dict[str, float], int]:
+    """The Monte Carlo's answer once the tasks of :func:`_sent` are done, and how many
+    workers drew it."""
+    runs, drew = gathered(client, futures, progress)
+    return combine([part for run in runs for part in run], samples), drew
 
 
 def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Distribution],
@@ -124,19 +124,30 @@ def point_chunk(scene: Any, keys: Sequence[str], inputs: Mapping[sp.Symbol, Dist
 
 def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
                       workers: int | None = None, scheduler: str | None = None,
-                      processes: bool = True, progress: bool = False,
+                      processes: bool = True, progress: Progress | None = None,
                       chunk: int = POINT_CHUNK) -> dict[str, dict[str, Any]]:
     """The Monte Carlo of `keys` for a scene with no closed form: `samples` draws of its
     [random] inputs, each solved with numbers by its rule (:func:`point_chunk`, `chunk`
     draws a task), in this process or on Dask workers; the same numbers either way for
     the same seed. For each key its mean, standard error, fraction below zero and
     samples, and ``warned``: the draws whose answer came with a warning, and the
-    first warning."""
+    first warning. `progress(done, total)` is told as each Dask task ends."""
+    return _point_monte_carlo(scene, keys, samples, seed, workers, scheduler, processes,
+                              progress, chunk)[0]
+
+
+def _point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
+                       workers: int | None, scheduler: str | None, processes: bool,
+                       progress: Progress | None, chunk: int
+                       ) -> tuple[dict[str, dict[str, Any]], int]:
+    """:func:`point_monte_carlo`'s answer and how many Dask workers drew it (0: this
+    process did)."""
     table = scene.random
     inputs = dict(table.inputs)
     sizes = chunk_sizes(samples, chunk)
     jobs = [(k, size) for k, size in enumerate(sizes)]
     workers, note = local_or_here(samples, "solves", workers, scheduler)
+    drew = 0
     if workers is None and scheduler is None:
         parts = [point_chunk(scene, keys, inputs, seed, k, size)
                  for k, size in jobs]
@@ -145,21 +156,17 @@ def point_monte_carlo(scene: Any, keys: Sequence[str], samples: int, seed: int,
             sent = client.scatter(scene, broadcast=True)  # once a worker, not once a task
             futures = [client.submit(point_chunk, sent, list(keys), inputs, seed, k, size,
                                      pure=False) for k, size in jobs]
-            if progress:
-                from dask.distributed import progress as bar
-
-                bar(futures)
-            parts = client.gather(futures)
+            parts, drew = gathered(client, futures, progress)
     warned = sum(p[1] for p in parts)
     first = next((p[2] for p in parts if p[2]), None)
     return {key: {**combine([p[0][key] for p in parts], samples), "seed": seed,
                   "warned": warned, **({"warning": first} if first else {}),
                   **({"workers": note} if note else {})}
-            for key in keys}
+            for key in keys}, drew
 
 
 def _point_distributions(scene: Any, results: Mapping[str, Any], workers: int | None,
-                         scheduler: str | None, progress: bool
+                         scheduler: str | None, progress: Progress | None
                          ) -> dict[str, dict[str, Any]]:
     """:func:`scene_distributions` for a scene solved with numbers (several contacts,
     joints): its outputs have no closed form, so each is a Monte Carlo of solves."""
@@ -171,12 +178,13 @@ def _point_distributions(scene: Any, results: Mapping[str, Any], workers: int | 
                          "closed form")
     keys = list(table.outputs or results)
     begin = time.perf_counter()
-    found = point_monte_carlo(scene, keys, samples, table.seed, workers, scheduler,
-                              progress=progress)
+    found, drew = _point_monte_carlo(scene, keys, samples, table.seed, workers,
+                                     scheduler, True, progress, POINT_CHUNK)
     seconds = time.perf_counter() - begin
     drivers = [str(s) for s in sorted(table.inputs, key=str)]
     return {key: {"random": drivers, "solved": "a solve a draw (no closed form)",
-                  "monte_carlo": {k: v for k, v in found[key].items() if k != "workers"},
+                  "monte_carlo": {**{k: v for k, v in found[key].items()
+                                     if k != "workers"}, "workers": drew},
                   "monte_carlo_seconds": seconds,
                   **({"workers": found[key]["workers"]} if "workers" in found[key]
                      else {})}
@@ -277,13 +285,14 @@ def _exact_for_every(g: sp.Expr, x: sp.Symbol, law: Distribution,
 
 def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | None = None,
                         scheduler: str | None = None,
-                        progress: bool = False) -> dict[str, dict[str, Any]]:
+                        progress: Progress | None = None) -> dict[str, dict[str, Any]]:
     """Each asked output's distribution (the ``[random]`` table's `outputs`, or every
     result driven by exactly one random input): ``random`` (its random symbols), and
     where found in closed form ``variable``, ``density``, ``support`` and ``mean`` (SymPy
     expressions), ``below_zero`` (P(output < 0), where 0 lies inside the support at the
     scene's [values]); always ``monte_carlo`` (mean, standard_error, below_zero,
-    samples, seed) at the scene's [values], and the seconds each took. With `workers`
+    samples, seed, and ``workers``: how many Dask workers drew it, 0 where this process
+    did) at the scene's [values], and the seconds each took. With `workers`
     asked for draws too few to repay starting them
     (:func:`rigidimpact.outputs.workers.local_or_here`), each drawn output's
     ``workers`` says they were not started and the draws were made here."""
@@ -318,7 +327,7 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
 def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[str],
                        inputs: Mapping[sp.Symbol, Distribution],
                        values: Mapping[sp.Symbol, Any], workers: int | None,
-                       scheduler: str | None, progress: bool,
+                       scheduler: str | None, progress: Progress | None,
                        stack: contextlib.ExitStack) -> dict[str, dict[str, Any]]:
     """:func:`scene_distributions`' outputs: where workers are asked for, a Dask cluster
     opened into `stack` and every output's draws sent to it first, then the closed
@@ -376,12 +385,12 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
         g, drivers, _ = every[key]
         if key in sent:  # from the sending of its tasks to their sums
             begin, futures = sent[key]
-            stats = _gathered(client, futures, table.samples, progress)
+            stats, drew = _gathered(client, futures, table.samples, progress)
         else:
             begin = time.perf_counter()
-            stats = monte_carlo(g, {s: inputs[s] for s in drivers}, values,
-                                table.samples, table.seed, CHUNK)
-        entry["monte_carlo"] = {**stats, "seed": table.seed}
+            stats, drew = monte_carlo(g, {s: inputs[s] for s in drivers}, values,
+                                      table.samples, table.seed, CHUNK), 0
+        entry["monte_carlo"] = {**stats, "seed": table.seed, "workers": drew}
         entry["monte_carlo_seconds"] = time.perf_counter() - begin
     return found
 
@@ -460,7 +469,9 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
         mc = entry["monte_carlo"]
         lines.append(f"      Monte Carlo: mean {mc['mean']:.10g} +- "
                      f"{mc['standard_error']:.2g} (standard error), P(< 0) "
-                     f"{mc['below_zero']:.6g}; {entry['monte_carlo_seconds']:.2f} s")
+                     f"{mc['below_zero']:.6g}; {entry['monte_carlo_seconds']:.2f} s"
+                     + (f" on {mc['workers']} Dask worker" + "s" * (mc["workers"] > 1)
+                        if mc.get("workers") else ""))
         if mc.get("warned"):
             lines.append(f"      warning: at {mc['warned']} of {int(mc['samples'])} draws: "
                          f"{mc['warning']}")

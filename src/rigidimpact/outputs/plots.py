@@ -42,14 +42,15 @@ def _curve(key: str):
 
 def _against_theta(key: str, e_values: Sequence[float], mass_ratios: Sequence[float],
                    ylabel: str, title: str) -> tuple[Figure, plt.Axes]:
-    """One line of a barbell result against the initial angle per (e, M/m); m = L = v_ix = 1."""
+    """One line of a barbell result against the initial angle per (e, m/M): the ball's
+    mass m over one sphere's M, with m = L = v_ix = 1 (so M = 1 / ratio)."""
     curve = _curve(key)
     degrees = np.linspace(0.0, 180.0, 361)
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
     for ratio in mass_ratios:
         for ev in e_values:
-            ax.plot(degrees, curve(1.0, ratio, 1.0, np.radians(degrees), ev, 1.0),
-                    label=f"e = {ev:g}, M/m = {ratio:g}")
+            ax.plot(degrees, curve(1.0, 1.0 / ratio, 1.0, np.radians(degrees), ev, 1.0),
+                    label=f"e = {ev:g}, m/M = {ratio:g}")
     ax.set_xlabel(r"initial angle $\theta$ (degrees)")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
@@ -60,10 +61,11 @@ def _against_theta(key: str, e_values: Sequence[float], mass_ratios: Sequence[fl
 
 
 def omega_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 1.0),
-                   mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
+                   mass_ratios: Sequence[float] = (2.0, 0.5)) -> Figure:
     """Barbell spin after the impact, omega_z L / v_ix, against the initial angle.
 
-    One line per restitution e and barbell-to-ball mass ratio M/m (eq. 5).
+    One line per restitution e and mass ratio m/M, the ball's mass over one sphere's
+    (eq. 5; the paper's text speaks of M/m, its inverse).
     """
     fig, _ = _against_theta("omega_z", e_values, mass_ratios,
                             r"$\omega_z L / v_{ix}$ (dimensionless)",
@@ -73,8 +75,11 @@ def omega_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 1.0),
 
 
 def energy_loss_vs_theta(e_values: Sequence[float] = (0.0, 0.5, 0.9),
-                         mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
-    """Fraction of kinetic energy lost (eq. 7) against the initial angle; least at 90."""
+                         mass_ratios: Sequence[float] = (2.0, 0.5)) -> Figure:
+    """Fraction of kinetic energy lost (eq. 7) against the initial angle; least at 90.
+
+    One line per restitution e and mass ratio m/M, the ball's mass over one sphere's.
+    """
     fig, ax = _against_theta("energy_loss_fraction", e_values, mass_ratios,
                              r"$\Delta K_{\mathrm{lost}} / K_i$ (fraction)",
                              "Kinetic energy lost (Mungan eq. 7): least at 90 degrees")
@@ -355,10 +360,11 @@ def naive_vs_stable(ratios: np.ndarray, naive: np.ndarray, stable: np.ndarray,
     return fig
 
 
-def sticking_vs_bouncing(mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
+def sticking_vs_bouncing(mass_ratios: Sequence[float] = (2.0, 0.5)) -> Figure:
     """The barbell's spin when the clay ball sticks (eq. 10) and when it bounces with e = 0.
 
-    They agree at 90 degrees, as section 2 of the paper notes; m = L = v_ix = 1.
+    They agree at 90 degrees, as section 2 of the paper notes; one pair of lines per mass
+    ratio m/M, the ball's mass over one sphere's, with m = L = v_ix = 1.
 
     Examples
     --------
@@ -371,10 +377,10 @@ def sticking_vs_bouncing(mass_ratios: Sequence[float] = (0.5, 2.0)) -> Figure:
     x = np.radians(degrees)
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
     for k, ratio in enumerate(mass_ratios):
-        ax.plot(degrees, stick(1.0, ratio, 1.0, x, 1.0), color=f"C{k}",
-                label=f"sticks, M/m = {ratio:g}")
-        ax.plot(degrees, bounce(1.0, ratio, 1.0, x, 0.0, 1.0), color=f"C{k}", ls="--",
-                label=f"bounces with e = 0, M/m = {ratio:g}")
+        ax.plot(degrees, stick(1.0, 1.0 / ratio, 1.0, x, 1.0), color=f"C{k}",
+                label=f"sticks, m/M = {ratio:g}")
+        ax.plot(degrees, bounce(1.0, 1.0 / ratio, 1.0, x, 0.0, 1.0), color=f"C{k}", ls="--",
+                label=f"bounces with e = 0, m/M = {ratio:g}")
     ax.axvline(90.0, color="grey", lw=0.8, ls=":")
     ax.set_xlabel(r"initial angle $\theta$ (degrees)")
     ax.set_ylabel(r"$\omega_z L / v_{ix}$ (dimensionless)")
