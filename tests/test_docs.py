@@ -59,3 +59,23 @@ def test_the_sphere_example_of_the_3d_guide_runs(capsys):
     exec(compile(block, str(page), "exec"), {})  # noqa: S102 - our own documentation
     printed = capsys.readouterr().out.splitlines()
     assert printed[-1] == "1"  # the landing time the page states
+
+
+def test_the_readme_is_a_front_door():
+    """At most 120 lines; no benchmark history (medians, runs in turn, dates) and no paths
+    into the sources or the tests; every link into the site resolves; the worked
+    example's printed lines are what derive barbell prints."""
+    import subprocess
+    import sys
+
+    root = DOCS.parents[1]
+    text = (root / "README.md").read_text(encoding="utf-8")
+    assert len(text.splitlines()) <= 120
+    for words in ("median", "in turn", "src/", "tests/", "2026", "2025"):
+        assert words not in text, words
+    for link in re.findall(r"\]\((docs/[^)#]+)\)", text):
+        assert (root / link).exists(), link
+    shown = re.search(r"```\n(With f = .*?)```", text, re.S).group(1)
+    printed = subprocess.run([sys.executable, "-m", "rigidimpact", "derive", "barbell"],
+                             capture_output=True, text=True, check=True).stdout
+    assert shown in printed
