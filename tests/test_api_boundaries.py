@@ -122,3 +122,64 @@ def test_hybrid_simulate_checks_its_arguments(kwargs, needle):
 def test_a_sample_of_orders_past_its_cost_budget_is_refused_early():
     with pytest.raises(InputError, match="past the budget"):
         ri.chain(40).sampled_orders(10_000, 0)
+
+
+class _Returns(ri.Rule):
+    """A rule written outside the package that returns what it was made with."""
+
+    name = "returns"
+
+    def __init__(self, value):
+        self.value = value
+
+    def outcomes(self, problem):
+        return self.value
+
+
+class _Unwritten(ri.Rule):
+    """A rule that never wrote its outcomes."""
+
+    name = "unwritten"
+
+
+def _two_walls():
+    # a point in the plane meets two walls at once (x and y), both smooth
+    x, y, vx, vy = me.dynamicsymbols("x y vx vy")
+    frame = me.ReferenceFrame("F")
+    point = me.Point("corner")
+    point.set_vel(frame, vx * frame.x + vy * frame.y)
+    kane = me.KanesMethod(frame, [x, y], [vx, vy], [x.diff() - vx, y.diff() - vy])
+    kane.kanes_equations([me.Particle("b", point, 1)], [])
+    return ri.mechanics.impact(kane, [C(point, -frame.x, name="wx"),
+                                      C(point, -frame.y, name="wy")],
+                               frame=frame).at({vx: 1, vy: 1})
+
+
+@pytest.mark.parametrize("rule, needle", [
+    (_Returns("nope"), "_Returns.outcomes(problem) must return a tuple of Solution (one per "
+                       "outcome), not str 'nope'"),
+    (_Returns(None), "must return a tuple of Solution (one per outcome), not NoneType"),
+    (_Returns(["x"]), "must return a tuple of Solution (one per outcome); item 0 is str"),
+    (_Returns(()), "with at least one outcome, not an empty one"),
+    (_Unwritten(), "_Unwritten.outcomes(problem) is not written"),
+])
+@pytest.mark.parametrize("system", ["collision", "mechanics"])
+def test_a_rule_that_returns_the_wrong_type_is_told_what_a_rule_returns(rule, needle, system):
+    with pytest.raises(InputError) as info:
+        (ri.chain(3) if system == "collision" else _two_walls()).solve(rule)
+    assert str(info.value).startswith("rule: ") and needle in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_a_rule_that_returns_a_list_of_solutions_is_taken():
+    inner = ri.Simultaneous()
+
+    class Listed(ri.Rule):
+        name = "listed"
+
+        def outcomes(self, problem):
+            return list(inner.outcomes(problem))
+
+    (found,) = ri.chain(3).solve(Listed())
+    assert found.results() == ri.chain(3).simultaneous().results()
+    assert _two_walls().solve(Listed()).speeds_after == _two_walls().solve().speeds_after

@@ -466,7 +466,7 @@ class SystemImpact:
         if len(self.contacts) > MAX_ENUMERATED:
             raise InputError("contacts", f"a mechanics system is solved with at most "
                              f"{MAX_ENUMERATED} contacts so far")
-        return rule.outcomes(SystemRows.of(self))
+        return rule.checked_outcomes(SystemRows.of(self))
 
     def _linear_system(self) -> tuple[sp.Matrix, sp.Matrix, list[sp.Symbol]]:
         """``A x = b`` in the speeds after and the impulses, ``M u+ - J^T P = M u-`` with

@@ -74,6 +74,12 @@ def whole_number(name: str, value: Any, least: int, most: int | None = None,
     return value
 
 
+def _short(value: Any) -> str:
+    """`value`'s repr, on one line and cut short (it goes into a one-line message)."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 class Rule:
     """How several contacts that close at the same instant act together.
 
@@ -111,6 +117,28 @@ class Rule:
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         raise NotImplementedError
+
+    def checked_outcomes(self, problem: Any) -> tuple[Solution, ...]:
+        """:meth:`outcomes`, with what it returned checked: a non-empty tuple (or list)
+        of :class:`Solution`, or InputError naming the rule (a rule written outside the
+        package that returns anything else is told what a rule must return)."""
+        method = f"{type(self).__name__}.outcomes(problem)"
+        if type(self).outcomes is Rule.outcomes:
+            raise InputError("rule", f"{method} is not written: a rule defines it, "
+                             "returning a tuple of Solution (one per outcome)")
+        found = self.outcomes(problem)
+        if not isinstance(found, (tuple, list)):
+            raise InputError("rule", f"{method} must return a tuple of Solution (one per "
+                             f"outcome), not {type(found).__name__} {_short(found)}")
+        if not found:
+            raise InputError("rule", f"{method} must return a tuple of Solution with at "
+                             "least one outcome, not an empty one")
+        for k, outcome in enumerate(found):
+            if not isinstance(outcome, Solution):
+                raise InputError("rule", f"{method} must return a tuple of Solution (one "
+                                 f"per outcome); item {k} is {type(outcome).__name__} "
+                                 f"{_short(outcome)}")
+        return tuple(found)
 
     def laws(self, frictional: bool = False) -> str:
         """What the rule imposes, in words."""
