@@ -183,3 +183,50 @@ def test_a_rule_that_returns_a_list_of_solutions_is_taken():
     (found,) = ri.chain(3).solve(Listed())
     assert found.results() == ri.chain(3).simultaneous().results()
     assert _two_walls().solve(Listed()).speeds_after == _two_walls().solve().speeds_after
+
+
+M3, R3, V3 = sp.symbols("M3 R3 V3", positive=True)
+FREE = sp.Symbol("w")  # no assumptions: the body's own check refuses a negative mass
+
+
+def _sphere_on_floor():
+    ball = ri.Body3.sphere(M3, R3, (0, 0, R3), (V3, 0, -1), name="ball")
+    floor = ri.Contact(normal=(0, 0, 1), restitution=sp.Rational(1, 2),
+                       bodies=("floor", "ball"), point=(0, 0, 0))
+    return ri.SpaceCollision((ri.Body3.fixed("floor"), ball), (floor,))
+
+
+def test_a_3d_body_and_collision_take_plain_python_numbers():
+    ball = ri.Body3.sphere(M3, R3, velocity=(V3, 0, 0), name="ball").at(
+        {M3: 2, R3: 0.5, V3: np.float64(3)})
+    assert ball.mass == 2 and ball.radius == sp.Float(0.5)
+    assert ball.velocity[0] == sp.Float(3.0)  # a float stays one, exact as given
+    out = _sphere_on_floor().at({M3: 2, R3: 1, V3: 1}).solve()
+    assert out.results()["ball.vz"] == sp.Rational(1, 2)  # Newton's law, e = 1/2
+    assert out.results()["ball.vx"] == 1  # smooth: the slip is untouched
+
+
+@pytest.mark.parametrize("values, needle", [
+    ({M3: -1}, "values.M3: must be positive (the symbol is declared positive), not -1"),
+    ({M3: 0.0}, "values.M3: must be positive"),
+    ({M3: float("nan")}, "values.M3: must be finite, not nan"),
+    ({R3: float("inf")}, "values.R3: must be finite, not inf"),
+    ({M3: "2"}, "values.M3: must be a number or a SymPy expression, not str '2'"),
+    ({M3: 2j}, "values.M3: must be a real number, not complex 2j"),
+    ({M3: None}, "values.M3: must be a number or a SymPy expression, not NoneType"),
+    ({M3: True}, "values.M3: must be a number or a SymPy expression, not bool"),
+    ({"M3": 2}, "values: keys must be SymPy symbols"),
+    ([(M3, 2)], "values: must be a dict of SymPy symbols to numbers, not list"),
+])
+@pytest.mark.parametrize("make", ["body", "collision"])
+def test_3d_at_refuses_bad_values_in_one_line(values, needle, make):
+    made = (ri.Body3.sphere(M3, R3, name="ball") if make == "body"
+            else _sphere_on_floor())
+    with pytest.raises(InputError) as info:
+        made.at(values)
+    assert needle in str(info.value) and "\n" not in str(info.value)
+
+
+def test_3d_at_refuses_a_negative_mass_of_a_symbol_without_assumptions():
+    with pytest.raises(InputError, match=r"^ball\.mass: must be positive, got -1$"):
+        ri.Body3.sphere(FREE, 1, name="ball").at({FREE: -1})
