@@ -11,6 +11,7 @@ import sympy.physics.mechanics as me
 import rigidimpact as ri
 from rigidimpact.errors import InputError
 from rigidimpact.mechanics.hybrid import Hybrid
+from rigidimpact.simulate.sphere import flight, landing_time, sliding
 
 q, u = me.dynamicsymbols("q u")
 m, ell, e = sp.symbols("m l e", positive=True)
@@ -230,3 +231,50 @@ def test_3d_at_refuses_bad_values_in_one_line(values, needle, make):
 def test_3d_at_refuses_a_negative_mass_of_a_symbol_without_assumptions():
     with pytest.raises(InputError, match=r"^ball\.mass: must be positive, got -1$"):
         ri.Body3.sphere(FREE, 1, name="ball").at({FREE: -1})
+
+
+NAN, INF = float("nan"), float("inf")
+_STILL = ((3, 0, 0), (0, 0, 0))  # along the table, no spin
+_FLIGHT = ((0, 0, 1), (1, 0, 0), (0, 0, 0), (0, 0, -10))
+
+
+@pytest.mark.parametrize("call, needle", [
+    (lambda: landing_time("h", 3, 10), "height: must be a number or a SymPy expression, "
+                                        "not str 'h'"),
+    (lambda: landing_time(2, "u", 10), "rise: must be a number or a SymPy expression"),
+    (lambda: landing_time(2, 3, "g"), "g: must be a number or a SymPy expression"),
+    (lambda: landing_time(2, 3j, 10), "rise: must be a real number, not complex 3j"),
+    (lambda: landing_time(NAN, 3, 10), "height: must be finite, not nan"),
+    (lambda: landing_time(2, 3, INF), "g: must be finite, not inf"),
+    (lambda: landing_time(-1, 3, 10), "height: must be at least 0"),
+    (lambda: sliding(*_STILL, "R", 0.4, 0.2, 9.8), "radius: must be a number or a SymPy "
+                                                   "expression, not str 'R'"),
+    (lambda: sliding(*_STILL, NAN, 0.4, 0.2, 9.8), "radius: must be finite, not nan"),
+    (lambda: sliding(*_STILL, 1, INF, 0.2, 9.8), "k: must be finite, not inf"),
+    (lambda: sliding(*_STILL, 1, 0.4, 0.2j, 9.8), "mu: must be a real number"),
+    (lambda: sliding(*_STILL, 1, 0.4, "mu", 9.8), "mu: must be a number or a SymPy"),
+    (lambda: sliding((NAN, 0, 0), (0, 0, 0), 1, 0.4, 0.2, 9.8), "v[0]: must be finite"),
+    (lambda: sliding((1j, 0, 0), (0, 0, 0), 1, 0.4, 0.2, 9.8), "v[0]: must be a real"),
+    (lambda: sliding((3, 0, 0), (0, "w", 0), 1, 0.4, 0.2, 9.8), "spin[1]: must be a number"),
+    (lambda: sliding("abc", (0, 0, 0), 1, 0.4, 0.2, 9.8), "v: must be three numbers"),
+    (lambda: flight(*_FLIGHT, "t"), "t: must be a number or a SymPy expression, not str"),
+    (lambda: flight(*_FLIGHT, NAN), "t: must be finite, not nan"),
+    (lambda: flight(*_FLIGHT, 1j), "t: must be a real number, not complex 1j"),
+    (lambda: flight((0, 0, INF), *_FLIGHT[1:], 1), "position[2]: must be finite, not inf"),
+    (lambda: flight(*_FLIGHT[:3], (0, 0, "g"), 1), "gravity[2]: must be a number"),
+])
+def test_sphere_motion_refuses_text_complex_and_non_finite_numbers(call, needle):
+    with pytest.raises(InputError) as info:
+        call()
+    assert needle in str(info.value) and "\n" not in str(info.value)
+
+
+def test_sphere_motion_takes_python_numpy_and_sympy_numbers():
+    assert landing_time(2, 3, 10) == 1  # 2 + 3 t - 5 t^2 = 0
+    assert landing_time(np.float64(2), np.int64(3), 10) == pytest.approx(1.0, rel=1e-15)
+    # floats stand for the simple rationals they print as: rolls at t = 150/343
+    assert sliding(*_STILL, 0.1, 0.4, 0.2, 9.8).t == sp.Rational(150, 343)
+    h = sp.Symbol("h", positive=True)  # a SymPy symbol is a symbol on purpose
+    assert landing_time(h, 0, 2) == sp.sqrt(h)
+    place, _, _ = flight(np.array([0.0, 0.0, 1.0]), *_FLIGHT[1:], np.float64(0.5))
+    assert float(place[2]) == pytest.approx(1 - 10 * 0.5**2 / 2)
