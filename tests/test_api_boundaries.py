@@ -11,6 +11,7 @@ import sympy.physics.mechanics as me
 import rigidimpact as ri
 from rigidimpact.errors import InputError
 from rigidimpact.mechanics.hybrid import Hybrid
+from rigidimpact.simulate.bounces import spheres
 from rigidimpact.simulate.sphere import flight, landing_time, sliding
 
 q, u = me.dynamicsymbols("q u")
@@ -278,3 +279,43 @@ def test_sphere_motion_takes_python_numpy_and_sympy_numbers():
     assert landing_time(h, 0, 2) == sp.sqrt(h)
     place, _, _ = flight(np.array([0.0, 0.0, 1.0]), *_FLIGHT[1:], np.float64(0.5))
     assert float(place[2]) == pytest.approx(1 - 10 * 0.5**2 / 2)
+
+
+def _rough_drop():
+    # a ball thrown down and along onto a rough floor (e = 1/2, mu = 1/5)
+    ball = ri.Body3.sphere(1, sp.Rational(1, 10), (0, 0, 1), (1, 0, -1), name="a")
+    floor = ri.Contact(normal=(0, 0, 1), bodies=("table", "a"), point=(0, 0, 0),
+                       name="floor", restitution=sp.Rational(1, 2), tangential="coulomb",
+                       friction=sp.Rational(1, 5))
+    return (ball,), (floor,)
+
+
+@pytest.mark.parametrize("kwargs, needle", [
+    ({"compliance": -1.0}, "compliance: the stiffness ratio k_t/k_n must be a positive "
+                           "number, not -1.0"),
+    ({"compliance": 0}, "compliance: the stiffness ratio k_t/k_n must be a positive"),
+    ({"compliance": float("nan")}, "compliance: must be finite, not nan"),
+    ({"compliance": float("inf")}, "compliance: must be finite, not inf"),
+    ({"compliance": "1"}, "compliance: must be a number or a SymPy expression, not str"),
+    ({"compliance": 1j}, "compliance: must be a real number"),
+    ({"horizon": "1"}, "simulate.until (horizon): must be a number or a SymPy expression"),
+    ({"horizon": float("nan")}, "simulate.until (horizon): must be finite, not nan"),
+    ({"gravity": (0, 0, "g")}, "simulate.gravity[2]: must be a number or a SymPy"),
+    ({"gravity": (0, 0, float("nan"))}, "simulate.gravity[2]: must be finite, not nan"),
+    ({"gravity": "0 0 -10"}, "simulate.gravity: three numbers"),
+    ({"rolling_resistance": float("nan")}, "simulate.rolling_resistance: must be finite"),
+    ({"pivot_friction": "0.01"}, "simulate.pivot_friction: must be a number or a SymPy"),
+])
+def test_spheres_refuses_bad_settings_in_one_line(kwargs, needle):
+    balls, planes = _rough_drop()
+    with pytest.raises(InputError) as info:
+        spheres(balls, planes, **({"impacts": 2} | kwargs))
+    assert needle in str(info.value) and "\n" not in str(info.value)
+
+
+def test_spheres_takes_a_positive_compliance_as_any_number():
+    runs = [spheres(*_rough_drop(), impacts=1, compliance=ratio)
+            for ratio in (0.79, sp.Float(0.79), np.float64(0.79))]
+    assert runs[0].velocity == runs[1].velocity == runs[2].velocity
+    # the compliant bounce differs from the rigid one: the tangential spring gives back
+    assert runs[0].velocity != spheres(*_rough_drop(), impacts=1).velocity
