@@ -319,3 +319,69 @@ def test_spheres_takes_a_positive_compliance_as_any_number():
     assert runs[0].velocity == runs[1].velocity == runs[2].velocity
     # the compliant bounce differs from the rigid one: the tangential spring gives back
     assert runs[0].velocity != spheres(*_rough_drop(), impacts=1).velocity
+
+
+g_ = sp.Symbol("g", positive=True)
+
+
+def _falling_pendulum(formed=True):
+    frame = me.ReferenceFrame("N")
+    arm = frame.orientnew("A", "Axis", [q, frame.z])
+    arm.set_ang_vel(frame, u * frame.z)
+    hinge = me.Point("O")
+    hinge.set_vel(frame, 0)
+    bob = hinge.locatenew("P", -ell * arm.y)
+    bob.v2pt_theory(hinge, frame, arm)
+    kane = me.KanesMethod(frame, [q], [u], [q.diff() - u])
+    if formed:
+        kane.kanes_equations([me.Particle("p", bob, m)], [(bob, -m * g_ * frame.y)])
+    return kane, frame, bob
+
+
+PENDULUM, _, _ = _falling_pendulum()
+UNFORMED, UNFORMED_FRAME, UNFORMED_BOB = _falling_pendulum(formed=False)
+
+
+@pytest.mark.parametrize("call, needle", [
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: float("nan")}),
+     "constants.g: must be finite, not nan"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: float("inf"), g_: 1}),
+     "constants.l: must be finite, not inf"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: sp.nan}),
+     "constants.g: must be finite, not nan"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: "9.8"}),
+     "constants.g: must be a number or a SymPy expression, not str '9.8'"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: 2j}),
+     "constants.g: must be a real number"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, [1, 2]), "constants: must be a dict"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1}), "constants: simulation needs "
+                                                             "numbers for g"),
+    (lambda: ri.mechanics.flow_of(UNFORMED, {m: 1, ell: 1, g_: 1}),
+     "system: its equations of motion are not formed yet: call kanes_equations(bodies, "
+     "loads) first"),
+    (lambda: ri.mechanics.flow_of(3, {m: 1}), "system: must be a sympy.physics.mechanics "
+                                              "KanesMethod or System, not int"),
+    (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: 1})(0, np.zeros(3)),
+     "x: must be the state [q, u] of 2 numbers, not an array of shape (3,)"),
+    (lambda: ri.mechanics.flow_of(me.System(me.ReferenceFrame("S")), {}),
+     "system: its equations of motion are not formed yet: call form_eoms() first"),
+    (lambda: ri.mechanics.impact(UNFORMED, [C(UNFORMED_BOB, -UNFORMED_FRAME.x)]),
+     "system: its equations of motion are not formed yet: call kanes_equations"),
+    (lambda: ri.mechanics.impact("kane", [C(BOB, -N.x)]),
+     "system: must be a sympy.physics.mechanics KanesMethod or System, not str"),
+])
+def test_flow_and_impact_of_a_mechanics_system_refuse_in_one_line(call, needle):
+    with pytest.raises(InputError) as info:
+        call()
+    message = str(info.value)
+    assert needle in message and "\n" not in message and "Fr*" not in message
+
+
+def test_flow_of_takes_python_numbers_and_a_zero_length_limit():
+    rhs = ri.mechanics.flow_of(PENDULUM, {m: 2, ell: 1, g_: 9.8})
+    # q'' = -(g / l) sin q
+    assert rhs(0.0, np.array([0.1, 0.0])) == pytest.approx([0.0, -9.8 * np.sin(0.1)])
+    assert rhs(0.0, [0.1, 0.0]) == pytest.approx([0.0, -9.8 * np.sin(0.1)])
+    # a symbol declared positive may be put at its limit 0 (a walker's point foot)
+    still = ri.mechanics.flow_of(PENDULUM, {m: 2, ell: 1, g_: 0})
+    assert still(0.0, np.array([0.1, 0.5])).tolist() == [0.5, 0.0]

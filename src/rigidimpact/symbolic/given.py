@@ -70,10 +70,12 @@ def given_number(value: Any, where: str) -> sp.Expr:
     return converted
 
 
-def given_values(values: Any, where: str = "values") -> dict[sp.Basic, sp.Expr]:
+def given_values(values: Any, where: str = "values",
+                 signs: bool = True) -> dict[sp.Basic, sp.Expr]:
     """A mapping of SymPy symbols to numbers (or expressions), each checked by
-    :func:`given_number`; a symbol declared positive (a mass, a length) takes a positive
-    number, one declared nonnegative one that is not negative.
+    :func:`given_number`; with `signs`, a symbol declared positive (a mass, a length)
+    takes a positive number, one declared nonnegative one that is not negative (without,
+    a limit such as a point foot's zero length is taken).
 
     Examples
     --------
@@ -95,7 +97,7 @@ def given_values(values: Any, where: str = "values") -> dict[sp.Basic, sp.Expr]:
                              f"made with), not {type(key).__name__} {_shown(key)}")
         field = f"{where}.{key}"
         number = given_number(value, field)
-        if number.is_number:
+        if signs and number.is_number:
             if key.is_positive and not number.is_positive:
                 raise InputError(field, "must be positive (the symbol is declared "
                                  f"positive), not {number}")
