@@ -362,7 +362,7 @@ UNFORMED, UNFORMED_FRAME, UNFORMED_BOB = _falling_pendulum(formed=False)
     (lambda: ri.mechanics.flow_of(3, {m: 1}), "system: must be a sympy.physics.mechanics "
                                               "KanesMethod or System, not int"),
     (lambda: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: 1})(0, np.zeros(3)),
-     "x: must be the state [q, u] of 2 numbers, not an array of shape (3,)"),
+     "x: must be the state [q, u] of 2 real numbers, not an array of float64 of shape (3,)"),
     (lambda: ri.mechanics.flow_of(me.System(me.ReferenceFrame("S")), {}),
      "system: its equations of motion are not formed yet: call form_eoms() first"),
     (lambda: ri.mechanics.impact(UNFORMED, [C(UNFORMED_BOB, -UNFORMED_FRAME.x)]),
@@ -385,3 +385,92 @@ def test_flow_of_takes_python_numbers_and_a_zero_length_limit():
     # a symbol declared positive may be put at its limit 0 (a walker's point foot)
     still = ri.mechanics.flow_of(PENDULUM, {m: 2, ell: 1, g_: 0})
     assert still(0.0, np.array([0.1, 0.5])).tolist() == [0.5, 0.0]
+
+
+MAP = ri.mechanics.impact(KANE, [C(BOB, N.x, restitution=sp.Rational(1, 2))],
+                          frame=N).kernel({m: 3, ell: 1})
+AB = ri.Kernel.from_expr(sp.Symbol("a") * sp.Symbol("b") + 1)
+
+
+@pytest.mark.parametrize("call, needle", [
+    (lambda: MAP([[0.1, 0.2]], [[-1.0]]), "q: must be an array (states, 1) or one state of "
+                                          "1, not one of shape (1, 2)"),
+    (lambda: MAP(np.zeros((3, 1, 2)), np.zeros((3, 1))), "q: must be an array (states, 1)"),
+    (lambda: MAP(np.zeros((3, 1)), np.zeros((3, 2))), "u: must be an array (states, 1)"),
+    (lambda: MAP(np.zeros((3, 1)), np.zeros((2, 1))), "u: must have a row for each state "
+                                                      "of q: q has 3 states, u 2"),
+    (lambda: MAP("a", [[1.0]]), "q: must be real numbers, an array (states, 1), not str"),
+    (lambda: MAP([[1j]], [[-1.0]]), "q: must be real numbers"),
+    (lambda: MAP(None, [[1.0]]), "q: must be real numbers, an array (states, 1), not "
+                                 "NoneType"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, N.x, restitution=e)], frame=N).kernel(
+        {m: float("nan"), ell: 1, e: 1}), "values.m: must be finite, not nan"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, N.x)], frame=N).kernel({m: "1", ell: 1}),
+     "values.m: must be a number or a SymPy expression, not str '1'"),
+    (lambda: ri.mechanics.impact(KANE, [C(BOB, N.x)], frame=N).kernel([1]),
+     "values: must be a dict of SymPy symbols to numbers, not list"),
+    (lambda: AB(a=np.ones(3), b=np.ones(2)), "values: the arrays do not broadcast "
+                                             "together: a (3,), b (2,)"),
+    (lambda: AB(a=np.ones(3)), "values: the kernel needs a number for b (its arguments: "
+                               "a, b)"),
+    (lambda: AB(a="1.5", b=1), "a: must be real numbers (a number or an array of them), "
+                               "not str '1.5'"),
+    (lambda: AB(a=1, b=2j), "b: must be real numbers"),
+    (lambda: AB.mp(a="1.5", b=1), "a: must be a real number, not str '1.5'"),
+    (lambda: AB.reference(a=1), "values: the kernel needs a number for b"),
+    (lambda: AB.scale(a=1, b=sp.Symbol("x")), "b: must be a number, not x"),
+    (lambda: ri.Kernel.from_expr("a*b"), "expr: must be a number or a SymPy expression, "
+                                         "not str 'a*b'"),
+    (lambda: ri.Kernel.from_expr([1, 2]), "expr: must be a number or a SymPy expression"),
+])
+def test_kernels_refuse_wrong_shapes_and_types_in_one_line(call, needle):
+    with pytest.raises(InputError) as info:
+        call()
+    message = str(info.value)
+    assert needle in message and "\n" not in message and "broadcast" not in message.split(
+        ":")[0]
+
+
+def test_kernels_take_numbers_of_every_kind():
+    # e = 1/2, m = 3, l = 1, hitting the wall at rate -2 from q = 0: u after = 1
+    assert MAP([[0.0]], [[-2.0]]).speeds_after.tolist() == [[1.0]]
+    assert MAP([0.0], [-2.0]).speeds_after.tolist() == [[1.0]]  # one state as a row
+    assert AB(a=sp.Integer(2), b=np.arange(3)).tolist() == [1.0, 3.0, 5.0]
+    assert AB.mp(a=sp.Rational(1, 2), b=2) == 2
+    assert ri.Kernel.from_expr(3)() == 3.0
+
+
+# what the probe throws at each argument: wrong types, shapes and numbers
+WRONG = ["x", b"1", None, 1j, float("nan"), float("inf"), [1, "a"], {"a": 1}, (1, 2),
+         np.zeros((2, 3, 4)), np.array(["1"]), object(), sp.Symbol("z"), -1, True]
+ENTRIES = {
+    "Body3.at": lambda w: ri.Body3.sphere(M3, R3, name="ball").at({M3: w}),
+    "SpaceCollision.at": lambda w: _sphere_on_floor().at({R3: w}),
+    "landing_time": lambda w: landing_time(2, w, 10),
+    "sliding": lambda w: sliding(*_STILL, w, 0.4, 0.2, 9.8),
+    "flight": lambda w: flight(*_FLIGHT, w),
+    "spheres": lambda w: spheres(*_rough_drop(), impacts=1, compliance=w),
+    "flow_of": lambda w: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: w}),
+    "flow_of(x)": lambda w: ri.mechanics.flow_of(PENDULUM, {m: 1, ell: 1, g_: 1})(0, w),
+    "kernel": lambda w: MAP(w, [[-1.0]]),
+    "Kernel": lambda w: AB(a=w, b=1.0),
+    "Kernel.mp": lambda w: AB.mp(a=w, b=1),
+    "impact": lambda w: ri.mechanics.impact(w, [C(BOB, N.x)]),
+    "Collision.solve": lambda w: ri.chain(3).solve(w),
+}
+
+
+@pytest.mark.parametrize("entry", sorted(ENTRIES))
+def test_a_seeded_probe_of_wrong_inputs_gets_one_line_from_the_package(entry):
+    # seed 20261207: three wrong inputs drawn per entry, in a fixed order; every failure
+    # is the package's own InputError of one line, never a library's message
+    rng = np.random.default_rng(20261207)
+    picks = sorted(rng.choice(len(WRONG), size=len(WRONG), replace=False))
+    for k in picks:
+        wrong = WRONG[k]
+        try:
+            ENTRIES[entry](wrong)
+        except InputError as err:
+            assert "\n" not in str(err) and str(err).split(":")[0].strip()
+        except Exception as err:  # pragma: no cover - what the probe is for
+            pytest.fail(f"{entry}({wrong!r}) raised {type(err).__name__}: {err}")

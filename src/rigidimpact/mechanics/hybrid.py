@@ -72,9 +72,10 @@ def flow_of(system: Any, constants: dict) -> Callable:
     F_num = sp.lambdify([symbols], F.xreplace(plain), "numpy", cse=True)
 
     def rhs(_t: float, x: State) -> State:
-        if np.shape(x) != (len(states),):
-            raise InputError("x", f"must be the state [q, u] of {len(states)} numbers, not "
-                             f"an array of shape {np.shape(x)}")
+        x = np.asarray(x)
+        if x.shape != (len(states),) or x.dtype.kind not in "iuf":
+            raise InputError("x", f"must be the state [q, u] of {len(states)} real "
+                             f"numbers, not an array of {x.dtype} of shape {x.shape}")
         return np.linalg.solve(np.asarray(M_num(x), float),
                                np.asarray(F_num(x), float).ravel())
 

@@ -27,7 +27,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 
-__all__ = ["given_number", "given_values"]
+__all__ = ["given_number", "given_values", "shown"]
 
 
 def given_number(value: Any, where: str) -> sp.Expr:
@@ -47,7 +47,7 @@ def given_number(value: Any, where: str) -> sp.Expr:
         converted = value
     elif isinstance(value, bool) or not isinstance(value, numbers.Number):
         raise InputError(where, "must be a number or a SymPy expression, not "
-                         f"{type(value).__name__} {_shown(value)}")
+                         f"{type(value).__name__} {shown(value)}")
     elif isinstance(value, numbers.Integral):
         converted = sp.Integer(int(value))
     elif isinstance(value, Fraction):
@@ -58,10 +58,10 @@ def given_number(value: Any, where: str) -> sp.Expr:
         converted = sp.Float(float(value))
     else:
         raise InputError(where, f"must be a real number, not {type(value).__name__} "
-                         f"{_shown(value)}")
+                         f"{shown(value)}")
     if not isinstance(converted, sp.Expr):
         raise InputError(where, "must be a number or a SymPy expression, not "
-                         f"{type(converted).__name__} {_shown(converted)}")
+                         f"{type(converted).__name__} {shown(converted)}")
     if converted.is_number:
         if converted.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or converted.is_finite is False:
             raise InputError(where, f"must be finite, not {converted}")
@@ -89,12 +89,12 @@ def given_values(values: Any, where: str = "values",
     """  # noqa: E501
     if not isinstance(values, Mapping):
         raise InputError(where, "must be a dict of SymPy symbols to numbers, not "
-                         f"{type(values).__name__} {_shown(values)}")
+                         f"{type(values).__name__} {shown(values)}")
     checked = {}
     for key, value in values.items():
         if not isinstance(key, sp.Basic):
             raise InputError(where, "keys must be SymPy symbols (the ones the bodies were "
-                             f"made with), not {type(key).__name__} {_shown(key)}")
+                             f"made with), not {type(key).__name__} {shown(key)}")
         field = f"{where}.{key}"
         number = given_number(value, field)
         if signs and number.is_number:
@@ -108,7 +108,13 @@ def given_values(values: Any, where: str = "values",
     return checked
 
 
-def _shown(value: Any) -> str:
-    """`value`'s repr on one line, cut short (it goes into a one-line message)."""
+def shown(value: Any, width: int = 60) -> str:
+    """`value`'s repr on one line, cut to `width` (it goes into a one-line message).
+
+    Examples
+    --------
+    >>> shown(list(range(30)), 20)
+    '[0, 1, 2, 3, 4, 5...'
+    """
     text = " ".join(repr(value).split())
-    return text if len(text) <= 60 else text[:57] + "..."
+    return text if len(text) <= width else text[:width - 3] + "..."

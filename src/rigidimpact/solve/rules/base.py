@@ -9,6 +9,7 @@ from typing import Any, ClassVar
 from rigidimpact.errors import InputError
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.given import shown
 
 RULES = ("simultaneous", "sequential", "compliant", "driven")
 
@@ -74,12 +75,6 @@ def whole_number(name: str, value: Any, least: int, most: int | None = None,
     return value
 
 
-def _short(value: Any) -> str:
-    """`value`'s repr, on one line and cut short (it goes into a one-line message)."""
-    text = " ".join(repr(value).split())
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
 class Rule:
     """How several contacts that close at the same instant act together.
 
@@ -129,7 +124,7 @@ class Rule:
         found = self.outcomes(problem)
         if not isinstance(found, (tuple, list)):
             raise InputError("rule", f"{method} must return a tuple of Solution (one per "
-                             f"outcome), not {type(found).__name__} {_short(found)}")
+                             f"outcome), not {type(found).__name__} {shown(found)}")
         if not found:
             raise InputError("rule", f"{method} must return a tuple of Solution with at "
                              "least one outcome, not an empty one")
@@ -137,7 +132,7 @@ class Rule:
             if not isinstance(outcome, Solution):
                 raise InputError("rule", f"{method} must return a tuple of Solution (one "
                                  f"per outcome); item {k} is {type(outcome).__name__} "
-                                 f"{_short(outcome)}")
+                                 f"{shown(outcome)}")
         return tuple(found)
 
     def laws(self, frictional: bool = False) -> str:
