@@ -77,7 +77,7 @@ def test_flight_is_a_parabola_with_the_spin_kept_and_lands_when_its_height_is_sp
 
 
 def test_bad_input_is_refused_in_one_line():
-    with pytest.raises(InputError, match="friction: must be positive"):
+    with pytest.raises(InputError, match="mu: must be positive"):
         sliding((1, 0, 0), (0, 0, 0), 1, R(2, 5), 0, 10)
     with pytest.raises(InputError, match="must lie in the flat"):
         sliding((1, 0, 1), (0, 0, 0), 1, R(2, 5), R(1, 5), 10)

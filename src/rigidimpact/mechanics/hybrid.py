@@ -34,7 +34,9 @@ import numpy as np
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.mechanics.impact import system_matrix
 from rigidimpact.solve.collision import whole_number
+from rigidimpact.symbolic.given import given_values
 
 __all__ = ["Hybrid", "Walk", "flow_of", "FixedPoint"]
 
@@ -49,11 +51,16 @@ def flow_of(system: Any, constants: dict) -> Callable:
     Raises
     ------
     InputError
-        When a constant is left without a number.
+        When the system is not one or its equations are not formed, or a constant is
+        left without a number or given one that is not a real, finite number (text is
+        refused, never read).
     """
+    M = sp.Matrix(system_matrix(system, "mass_matrix_full"))
+    F = sp.Matrix(system_matrix(system, "forcing_full"))
+    # no check of signs: a walker's point foot is a length declared positive, set to 0
+    constants = given_values(constants, "constants", signs=False)
     states = list(system.q) + list(system.u)
-    M = sp.Matrix(system.mass_matrix_full).xreplace(constants)
-    F = sp.Matrix(system.forcing_full).xreplace(constants)
+    M, F = M.xreplace(constants), F.xreplace(constants)
     time = {s for s in (M.free_symbols | F.free_symbols) if s.name == "t"}
     left = (M.free_symbols | F.free_symbols) - time
     if left:
@@ -65,6 +72,10 @@ def flow_of(system: Any, constants: dict) -> Callable:
     F_num = sp.lambdify([symbols], F.xreplace(plain), "numpy", cse=True)
 
     def rhs(_t: float, x: State) -> State:
+        x = np.asarray(x)
+        if x.shape != (len(states),) or x.dtype.kind not in "iuf":
+            raise InputError("x", f"must be the state [q, u] of {len(states)} real "
+                             f"numbers, not an array of {x.dtype} of shape {x.shape}")
         return np.linalg.solve(np.asarray(M_num(x), float),
                                np.asarray(F_num(x), float).ravel())
 

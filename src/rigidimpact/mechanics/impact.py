@@ -83,7 +83,7 @@ from rigidimpact.symbolic.rewrite import pythagorean
 # gait (6.5e6) in seconds; a chain of five (1.4e7) ran past 200 s
 MAX_SYMBOLIC_TERMS = 10**7
 
-__all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact"]
+__all__ = ["PointContact", "contact", "SystemImpact", "ImpactMap", "impact", "system_matrix"]
 
 
 @dataclass(frozen=True)
@@ -466,7 +466,7 @@ class SystemImpact:
         if len(self.contacts) > MAX_ENUMERATED:
             raise InputError("contacts", f"a mechanics system is solved with at most "
                              f"{MAX_ENUMERATED} contacts so far")
-        return rule.outcomes(SystemRows.of(self))
+        return rule.checked_outcomes(SystemRows.of(self))
 
     def _linear_system(self) -> tuple[sp.Matrix, sp.Matrix, list[sp.Symbol]]:
         """``A x = b`` in the speeds after and the impulses, ``M u+ - J^T P = M u-`` with
@@ -854,11 +854,7 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
     `frame` is the inertial frame (a ``System``'s own frame by default; for a
     ``KanesMethod`` the frame of the first contact's normal).
     """
-    try:
-        M = sp.ImmutableMatrix(system.mass_matrix)
-    except (AttributeError, ValueError) as exc:
-        raise InputError("system", f"no mass matrix ({exc}): form the equations of motion "
-                         "first (kanes_equations or form_eoms)") from None
+    M = sp.ImmutableMatrix(system_matrix(system, "mass_matrix"))
     q, u = tuple(system.q), tuple(system.u)
     dependent = getattr(system, "u_dep", None)
     if dependent is None:  # a KanesMethod keeps them here
@@ -892,6 +888,24 @@ def impact(system: Any, contacts: Sequence[PointContact], frame: Any = None) -> 
     return SystemImpact(frame, q, u, M, tuple(contacts), fold=fold,
                         bodies=tuple(getattr(system, "bodies", None) or ()),
                         kinematics=_kinematics(system))
+
+
+def system_matrix(system: Any, name: str) -> Any:
+    """The matrix `name` (``mass_matrix``, ``forcing_full``, ...) of a
+    sympy.physics.mechanics ``KanesMethod`` or ``System``, or InputError naming the
+    system: one that is not such a system, or whose equations of motion are not formed
+    yet (sympy's own "Need to compute Fr, Fr* first" is not passed on)."""
+    kind = type(system)
+    if not all(isinstance(getattr(kind, a, None), property) for a in ("q", "u", name)):
+        raise InputError("system", "must be a sympy.physics.mechanics KanesMethod or "
+                         f"System, not {kind.__name__}")
+    try:
+        return getattr(system, name)
+    except (AttributeError, ValueError, TypeError):
+        call = "form_eoms()" if isinstance(system, me.System) else \
+            "kanes_equations(bodies, loads)"
+        raise InputError("system", f"its equations of motion are not formed yet: call "
+                         f"{call} first") from None
 
 
 def _kinematics(system: Any) -> tuple[tuple[Any, Any], ...]:

@@ -28,6 +28,7 @@ import sympy.physics.mechanics as me
 
 from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
+from rigidimpact.symbolic.given import given_values, shown
 
 if TYPE_CHECKING:
     import numpy as np
@@ -67,6 +68,7 @@ class MapKernel:
     normal: tuple[int, ...]  # which rows are normal rows
     restitution: tuple[float, ...]  # e of each row's contact; 0 for a tangent row
     entries: Any  # f(*q) -> the entries of M (row by row), then of J (NumPy)
+    coordinates: int = 0  # how many q a state has
 
     @classmethod
     def of(cls, system: Any, values: dict | None = None) -> MapKernel:
@@ -75,7 +77,7 @@ class MapKernel:
         if system.fold is not None:
             raise InputError("system", "the impact map's kernel takes a system without "
                              "dependent speeds; solve() takes a nonholonomic one")
-        put = dict(values or {})
+        put = given_values({} if values is None else values, signs=False)
         blocks: list[sp.MatrixBase] = []
         names: list[str] = []
         normal: list[int] = []
@@ -122,15 +124,14 @@ class MapKernel:
         flat = [x.xreplace(swap) for x in (*M, *J)]
         entries = sp.lambdify(stand_ins, flat, "numpy", cse=True)
         return cls(tuple(str(s) for s in u), tuple(rows), tuple(normal),
-                   tuple(float(e) for e in restitution), entries)
+                   tuple(float(e) for e in restitution), entries, len(q))
 
     def __call__(self, q: Any, u: Any) -> MapNumbers:
-        q = np.atleast_2d(np.asarray(q, dtype=float))
-        u = np.atleast_2d(np.asarray(u, dtype=float))
         n, k = len(self.speeds), len(self.rows)
-        if q.shape[0] != u.shape[0] or u.shape[1] != n:
-            raise ValueError(f"q and u must have as many states, u {n} speeds a state: "
-                             f"given {q.shape} and {u.shape}")
+        q, u = _states("q", q, self.coordinates), _states("u", u, n)
+        if q.shape[0] != u.shape[0]:
+            raise InputError("u", f"must have a row for each state of q: q has {q.shape[0]}"
+                             f" states, u {u.shape[0]}")
         states = q.shape[0]
         values = [np.broadcast_to(np.asarray(x, dtype=float), (states,))
                   for x in self.entries(*q.T)]
@@ -174,6 +175,24 @@ class MapKernel:
                             "kinetic energy")
         return MapNumbers(np.where(honoured[:, None], after, np.nan), P, honoured,
                           tuple(warnings))
+
+
+def _states(name: str, value: Any, width: int) -> np.ndarray:
+    """`value` as an array of states (N, width), one state (width,) as one row, or
+    InputError naming it: another shape, text, complex numbers or objects."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "iuf":
+        raise InputError(name, f"must be real numbers, an array (states, {width}), not "
+                         f"{type(value).__name__} {shown(value, 40)}")
+    array = np.atleast_2d(array.astype(float, copy=False))
+    if array.ndim != 2 or array.shape[1] != width:
+        raise InputError(name, f"must be an array (states, {width}) or one state of "
+                         f"{width}, not one of shape {np.shape(value)}")
+    bad = np.flatnonzero(~np.isfinite(array).all(axis=1))
+    if bad.size:
+        raise InputError(name, f"must be finite: state {int(bad[0])} holds NaN or an "
+                         "infinity")
+    return array
 
 
 def _one_by_one(M: Any, J: Any, right: Any) -> tuple[Any, Any]:

@@ -24,7 +24,7 @@ Matrix([[-2, 0, -2]])
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -33,6 +33,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
 from rigidimpact.model.bodies import _expr, as_vector
+from rigidimpact.symbolic.given import given_values
 
 if TYPE_CHECKING:
     import numpy as np
@@ -261,8 +262,17 @@ class Body3:
         v, w = sp.Matrix(self.velocity), sp.Matrix(self.spin)
         return (self.mass * v.dot(v) + (w.T * sp.Matrix(self.inertia) * w)[0]) / 2
 
-    def at(self, values: dict) -> Body3:
-        """The body with numbers put in for its symbols."""
+    def at(self, values: Mapping[sp.Basic, Any]) -> Body3:
+        """The body with numbers put in for its symbols: Python or SymPy numbers (or
+        expressions), each checked (:func:`~rigidimpact.symbolic.given.given_values`).
+
+        Examples
+        --------
+        >>> m = sp.Symbol("m", positive=True)
+        >>> Body3.sphere(m, 1, name="ball").at({m: 2}).mass
+        2
+        """
+        values = given_values(values)
         if self.support == "fixed":
             return self
 

@@ -74,6 +74,7 @@ from rigidimpact.simulate.sphere import flight, sliding
 from rigidimpact.simulate.tangential import STEPS
 from rigidimpact.simulate.zeno import Tail, bounce_map, geometric_tail
 from rigidimpact.solve.space import SpaceCollision
+from rigidimpact.symbolic.given import given_number
 
 __all__ = ["Event", "Bounces", "bounces", "spheres", "MAX_IMPACTS", "DIGITS"]
 
@@ -367,25 +368,10 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         raise InputError("bodies", "a bounce run follows free spheres")
     if len({b.name for b in balls}) != len(balls):
         raise InputError("bodies", "two spheres share a name")
-    if impacts is None and horizon is None:
-        raise InputError("simulate.until", "give a number of impacts or a time")
-    if impacts is not None and (isinstance(impacts, bool) or not isinstance(impacts, int)
-                                or not 1 <= impacts <= MAX_IMPACTS):
-        raise InputError("simulate.impacts", f"a whole number from 1 to {MAX_IMPACTS}")
-    end = None if horizon is None else sp.sympify(horizon)
-    if end is not None and not (end.is_number and end > 0):
-        raise InputError("simulate.until", f"a positive time, not {horizon!r}")
-    a = sp.Matrix([sp.sympify(x) for x in gravity])
-    if a.shape != (3, 1) or not all(x.is_number for x in a):
-        raise InputError("simulate.gravity", "three numbers [gx, gy, gz]")
+    end, a, resistance, pivot, compliance = _run_settings(
+        impacts, horizon, gravity, rolling_resistance, pivot_friction, compliance)
     flats = _planes(balls, planes)
     laws = _pairs(balls, pairs)
-    resistance, pivot = (sp.nsimplify(x) if isinstance(x, float) else sp.sympify(x)
-                         for x in (rolling_resistance, pivot_friction))
-    for name, x in (("simulate.rolling_resistance", resistance),
-                    ("simulate.pivot_friction", pivot)):
-        if not (x.is_number and x >= 0):
-            raise InputError(name, f"a number at least 0, not {x}")
     ones = [_Sphere(b) for b in balls]
     couples = [(p, q) for i, p in enumerate(ones) for q in ones[i + 1:]]
     for p, q in couples:
@@ -742,6 +728,44 @@ def _not_through(ones: Sequence[_Sphere], flats: Sequence[tuple], exact: bool) -
                                  f"{f[0].name}: its centre is {float(gap + s.R):.6g} from "
                                  f"the plane on the sphere's side, less than its radius "
                                  f"{float(s.R):.6g}")
+
+
+def _run_settings(impacts: Any, horizon: Any, gravity: Any, rolling_resistance: Any,
+                  pivot_friction: Any, compliance: Any
+                  ) -> tuple[Any, sp.Matrix, Any, Any, float | None]:
+    """:func:`spheres`' settings checked, each refused in one line naming it (by its
+    scene field where a scene gives it): the end time (or None), gravity, the rolling
+    resistance and the pivoting friction, as SymPy, and the compliance as a float (or
+    None); text is refused, never read."""
+    if impacts is None and horizon is None:
+        raise InputError("simulate.until", "give a number of impacts or a time")
+    if impacts is not None and (isinstance(impacts, bool) or not isinstance(impacts, int)
+                                or not 1 <= impacts <= MAX_IMPACTS):
+        raise InputError("simulate.impacts", f"a whole number from 1 to {MAX_IMPACTS}")
+    end = None if horizon is None else given_number(horizon, "simulate.until (horizon)")
+    if end is not None and not (end.is_number and end > 0):
+        raise InputError("simulate.until (horizon)", f"a positive time, not {horizon!r}")
+    if isinstance(gravity, (str, bytes)) or not hasattr(gravity, "__len__") or \
+            len(gravity) != 3:
+        raise InputError("simulate.gravity", "three numbers [gx, gy, gz]")
+    a = sp.Matrix([given_number(x, f"simulate.gravity[{i}]") for i, x in enumerate(gravity)])
+    if not all(x.is_number for x in a):
+        raise InputError("simulate.gravity", "three numbers [gx, gy, gz]")
+    wear = []
+    for name, given in (("simulate.rolling_resistance", rolling_resistance),
+                        ("simulate.pivot_friction", pivot_friction)):
+        x = given_number(given, name)
+        x = sp.nsimplify(x) if isinstance(given, float) else x
+        if not (x.is_number and x >= 0):
+            raise InputError(name, f"a number at least 0, not {x}")
+        wear.append(x)
+    if compliance is not None:
+        ratio = given_number(compliance, "compliance")
+        if not (ratio.is_number and ratio > 0):
+            raise InputError("compliance", "the stiffness ratio k_t/k_n must be a positive "
+                             f"number, not {compliance!r}")
+        compliance = float(ratio)
+    return end, a, wear[0], wear[1], compliance
 
 
 def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:

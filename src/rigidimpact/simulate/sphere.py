@@ -42,6 +42,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.symbolic.given import given_number
 
 __all__ = ["Sliding", "sliding", "flight", "landing_time"]
 
@@ -49,18 +50,22 @@ UP = (0, 0, 1)
 
 
 def _vector(name: str, value: Sequence[Any]) -> sp.Matrix:
-    try:
-        entries = [sp.nsimplify(x) if isinstance(x, float) else sp.sympify(x, strict=True)
-                   for x in value]
-    except (TypeError, sp.SympifyError):
-        raise InputError(name, f"must be three numbers, got {value!r}") from None
-    if len(entries) != 3:
-        raise InputError(name, f"must have three components, got {len(entries)}")
-    return sp.Matrix(entries)
+    """Three real, finite numbers (or SymPy expressions); text is refused, never read."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise InputError(name, f"must be three numbers, got {value!r}")
+    if len(value) != 3:
+        raise InputError(name, f"must have three components, got {len(value)}")
+    return sp.Matrix([_exact(x, given_number(x, f"{name}[{i}]"))
+                      for i, x in enumerate(value)])
+
+
+def _exact(given: Any, number: sp.Expr) -> sp.Expr:
+    """A float given is read as the simple rational it stands for (0.1 as 1/10)."""
+    return sp.nsimplify(number) if isinstance(given, float) else number
 
 
 def _positive(name: str, value: Any) -> sp.Expr:
-    x = sp.nsimplify(value) if isinstance(value, float) else sp.sympify(value)
+    x = _exact(value, given_number(value, name))
     if x.is_number and not x > 0:
         raise InputError(name, f"must be positive, got {value!r}")
     return x
@@ -97,13 +102,13 @@ def sliding(v: Sequence[Any], spin: Sequence[Any], radius: Any, k: Any, mu: Any,
             normal: Sequence[Any] = UP) -> Sliding:
     """The sphere's sliding on the flat of unit `normal` until it rolls (see the module's
     text); `v` must lie in the flat (the sphere stays on it)."""
-    v0, w0, n = _vector("velocity", v), _vector("spin", spin), _vector("normal", normal)
+    v0, w0, n = _vector("v", v), _vector("spin", spin), _vector("normal", normal)
     if sp.simplify(n.dot(n) - 1) != 0:
         raise InputError("normal", "must be a unit vector")
     if sp.simplify(v0.dot(n)) != 0:
-        raise InputError("velocity", "must lie in the flat: a sphere moving off it flies")
+        raise InputError("v", "must lie in the flat: a sphere moving off it flies")
     R, k = _positive("radius", radius), _positive("k", k)
-    mu, g = _positive("friction", mu), _positive("g", g)
+    mu, g = _positive("mu", mu), _positive("g", g)
     slip = v0 + w0.cross(-R * n)
     size = sp.sqrt(sp.simplify(slip.dot(slip)))
     zero = sp.zeros(3, 1)
@@ -123,14 +128,15 @@ def flight(position: Sequence[Any], velocity: Sequence[Any], spin: Sequence[Any]
     the spin unchanged (the same inertia about every axis, no torque)."""
     p, v = _vector("position", position), _vector("velocity", velocity)
     w, a = _vector("spin", spin), _vector("gravity", gravity)
-    t = sp.sympify(t)
+    t = given_number(t, "t")
     return p + v * t + a * t ** 2 / 2, v + a * t, w
 
 
 def landing_time(height: Any, rise: Any, g: Any) -> sp.Expr:
     """When a centre at `height` above the level it lands at, rising at `rise` under
     gravity g (downward), reaches that level: the later root of the quadratic."""
-    h, u, g = sp.sympify(height), sp.sympify(rise), _positive("g", g)
+    h, u = given_number(height, "height"), given_number(rise, "rise")
+    g = _positive("g", g)
     if h.is_number and h < 0:
         raise InputError("height", f"must be at least 0, got {height!r}")
     return sp.simplify((u + sp.sqrt(u ** 2 + 2 * g * h)) / g)

@@ -153,7 +153,7 @@ class Collision(ImpactProblem):
             return (solved,)
         return tuple(replace(o, pivot_reactions=reactions)
                      if (reactions := self._pivot_reactions(o)) else o
-                     for o in rule.outcomes(self))
+                     for o in rule.checked_outcomes(self))
 
     def alone(self) -> Solution:
         """The one contact's impact, exactly, by the two-body core

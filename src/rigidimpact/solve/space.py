@@ -59,6 +59,7 @@ from rigidimpact.solve.rules.driven import driven
 from rigidimpact.solve.rules.sequential import sequential
 from rigidimpact.solve.rules.simultaneous import simultaneous
 from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.symbolic.given import given_values
 from rigidimpact.symbolic.notation import Given
 
 if TYPE_CHECKING:
@@ -490,7 +491,9 @@ class SpaceCollision:
             given_checks=checks, **rule))  # assessed under its own rule
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
-        """The collision with numbers put in for its symbols."""
+        """The collision with numbers put in for its symbols (Python or SymPy numbers,
+        each checked: :func:`~rigidimpact.symbolic.given.given_values`)."""
+        values = given_values(values)
         return SpaceCollision(tuple(b.at(dict(values)) for b in self.bodies),
                               tuple(c.at(values) for c in self.contacts), self.tolerance,
                               self.facets, self.rule, self.order,

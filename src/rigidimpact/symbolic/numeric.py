@@ -37,6 +37,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
 from rigidimpact.symbolic.drawn import compiled
+from rigidimpact.symbolic.given import given_number, shown
 from rigidimpact.symbolic.rewrite import tidy
 
 if TYPE_CHECKING:
@@ -123,7 +124,8 @@ class Kernel:
 
     @classmethod
     def from_expr(cls, expr: sp.Expr) -> Kernel:
-        expr = sp.sympify(expr)
+        if not isinstance(expr, sp.Basic):  # a Python number; text is refused, not parsed
+            expr = given_number(expr, "expr")
         arguments = tuple(sorted(s.name for s in expr.free_symbols))
         return cls(expr, stable_form(expr), arguments, magnitude(expr))
 
@@ -136,26 +138,74 @@ class Kernel:
         return _compiled(self.stable, tuple(self._symbols(self.stable)), "numpy")
 
     def __call__(self, **values: Any) -> Any:
-        return self._float(*(np.asarray(values[n], dtype=np.float64) for n in self.arguments))
+        arrays = [_real_array(n, values[n]) for n in self._given(values)]
+        try:
+            np.broadcast_shapes(*(a.shape for a in arrays))
+        except ValueError:
+            raise InputError("values", "the arrays do not broadcast together: " + ", ".join(
+                f"{n} {a.shape}" for n, a in zip(self.arguments, arrays, strict=True))
+            ) from None
+        return self._float(*arrays)
 
     def mp(self, dps: int = 50, **values: Any) -> mpmath.mpf:
         """The stable form in mpmath at `dps` significant digits."""
         fn = _compiled(self.stable, tuple(self._symbols(self.stable)), "mpmath")
         with mpmath.workdps(dps):
-            return +fn(*(values[n] if isinstance(values[n], mpmath.mpf)
-                         else mpmath.mpf(values[n]) for n in self.arguments))
+            return +fn(*(_mp_number(n, values[n]) for n in self._given(values)))
 
     def reference(self, dps: int = 50, **values: Any) -> mpmath.mpf:
         """The exact (unrewritten) expression at `dps` digits, inputs taken exactly."""
         fn = _compiled(self.expr, tuple(self._symbols(self.expr)), "mpmath")
         with mpmath.workdps(dps):
-            return +fn(*(mpmath.mpf(values[n]) for n in self.arguments))
+            return +fn(*(_mp_number(n, values[n]) for n in self._given(values)))
 
     def scale(self, dps: int = 50, **values: Any) -> mpmath.mpf:
         """``magnitude`` of the exact expression at the inputs (see :func:`magnitude`)."""
         fn = _compiled(self.size, tuple(self._symbols(self.expr)), "mpmath")
         with mpmath.workdps(dps):
-            return +fn(*(mpmath.mpf(values[n]) for n in self.arguments))
+            return +fn(*(_mp_number(n, values[n]) for n in self._given(values)))
+
+    def _given(self, values: Mapping[str, Any]) -> tuple[str, ...]:
+        """The arguments, in order, each given a value (or InputError naming those not)."""
+        missing = [n for n in self.arguments if n not in values]
+        if missing:
+            raise InputError("values", f"the kernel needs a number for {', '.join(missing)}"
+                             f" (its arguments: {', '.join(self.arguments)})")
+        return self.arguments
+
+
+def _real_array(name: str, value: Any) -> np.ndarray:
+    """`value` as a float64 array, or InputError naming it: text, complex numbers and
+    objects are refused (NumPy would parse a string of digits)."""
+    array = np.asarray(value)
+    if array.dtype.kind in "iuf":
+        return array.astype(np.float64, copy=False)
+    if array.dtype.kind == "O" and not any(isinstance(x, (str, bytes, bool))
+                                           for x in array.flat):
+        try:  # SymPy or mpmath numbers
+            return array.astype(np.float64)
+        except (TypeError, ValueError):
+            pass
+    raise InputError(name, "must be real numbers (a number or an array of them), not "
+                     f"{type(value).__name__} {shown(value, 40)}")
+
+
+
+def _mp_number(name: str, value: Any) -> Any:
+    """`value` as an mpmath number taken exactly (an mpf kept), or InputError naming it:
+    text is refused, not parsed."""
+    if isinstance(value, mpmath.mpf):
+        return value
+    if isinstance(value, sp.Basic):
+        number = given_number(value, name)
+        if not number.is_number:
+            raise InputError(name, f"must be a number, not {number}")
+        return mpmath.mpf(number)
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer,
+                                                         np.floating)):
+        raise InputError(name, f"must be a real number, not {type(value).__name__} "
+                         f"{value!r}")
+    return mpmath.mpf(value)
 
 
 _CACHE: dict[tuple, Any] = {}

@@ -9,6 +9,7 @@ from typing import Any, ClassVar
 from rigidimpact.errors import InputError
 from rigidimpact.solve.problem import ImpactProblem
 from rigidimpact.solve.solution import Solution
+from rigidimpact.symbolic.given import shown
 
 RULES = ("simultaneous", "sequential", "compliant", "driven")
 
@@ -111,6 +112,28 @@ class Rule:
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         raise NotImplementedError
+
+    def checked_outcomes(self, problem: Any) -> tuple[Solution, ...]:
+        """:meth:`outcomes`, with what it returned checked: a non-empty tuple (or list)
+        of :class:`Solution`, or InputError naming the rule (a rule written outside the
+        package that returns anything else is told what a rule must return)."""
+        method = f"{type(self).__name__}.outcomes(problem)"
+        if type(self).outcomes is Rule.outcomes:
+            raise InputError("rule", f"{method} is not written: a rule defines it, "
+                             "returning a tuple of Solution (one per outcome)")
+        found = self.outcomes(problem)
+        if not isinstance(found, (tuple, list)):
+            raise InputError("rule", f"{method} must return a tuple of Solution (one per "
+                             f"outcome), not {type(found).__name__} {shown(found)}")
+        if not found:
+            raise InputError("rule", f"{method} must return a tuple of Solution with at "
+                             "least one outcome, not an empty one")
+        for k, outcome in enumerate(found):
+            if not isinstance(outcome, Solution):
+                raise InputError("rule", f"{method} must return a tuple of Solution (one "
+                                 f"per outcome); item {k} is {type(outcome).__name__} "
+                                 f"{shown(outcome)}")
+        return tuple(found)
 
     def laws(self, frictional: bool = False) -> str:
         """What the rule imposes, in words."""
