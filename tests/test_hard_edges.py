@@ -114,14 +114,13 @@ def test_walton_on_the_cones_edge_is_checked_by_its_own_promise(tmp_path, capsys
         assert abs(got["rod.omega"] + 1.2 * 2**0.5) < 1e-12
 
 
-def test_a_seeded_family_of_rough_rods_is_answered_by_walton(tmp_path, capsys):
-    import random
-
+@pytest.mark.parametrize("count", [2, pytest.param(6, marks=pytest.mark.slow)])
+def test_a_seeded_family_of_rough_rods_is_answered_by_walton(tmp_path, capsys, count):
     from helpers import evaluated
     from rigidimpact.cli import main
 
     rng = random.Random(70)
-    for k in range(6):
+    for k in range(count):
         angle = rng.randint(10, 80)
         u = (round(rng.uniform(-2, 2), 2), round(rng.uniform(-2, -0.1), 2))
         path = scene_file(tmp_path, _rough_rod(angle, *u), f"rod{k}.toml")
@@ -403,7 +402,8 @@ def _three_rough(law: str) -> str:
     return text + "\n[symbols]\nmu = { nonnegative = true }\n"
 
 
-@pytest.mark.parametrize("law", ["newton", pytest.param("poisson", marks=pytest.mark.slow)])
+@pytest.mark.parametrize("law", [pytest.param(law, marks=pytest.mark.slow)
+                                 for law in ("newton", "poisson")])
 def test_three_rough_contacts_in_turn_over_a_symbolic_mu(tmp_path, capsys, law):
     """A pass over three rough contacts with mu a symbol: its cases' conditions are
     sets of mu found exactly (a blanket simplification ran past a minute), they cover

@@ -3,6 +3,9 @@ all-or-nothing. (Whether the formulas are *right* is verify's job, against the p
 
 from __future__ import annotations
 
+import contextlib
+import functools
+import io
 import json
 import os
 import re
@@ -106,11 +109,20 @@ def _loose_subscripts(text: str) -> list[str]:
     return re.findall(r"_\{([^{}]*)\}", text) + re.findall(r"_([A-Za-z0-9]+)", text)
 
 
-def _scene_latex(path: Path, capsys) -> str:
+@functools.cache
+def _derived(path: Path, *options: str) -> str:
+    """What ``derive PATH OPTIONS`` prints: each shipped scene derived once for the
+    tests of this file that read it."""
     from rigidimpact.cli import main
 
-    assert main(["derive", str(path), "--format", "latex"]) == 0
-    return capsys.readouterr().out
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["derive", str(path), *options]) == 0
+    return out.getvalue()
+
+
+def _scene_latex(path: Path, capsys) -> str:
+    return _derived(path, "--format", "latex")
 
 
 def test_scene_names_keep_their_labels_whole(capsys):
@@ -138,13 +150,11 @@ def test_one_name_for_one_key_in_2d_and_3d():
 def test_the_laws_unknowns_are_the_results_names(capsys):
     """One notation from the laws to the results: every speed after that a scene's laws
     solve for is the left-hand side of one of its results."""
-    from rigidimpact.cli import main
     from rigidimpact.symbolic.notation import result_lhs
 
     after = re.compile(r"(?:\\omega|v)_\{[xyz],\\mathrm\{[^{}]*\}\}\^\{\+\}")
     for path in SCENE_FILES:
-        assert main(["derive", str(path), "--json"]) == 0
-        out = json.loads(capsys.readouterr().out)
+        out = json.loads(_derived(path, "--json"))
         named = {result_lhs(key) for key in out["results"]}
         for eq in out["equations"]:
             assert set(after.findall(eq["latex"])) <= named, (path.name, eq["label"])
