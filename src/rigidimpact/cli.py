@@ -352,9 +352,11 @@ def _evaluation(target: str, settings: Sequence[str], dps: int | None,
     return scene.evaluate(values, sources, dps, exact)
 
 
-def sp_is_float(x: Any) -> bool:
+def _is_rounded(x: Any) -> bool:
     """Whether an exact result is a rounded one after all (a rule solved in floats)."""
-    return bool(getattr(x, "has", None)) and x.has(__import__("sympy").Float)
+    import sympy as sp
+
+    return isinstance(x, sp.Basic) and x.has(sp.Float)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
@@ -400,7 +402,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         print("{\n" + ",\n".join(body) + "\n}")
     else:
         for key, value in result.numbers.items():
-            if result.exact is not None and not sp_is_float(result.exact[key]):
+            if result.exact is not None and not _is_rounded(result.exact[key]):
                 print(f"{key} = {result.exact[key]}  ({literal(value)})")
                 continue
             print(f"{key} = {literal(value)}")
