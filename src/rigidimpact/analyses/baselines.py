@@ -308,9 +308,14 @@ def dask_draws_against_one(repeats: int = 3, samples: int = 10**9
         times = _interleaved({"one": lambda: derive("one"),
                               "workers": lambda: derive("workers", "--workers", "2"),
                               "apart": side_by_side}, repeats)
-    one = found["one"][0]
-    if any(x != one for x in found["one"] + found["workers"]):
+    def drawn(x: dict) -> dict:  # the numbers drawn, not who drew them
+        return {k: v for k, v in x.items() if k != "workers"}
+
+    one = drawn(found["one"][0])
+    if any(drawn(x) != one for x in found["one"] + found["workers"]):
         raise RuntimeError("two Dask workers gave another Monte Carlo than one process")
+    if any(x.get("workers") != 2 for x in found["workers"]):
+        raise RuntimeError("--workers 2 did not draw on two Dask workers")
     if any(x["mean"] != one["mean"] for x in found["apart"]):
         raise RuntimeError("the two halves' draws gave another mean than one process")
     return {"samples": float(samples), "one_process_s": times["one"],
