@@ -242,17 +242,16 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     rows = sp.Matrix.vstack(problem.scaled_J, problem.scaled_J_t)
     if count > MAX_FRICTION_STATES:  # past a few contacts: one complementarity problem
         return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
+    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     if STATES_DIRECT and (count - 1) * (2 * n) ** 3 > MAX_STATES_WORK:
         # more combinations than the enumeration may try: first the one linear solve of
         # every closing contact sticking, then one complementarity problem
-        W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
         gripping = tuple(s[1] if v_n[i] <= 0 else "off" for i, s in enumerate(states))
         fits = _friction_pattern(problem, gripping, W, v_n, v_t, target, mu)
         if fits is None:
             return _frictional_lcp(problem, v_n, v_t, mu, target, tangential)
         return _friction_outcome(problem, rows, [(fits[0], gripping)], not fits[1],
                                  tried_all=False)
-    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
     found: list[tuple[sp.Matrix, tuple[str, ...]]] = []
     not_unique = False
     for tried, pattern in enumerate(itertools.product(*states)):
