@@ -27,7 +27,7 @@ run: $(STAMP)  ## derive and verify the paper's results; write LaTeX, PDF and fi
 	@$(PY) derivations/run_all.py --out $(BUILD)
 
 test: $(STAMP)  ## unit tests, doctests and notebooks (nbval), over every core
-	@echo "Running the tests, doctests and notebooks on every core (about six minutes)"
+	@echo "Running the tests, doctests and notebooks on every core (about five minutes)"
 	@$(PY) -m pytest $(PARALLEL)
 
 test-slow: $(STAMP)  ## the slow tier alone: wide grids, whole benches, 1,000-disc clusters
