@@ -329,22 +329,23 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
         return (sequential_pass(problem, order),)
     index = problem.order_index(order)
     n = len(index)
-    # each path so far: (u, normal impulses, tangential impulses, conditions, courses)
-    branches: list[tuple[sp.Matrix, sp.Matrix, sp.Matrix, list, list[str]]] = [
-        (sp.Matrix(problem.u_before), sp.zeros(n, 1), sp.zeros(n, 1), [], [])]
+    # each path so far: (u, normal impulses, tangential impulses, conditions, courses,
+    # the contacts that stepped)
+    branches: list[tuple[sp.Matrix, sp.Matrix, sp.Matrix, list, list[str], list[str]]] = [
+        (sp.Matrix(problem.u_before), sp.zeros(n, 1), sp.zeros(n, 1), [], [], [])]
     for name in order:
         k = index[name]
         restitution, tangential = problem.contacts[k].laws
         rows = sp.Matrix.vstack(problem.scaled_J[k, :], problem.scaled_J_t[k, :])
         W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
         grown = []
-        for u, total, along, conditions, courses in branches:
+        for u, total, along, conditions, courses, acted in branches:
             v = (rows * u).applyfunc(tidy)
             # where the contact does not close at its turn it takes no step
             kept = case_conditions([*conditions, sp.Ge(v[0], 0)])
             if kept != (sp.false,):
                 grown.append((u, total, along, [c for c in kept if c is not sp.true],
-                              [*courses, f"{name}: does not close"]))
+                              [*courses, f"{name}: does not close"], acted))
             here = [*conditions, sp.Lt(v[0], 0)]
             if tangential.solved_by_regimes:  # each course a branch, with its conditions
                 _no_nested_roots(name, v, courses, problem.symbols)
@@ -361,17 +362,15 @@ def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solu
                 after = (u + problem.M_inverse * rows.T * push).applyfunc(tidy)
                 grown.append((after, total + _at(n, k, push[0]), along + _at(n, k, push[1]),
                               [c for c in kept if c is not sp.true],
-                              [*courses, f"{name}: {course}"]))
+                              [*courses, f"{name}: {course}"], [*acted, name]))
         branches = grown
     cases = []
-    for u, total, along, conditions, courses in branches:
+    for u, total, along, conditions, courses, acted in branches:
         kept = case_conditions([*conditions, *(sp.Ge(x, 0) for x in problem.closings(u))])
         if kept == (sp.false,):
             continue
-        acted = tuple(name for name, course in zip(order, courses, strict=True)
-                      if not course.endswith(": does not close"))
         cases.append(problem.outcome("sequential", tuple(order), u,
-                                   problem.named(total.applyfunc(tidy)), acted,
+                                   problem.named(total.applyfunc(tidy)), tuple(acted),
                                    tangential=problem.named(along.applyfunc(tidy)),
                                    courses=tuple(courses), conditions=kept))
     if not cases:
