@@ -67,11 +67,8 @@ def case_conditions(relations: Sequence[sp.Basic]) -> tuple[sp.Basic, ...]:
     region = _on_a_line(kept)
     if region is not None:
         return region
-    if any(not (r.lhs - r.rhs).is_rational_function(*r.free_symbols)
-           if isinstance(r, sp.core.relational.Relational)
-           else any(not (a.lhs - a.rhs).is_rational_function(*a.free_symbols)
-                    for a in r.atoms(sp.core.relational.Relational))
-           for r in kept):
+    if any(not (a.lhs - a.rhs).is_rational_function(*a.free_symbols)
+           for r in kept for a in r.atoms(sp.core.relational.Relational)):
         # roots of the symbols (the energetic law's courses): SymPy's simplification of
         # their conjunction ran for minutes; each condition is given as it is
         return tuple(kept)
