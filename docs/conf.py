@@ -29,9 +29,10 @@ extensions = [
     "sphinx.ext.viewcode",
     "sphinx-mathjax-offline",  # its module name has hyphens
     "gallery",
+    "pictures",
 ]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
-exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
+exclude_patterns = ["_build", "**/.ipynb_checkpoints", "_generated"]
 myst_enable_extensions = ["dollarmath", "amsmath"]
 myst_heading_anchors = 3
 nb_execution_mode = "off"  # the stored outputs; nbval runs the notebooks

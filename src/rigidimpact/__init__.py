@@ -20,6 +20,8 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact import mechanics as mechanics
     from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
+    from rigidimpact.figures import animate as animate
+    from rigidimpact.figures import draw as draw
     from rigidimpact.laws.cone import cone_impact as cone_impact
     from rigidimpact.laws.contact import Contact as Contact
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
@@ -84,6 +86,7 @@ _PUBLIC = {
     "run_checks": "verify",
     # after the impact
     "critical_angle": "analyses.restrike", "make_plan": "simulate", "run": "simulate",
+    "draw": "figures", "animate": "figures",
     # the driven rule; the 3-D contact law in contact space
     "Driven": "solve.rules.driven", "cone_impact": "laws.cone",
     # numbers from closed forms: a compiled kernel, one evaluation

@@ -26,8 +26,45 @@ from rigidimpact.outputs.plots import (
 )
 from rigidimpact.simulate import impact_view
 
-__all__ = ["plot_outcome", "animate_outcome", "plot_space", "animate_space",
-           "ends_at_impact", "close"]
+__all__ = ["draw", "animate", "plot_outcome", "animate_outcome", "plot_space",
+           "animate_space", "ends_at_impact", "close"]
+
+
+def draw(scene: Any, outcome: Any, path: str | Path) -> None:
+    """Draw a run of :func:`rigidimpact.run` to a PNG, as ``simulate --plot`` does: a
+    planar run's paths (or the bodies at the impact, for a run that ends there), a 3-D
+    run's path from above and from the side.
+
+    Examples
+    --------
+    >>> import rigidimpact as ri
+    >>> scene = ri.load_any("derivations/restrike.toml")
+    >>> ri.draw(scene, ri.run(scene), "restrike.png")  # doctest: +SKIP
+    """
+    from rigidimpact.scenes.space import SpaceScene
+
+    if not isinstance(scene, SpaceScene):
+        plot_outcome(scene, outcome, Path(path))
+    elif getattr(outcome, "trajectory", None) is None:
+        raise InputError("--plot", "this 3-D run ends at the impact: there is no path to "
+                         "draw; give [simulate] until a time or impacts a count")
+    else:
+        plot_space(scene, outcome, Path(path))
+
+
+def animate(scene: Any, outcome: Any, path: str | Path) -> None:
+    """Animate a run of :func:`rigidimpact.run` to a GIF, as ``simulate --animate``
+    does (a 3-D run seen from above and from the side at once). A run that ends at the
+    impact has nothing to animate: :class:`~rigidimpact.errors.InputError` says so."""
+    from rigidimpact.scenes.space import SpaceScene
+
+    if isinstance(scene, SpaceScene):
+        if getattr(outcome, "trajectory", None) is None:
+            raise InputError("--animate", "this 3-D run ends at the impact: nothing moves "
+                             "to animate; give [simulate] until a time or impacts a count")
+        animate_space(scene, outcome, Path(path))
+    else:
+        animate_outcome(scene, outcome, Path(path))
 
 
 def plot_space(scene: Any, outcome: Any, path: Path) -> None:
