@@ -28,11 +28,14 @@ extensions = [
     "sphinx.ext.napoleon",
     "sphinx.ext.viewcode",
     "sphinx-mathjax-offline",  # its module name has hyphens
-    "gallery",
+    "gallery",  # writes the gallery's examples, before sphinx-gallery reads them
+    "sphinx_gallery.gen_gallery",
     "pictures",
 ]
-source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
-exclude_patterns = ["_build", "**/.ipynb_checkpoints", "_generated"]
+source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb", ".rst": "restructuredtext"}
+# the gallery's notebooks are downloads, not pages
+exclude_patterns = ["_build", "**/.ipynb_checkpoints", "_generated", "_gallery_src",
+                    "gallery/**.ipynb", "gallery/**.py"]
 myst_enable_extensions = ["dollarmath", "amsmath"]
 myst_heading_anchors = 3
 nb_execution_mode = "off"  # the stored outputs; nbval runs the notebooks
@@ -42,11 +45,31 @@ autodoc_typehints = "none"
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
 # ref.python: a field named alike in two classes (Contact.law, Equation.law) is ambiguous
-suppress_warnings = ["myst.header", "mystnb.unknown_mime_type", "misc.highlighting_failure",
-                     "ref.python"]
+# config.cache: the gallery's image scraper is a function, which Sphinx cannot pickle
+suppress_warnings = ["config.cache", "myst.header", "mystnb.unknown_mime_type",
+                     "misc.highlighting_failure", "ref.python"]
+
+import gallery  # noqa: E402 - docs/_ext, on the path above
+
+sphinx_gallery_conf = {
+    "examples_dirs": "_gallery_src",
+    "gallery_dirs": "gallery",
+    "filename_pattern": r"\.py$",  # every example runs
+    "subsection_order": [f"_gallery_src/{folder}" for folder, *_ in gallery.TOPICS],
+    "within_subsection_order": gallery.TopicOrder,
+    "image_scrapers": (gallery.scraper,),
+    "remove_config_comments": True,
+    "download_all_examples": False,
+    "min_reported_time": 10**9,  # no running times on the pages
+    "write_computation_times": False,
+    "show_signature": False,
+    "abort_on_example_error": True,
+}
 
 html_theme = "furo"
 html_title = f"rigidimpact {release}"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_js_files = ["search-math.js"]  # the search's snippets typeset, not raw TeX
+html_css_files = ["wide.css"]  # wide formulas and outputs scroll, never cut off
 # notebook 02's slider is shown as its stored picture: no widget script from the network
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}

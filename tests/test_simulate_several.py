@@ -61,7 +61,7 @@ def test_without_gravity_the_rod_never_lands_again():
 
 
 def test_cradle_flies_straight_until_the_time_asked():
-    scene = scene_with("newtons-cradle.toml", "until = 2")
+    scene = load_scene(ROOT / "derivations" / "newtons-cradle.toml")  # until = 2
     outcome = run(scene)
     assert outcome.final["t"] == 2
     first, last = outcome.final["first.x"], outcome.final["last.x"]

@@ -49,14 +49,38 @@ def _rendered(page: Path) -> str:
     return run.stdout
 
 
+def _gallery_page(site: Path, stem: str) -> Path:
+    found = list((site / "gallery").glob(f"*/{stem}.html"))
+    assert len(found) == 1, (stem, found)
+    return found[0]
+
+
 def test_every_shipped_scene_has_a_gallery_page_with_its_figure(site):
     scenes = sorted(p.stem for p in (ROOT / "derivations").glob("*.toml"))
     assert scenes
+    index = (site / "gallery" / "index.html").read_text()
     for stem in scenes:
-        page = (site / "gallery" / f"{stem}.html").read_text()
+        page = _gallery_page(site, stem).read_text()
         assert "The equations solved" in page, stem
         assert "The scene file" in page, stem
-        assert f"{stem}.png" in page or "No figure: a 3-D scene" in page, stem
+        assert re.search(rf'<img alt="[^"]{{20,}}" [^>]*src="[^"]*sphx_glr_{re.escape(stem)}_001'
+                         r'\.png"', page), stem
+        # its thumbnail in the grid, saying what it shows
+        assert re.search(rf'<img alt="[^"]{{20,}}" src="[^"]*sphx_glr_{re.escape(stem)}_thumb',
+                         index), stem
+
+
+def test_the_scenes_that_move_are_animated_in_the_gallery(site):
+    import PIL.Image
+
+    moving = ["restrike", "newtons-cradle", "superball-under-table", "stun-shot",
+              "double-pendulum-wall"]
+    for stem in moving:
+        page = _gallery_page(site, stem)
+        gifs = re.findall(r'src="([^"]+\.gif)"', page.read_text())
+        assert gifs, stem
+        with PIL.Image.open(page.parent / gifs[0]) as animation:
+            assert animation.n_frames > 10, stem
 
 
 def test_every_notebook_is_rendered_with_its_stored_figures(site):
@@ -79,8 +103,9 @@ def test_the_site_reads_offline(site):
 
 
 @pytest.mark.parametrize("page, formulas", [
-    ("index.html", False), ("gallery/barbell.html", True),
-    ("gallery/rod-rough-floor.html", True), ("notebooks/01-ball-meets-barbell.html", True),
+    ("index.html", False), ("gallery/paper/barbell.html", True),
+    ("gallery/supports-and-friction/rod-rough-floor.html", True),
+    ("notebooks/01-ball-meets-barbell.html", True),
     ("notebooks/05-two-bodies.html", True),
     ("notebooks/16-random-restitution.html", True), ("guide/friction.html", False),
     ("api.html", False)])
@@ -98,10 +123,12 @@ def test_the_site_says_which_version_it_was_built_from(site):
 
 
 def test_a_reader_in_chromium_finds_the_math_the_figures_and_the_search(site):
-    # served from 127.0.0.1 with every other host unreachable: the front page, a guide
-    # page, a notebook and the gallery typeset their math, load every image, raise no
-    # script error, and the search finds "critical angle"; each page's screenshot is
-    # saved under build/docs/screens/
+    # served from 127.0.0.1 with every other host unreachable: the front page, each
+    # tutorial, guide pages, a notebook, the gallery's grid and scene pages typeset their
+    # math, load every image (each saying what it shows), animate every GIF, cut no wide
+    # formula, raise no script error and ask no other host; the search finds "critical
+    # angle" with its snippets typeset; each page's screenshot is saved under
+    # build/docs/screens/
     import sys
 
     _browser()
@@ -113,7 +140,8 @@ def test_a_reader_in_chromium_finds_the_math_the_figures_and_the_search(site):
     found = browse.browse(site)
     assert browse.problems(found) == []
     assert found["notebooks/01-ball-meets-barbell.html"]["typeset"] > 0
-    assert found["gallery/barbell.html"]["typeset"] > 0
+    assert found["gallery/paper/restrike.html"]["typeset"] > 0
+    assert found["gallery/paper/restrike.html"]["frames"]  # its animation was decoded
     assert found["index.html"]["images"] > 0
     for page, result in found.items():
         if "screenshot" in result:

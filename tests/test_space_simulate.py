@@ -227,3 +227,27 @@ def test_a_cue_ball_faster_than_light_is_refused_before_any_impact(tmp_path, cap
         'velocity = ["3/2", "0", "0"]', 'velocity = ["3/2", "0", "0"]\nspin = ["0", "0", "1e11"]')
     err = refused(capsys, ["simulate", scene_file(tmp_path, text)])
     assert "cue.spin" in err and "speed of light" in err
+
+
+def test_draw_and_animate_from_python_in_either_dimension(tmp_path):
+    # ri.draw: a 3-D run that ends at the impact is drawn as its velocities before and
+    # after; ri.animate refuses it in one line (nothing moves); a planar run that moves
+    # is drawn and animated, its GIF more than one frame
+    import PIL.Image
+
+    import rigidimpact as ri
+
+    scene = ri.load_any(str(ROOT / "derivations" / "cushion-rebound.toml"))
+    outcome = ri.run(scene)
+    ri.draw(scene, outcome, tmp_path / "cushion.png")
+    with PIL.Image.open(tmp_path / "cushion.png") as picture:
+        assert picture.format == "PNG" and picture.width > 300
+    with pytest.raises(ri.InputError, match="nothing moves"):
+        ri.animate(scene, outcome, tmp_path / "cushion.gif")
+    assert not (tmp_path / "cushion.gif").exists()
+    scene = ri.load_any(str(ROOT / "derivations" / "newtons-cradle.toml"))
+    outcome = ri.run(scene)
+    ri.draw(scene, outcome, tmp_path / "cradle.png")
+    ri.animate(scene, outcome, tmp_path / "cradle.gif")
+    with PIL.Image.open(tmp_path / "cradle.gif") as animation:
+        assert animation.n_frames > 10

@@ -13,6 +13,7 @@ from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+import sympy as sp
 from matplotlib.animation import FFMpegWriter
 
 from rigidimpact.errors import InputError
@@ -20,6 +21,7 @@ from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.plots import (
     animation,
     impact_picture,
+    space_impact,
     space_views,
     trajectories,
     write_gif,
@@ -46,8 +48,7 @@ def draw(scene: Any, outcome: Any, path: str | Path) -> None:
     if not isinstance(scene, SpaceScene):
         plot_outcome(scene, outcome, Path(path))
     elif getattr(outcome, "trajectory", None) is None:
-        raise InputError("--plot", "this 3-D run ends at the impact: there is no path to "
-                         "draw; give [simulate] until a time or impacts a count")
+        plot_space_impact(scene, outcome, Path(path))
     else:
         plot_space(scene, outcome, Path(path))
 
@@ -78,6 +79,30 @@ def plot_space(scene: Any, outcome: Any, path: Path) -> None:
     figure = space_views({f"{name}'s centre": path for name, path in points.items()},
                          scene.title, marks, planes=_planes(track),
                          radii={f"{b.name}'s centre": float(b.radius) for b in track.balls})
+    try:
+        write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
+    finally:
+        close(figure)
+
+
+def plot_space_impact(scene: Any, outcome: Any, path: Path) -> None:
+    """A 3-D run that ends at the impact: each moving body's velocity before and after,
+    seen from above and from the side, the contact points marked; a PNG written whole or
+    not at all."""
+    values = {**scene.values}
+
+    def at(vector: Any) -> np.ndarray:
+        return np.array([float(sp.N(sp.sympify(x).subs(values))) for x in vector])
+
+    moving = [b for b in scene.bodies if b.support != "fixed"]
+    centres = {b.name: at(b.position) for b in moving}
+    before = {b.name: at(b.velocity) for b in moving}
+    after = {b.name: np.array([float(outcome.final[f"{b.name}.v{axis}"]) for axis in "xyz"])
+             for b in moving}
+    points = [(c.name, at(c.point)) for c in scene.contacts]
+    radii = {b.name: float(sp.N(sp.sympify(b.radius).subs(values))) for b in moving
+             if getattr(b, "radius", None) is not None}
+    figure = space_impact(centres, before, after, points, scene.title, radii)
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
     finally:

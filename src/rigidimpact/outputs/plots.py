@@ -1040,3 +1040,52 @@ def random_rebound(curves: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarra
     ax.legend(fontsize="small")
     fig.tight_layout()
     return fig
+
+
+def space_impact(centres: Mapping[str, np.ndarray], before: Mapping[str, np.ndarray],
+                 after: Mapping[str, np.ndarray], points: Sequence[tuple[str, np.ndarray]],
+                 title: str, radii: Mapping[str, float] | None = None) -> Figure:
+    """A 3-D impact seen from above (x, y) and from the side (x, z): each moving body's
+    centre (a sphere at its size), its velocity before (grey, dashed) and after (in its
+    colour) as arrows from the centre, and each contact point marked.
+
+    Examples
+    --------
+    >>> c = {"ball": np.array([0.0, 0.0, 1.0])}
+    >>> fig = space_impact(c, {"ball": np.array([1.0, 0, -2])},
+    ...                    {"ball": np.array([0.7, 0, 1])}, [("floor", np.zeros(3))], "demo",
+    ...                    {"ball": 1.0})
+    >>> [ax.get_xlabel() + " " + ax.get_ylabel() for ax in fig.axes]
+    ['x (m) y (m)', 'x (m) z (m)']
+    """
+    speed = max([float(np.linalg.norm(v)) for v in [*before.values(), *after.values()]]
+                + [1e-12])
+    sizes = {name: float((radii or {}).get(name, 0.0)) for name in centres}
+    reach = max([*sizes.values(), *(float(np.linalg.norm(c - p)) for c in centres.values()
+                                   for _, p in points), 1e-9])
+    scale = 2.0 * reach / speed  # the fastest arrow twice as long as the scene is wide
+    paths = {name: np.array([c, c + scale * before[name], c + scale * after[name]])
+             for name, c in centres.items()}
+    for label, p in points:
+        paths[f"contact {label}"] = np.array([p])
+        sizes[f"contact {label}"] = 0.0
+    fig, views = _two_views(paths, sizes, (), 8.0, DPI, title)
+    for ax, (i, j) in views:
+        for k, (name, c) in enumerate(centres.items()):
+            if sizes[name] > 0:
+                ax.add_patch(Circle((c[i], c[j]), sizes[name], color=f"C{k}", alpha=0.3,
+                                    lw=0))
+            ax.plot([c[i]], [c[j]], "k.", ms=6)
+            for velocity, style, label in ((before[name], dict(color="0.5", ls="--"),
+                                            f"{name}: velocity before"),
+                                           (after[name], dict(color=f"C{k}", ls="-"),
+                                            f"{name}: velocity after")):
+                tip = c + scale * velocity
+                ax.annotate("", xy=(tip[i], tip[j]), xytext=(c[i], c[j]),
+                            arrowprops=dict(arrowstyle="->", lw=1.8, **style))
+                ax.plot([], [], label=label, **style)
+        for k, (_, p) in enumerate(points):
+            ax.plot([p[i]], [p[j]], "x", ms=8, color="C3",
+                    label="contact point" if k == 0 else None)
+    _taller(views).legend(fontsize="small", loc="best")
+    return fig
