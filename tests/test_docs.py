@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
 import pytest
+import sympy as sp
 
 DOCS = Path(__file__).resolve().parents[1] / "docs" / "scenes.md"
 BLOCKS = [b for b in re.findall(r"```python\n(.*?)```", DOCS.read_text(), re.S)
@@ -79,3 +81,46 @@ def test_the_readme_is_a_front_door():
     printed = subprocess.run([sys.executable, "-m", "rigidimpact", "derive", "barbell"],
                              capture_output=True, text=True, check=True).stdout
     assert shown in printed
+
+
+TUTORIAL = DOCS.parent / "guide" / "tutorial-scene.md"
+
+
+def _block_after(text: str, marker: str, language: str) -> str:
+    return text.split(marker, 1)[1].split(f"```{language}\n", 1)[1].split("```", 1)[0]
+
+
+def test_your_own_scene_prints_on_the_command_line_what_its_page_shows(tmp_path, capsys,
+                                                                        monkeypatch):
+    from rigidimpact.cli import main
+
+    text = TUTORIAL.read_text()
+    (tmp_path / "my-scene.toml").write_text(_block_after(text, "`my-scene.toml`", "toml"))
+    monkeypatch.chdir(tmp_path)
+    assert main(["evaluate", "my-scene.toml", "--exact"]) == 0
+    shown = _block_after(text, "rigidimpact evaluate my-scene.toml --exact", "text")
+    assert capsys.readouterr().out.strip() == shown.strip()
+
+
+def test_your_own_scene_restrikes_when_the_hand_derivation_says(tmp_path):
+    # by hand (the page): J = (1 + e) v / (1/m + 1/M + d^2 / (M l^2 / 12)) = 4/5, so the
+    # puck keeps 1/5, the rod's centre 2/5 and its spin 6/5; seen from the rod's centre
+    # the puck is at (-t/5, -1/4) and the rod points along (-sin 6t/5, cos 6t/5): they
+    # meet where 0.25 sin(1.2 t) + 0.2 t cos(1.2 t) = 0 (first positive root)
+    import mpmath
+
+    import rigidimpact as ri
+
+    text = TUTORIAL.read_text()
+    (tmp_path / "s.toml").write_text(_block_after(text, "`my-scene.toml`", "toml"))
+    scene = ri.load_any(str(tmp_path / "s.toml"))
+    exact = scene.derivation().evaluate(scene.values, exact=True).exact
+    assert [exact[k] for k in ("puck.vx", "rod.vx", "rod.omega", "impulse")] == \
+        [sp.Rational(1, 5), sp.Rational(2, 5), sp.Rational(6, 5), sp.Rational(4, 5)]
+    root = mpmath.findroot(lambda t: 0.25 * mpmath.sin(1.2 * t) + 0.2 * t * mpmath.cos(1.2 * t),
+                           1.8)
+    grid = [k / 1000 for k in range(1, 1812)]  # no earlier root: the sign stays
+    assert all(0.25 * math.sin(1.2 * t) + 0.2 * t * math.cos(1.2 * t) > 0 for t in grid)
+    events = ri.run(scene).events
+    assert [e["kind"] for e in events] == ["impact", "restrike", "end"]
+    assert events[1]["t"] == pytest.approx(float(root), rel=1e-12)

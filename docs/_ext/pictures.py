@@ -22,12 +22,14 @@ OUT = ROOT / "docs" / "_generated"
 # name -> the command after `rigidimpact` (OUT stands for the file), or a script and its
 # arguments; each page that shows a picture shows its command beside it
 PICTURES: dict[str, list[str]] = {
+    "my-scene.png": ["simulate", "my-scene.toml", "--plot", "OUT"],
+    "my-scene.gif": ["simulate", "my-scene.toml", "--animate", "OUT"],
     "random-barbell.png": ["derive", "derivations/random-barbell.toml", "--plot", "OUT"],
     "stun-shot.png": ["simulate", "derivations/stun-shot.toml", "--plot", "OUT"],
     "stun-shot.gif": ["simulate", "derivations/stun-shot.toml", "--animate", "OUT"],
 }
 # files a command reads that are not in the repository: written from the page's own text
-INPUTS: dict[str, str] = {}
+INPUTS: dict[str, str] = {"my-scene.toml": "docs/guide/tutorial-scene.md"}
 
 
 def source_hash() -> str:

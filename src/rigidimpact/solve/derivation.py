@@ -272,6 +272,8 @@ def read_values(values: Mapping[str, Any], sources: dict[str, str],
     >>> e = symbol("e")
     >>> read_values({"e": "0.5"}, {}, {"e": e}, (), "demo")
     {e: 1/2}
+    >>> read_values({sp.Symbol("e"): 1}, {}, {"e": e}, (), "demo")  # a symbol: its name
+    {e: 1}
     >>> read_values({"k": 1}, {}, {"e": e}, (), "demo")
     Traceback (most recent call last):
     ...
@@ -279,7 +281,8 @@ def read_values(values: Mapping[str, Any], sources: dict[str, str],
     """
 
     exact = {}
-    for name, raw in values.items():
+    for key, raw in values.items():
+        name = key.name if isinstance(key, sp.Symbol) else key  # a scene's values, as read
         where = sources.setdefault(name, f"values.{name}")
         if name not in by_name:
             raise InputError(where, f"not a symbol of {problem}; it uses "
