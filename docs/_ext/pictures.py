@@ -22,6 +22,7 @@ OUT = ROOT / "docs" / "_generated"
 # name -> the command after `rigidimpact` (OUT stands for the file), or a script and its
 # arguments; each page that shows a picture shows its command beside it
 PICTURES: dict[str, list[str]] = {
+    "gait.png": ["docs/figures/gait.py", "OUT"],
     "my-scene.png": ["simulate", "my-scene.toml", "--plot", "OUT"],
     "my-scene.gif": ["simulate", "my-scene.toml", "--animate", "OUT"],
     "random-barbell.png": ["derive", "derivations/random-barbell.toml", "--plot", "OUT"],
