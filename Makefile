@@ -65,8 +65,11 @@ $(VENV)/.peers-stamp: $(VENV)/.pooltool-stamp
 
 peers: $(VENV)/.peers-stamp  ## the peers (pymunk, pooltool, Pinocchio): make test then runs their comparisons
 
-bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer); slow checks
+bench: $(VENV)/.peers-stamp  ## accuracy against time (with pymunk as a peer), the maps beside Pinocchio; the Performance page; slow checks
 	$(PY) -m rigidimpact bench --out $(BUILD)/bench
+	$(PY) derivations/beside_pinocchio.py --kernel 100000 --json > $(BUILD)/bench/pinocchio.json
+	$(PY) tools/performance_page.py $(BUILD)/bench "rigidimpact bench" \
+		$(BUILD)/bench/pinocchio.json "python derivations/beside_pinocchio.py --kernel 100000"
 	$(PY) -m pytest $(PARALLEL) -m slow
 
 $(VENV)/.lab-stamp: $(STAMP)
