@@ -23,6 +23,7 @@ OUT = ROOT / "docs" / "_generated"
 # arguments; each page that shows a picture shows its command beside it
 PICTURES: dict[str, list[str]] = {
     "random-barbell.png": ["derive", "derivations/random-barbell.toml", "--plot", "OUT"],
+    "routh-rod-rough-floor.png": ["routh", "derivations/rod-rough-floor.toml", "--plot", "OUT"],
     "stun-shot.png": ["simulate", "derivations/stun-shot.toml", "--plot", "OUT"],
     "stun-shot.gif": ["simulate", "derivations/stun-shot.toml", "--animate", "OUT"],
 }
