@@ -124,3 +124,69 @@ def test_your_own_scene_restrikes_when_the_hand_derivation_says(tmp_path):
     events = ri.run(scene).events
     assert [e["kind"] for e in events] == ["impact", "restrike", "end"]
     assert events[1]["t"] == pytest.approx(float(root), rel=1e-12)
+
+
+# guide pages whose shell commands run here as the page shows them, each compared with
+# the output block that follows it
+COMMAND_PAGES = ["guide/tutorial-random.md", "guide/random.md", "guide/friction.md"]
+SECONDS = re.compile(r"\b\d+\.\d+ s\b")  # what a run took: differs from run to run
+
+
+def _shown_commands(page: Path) -> list[tuple[list[str], str | None]]:
+    """Each `rigidimpact ...` command of the page's ```sh blocks, as its arguments, with
+    the ```text block right after its block (for the block's last command) or None."""
+    import shlex
+
+    found: list[tuple[list[str], str | None]] = []
+    pattern = re.compile(r"```sh\n(.*?)```\n(?:\n?```text\n(.*?)```)?", re.S)
+    for block, shown in pattern.findall(page.read_text(encoding="utf-8")):
+        words = [shlex.split(line, comments=True) for line in block.splitlines()]
+        commands = [w[1:] for w in words if w and w[0].endswith("rigidimpact")]
+        found += [(argv, shown if k == len(commands) - 1 and shown else None)
+                  for k, argv in enumerate(commands)]
+    return found
+
+
+def _appears_in(shown: str, printed: str) -> bool:
+    """Whether the page's output block is what was printed: its runs of lines between
+    lines of ``...`` (lines left out) appear in the output in order, the seconds each
+    step took aside."""
+    printed = SECONDS.sub("#.## s", printed)
+    at = 0
+    for run in re.split(r"^\.\.\.\n", SECONDS.sub("#.## s", shown), flags=re.M):
+        if not run.strip():
+            continue
+        at = printed.find(run, at)
+        if at < 0:
+            return False
+        at += len(run)
+    return True
+
+
+def test_the_pages_that_show_commands_show_some():
+    for name in COMMAND_PAGES:
+        assert _shown_commands(DOCS.parent / name), name
+
+
+@pytest.mark.parametrize(("name", "argv", "shown"), [
+    pytest.param(name, argv, shown, id=f"{name}: rigidimpact {' '.join(argv)}")
+    for name in COMMAND_PAGES for argv, shown in _shown_commands(DOCS.parent / name)])
+def test_a_guide_pages_command_prints_what_the_page_shows(name, argv, shown, tmp_path,
+                                                          monkeypatch, capsys):
+    """Run from a folder of its own holding the shipped scenes under derivations/, as
+    the guide's doctests run; what a terminal shows is the standard error's warnings
+    and then the standard output."""
+    from rigidimpact.cli import main
+
+    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 0, (name, argv)
+    printed = capsys.readouterr()
+    if shown is not None:
+        assert _appears_in(shown, printed.err + printed.out), (name, argv, printed.out)
+
+
+def test_the_random_tutorial_shows_the_shipped_scene_whole():
+    page = (DOCS.parent / "guide" / "tutorial-random.md").read_text(encoding="utf-8")
+    (toml,) = re.findall(r"```toml\n(.*?)```", page, re.S)
+    assert toml == (DOCS.parents[1] / "derivations" / "random-barbell.toml").read_text()

@@ -837,3 +837,55 @@ def test_derive_plot_draws_each_output_over_its_exact_density(tmp_path, capsys):
     assert main(["derive", str(root / "derivations" / "random-coin.toml"), "--plot",
                  str(target)]) == 0
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_scenes_distributions_and_their_picture_in_one_call_each(tmp_path):
+    """ri.distributions: the shipped barbell's rebound against the hand forms (mean
+    (1 + e)/sqrt(2) - 1, chance of falling on 2 acos(sqrt e)/pi, support (e - 1)/2 to
+    e) and its Monte Carlo within four standard errors of the hand mean at e = 1/2;
+    ri.draw_distributions writes the PNG from those answers; a scene without [random]
+    is refused in one line."""
+    import rigidimpact as ri
+
+    scene = ri.load_scene(ROOT / "derivations" / "random-barbell.toml")
+    found = ri.distributions(scene)["barbell.vy"]
+    e = ri.symbol("e")
+    assert sp.simplify(found["mean"] - ((1 + e) / sp.sqrt(2) - 1)) == 0
+    assert sp.simplify(found["below_zero"] - 2 * sp.acos(sp.sqrt(e)) / sp.pi) == 0
+    assert [sp.simplify(s - t) for s, t in zip(found["support"], ((e - 1) / 2, e),
+                                                strict=True)] == [0, 0]
+    mc = found["monte_carlo"]
+    assert mc["seed"] == 2011 and mc["samples"] == 1_000_000 and mc["workers"] == 0
+    assert abs(mc["mean"] - (1.5 / math.sqrt(2) - 1)) < 4 * mc["standard_error"]
+    # by path, the same numbers
+    again = ri.distributions(str(ROOT / "derivations" / "random-barbell.toml"))
+    assert again["barbell.vy"]["monte_carlo"] == mc
+    target = tmp_path / "barbell.png"
+    ri.draw_distributions(scene, target, {"barbell.vy": found})
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(InputError, match="no \\[random\\] table"):
+        ri.distributions(ROOT / "derivations" / "rod-rough-floor.toml")
+
+
+def test_a_random_input_that_is_not_uniform_says_why_it_has_no_closed_form():
+    # the change of variables is made for a uniform input: a normal angle gets the
+    # Monte Carlo alone, and the reason names the input's law
+    from rigidimpact.analyses.distributions import distributions_text, scene_distributions
+
+    scene = parse_scene(BARBELL_DROP + '''
+[values]
+e = 0.5
+m = 1
+L = 0.5
+[random]
+theta = { normal = ["pi/4", "0.2"] }
+outputs = ["barbell.vy"]
+samples = 1000
+''')
+    found = scene_distributions(scene, dict(scene.derivation().results))
+    entry = found["barbell.vy"]
+    assert "density" not in entry and "monte_carlo" in entry
+    assert entry["no_closed_form"] == ("theta is normal, and the closed form is derived "
+                                       "for a uniform input only")
+    assert "      no closed form sought: theta is normal, and the closed form is derived " \
+        "for a uniform input only" in distributions_text(scene.random, scene.values, found)

@@ -26,6 +26,7 @@ PICTURES: dict[str, list[str]] = {
     "my-scene.png": ["simulate", "my-scene.toml", "--plot", "OUT"],
     "my-scene.gif": ["simulate", "my-scene.toml", "--animate", "OUT"],
     "random-barbell.png": ["derive", "derivations/random-barbell.toml", "--plot", "OUT"],
+    "routh-rod-rough-floor.png": ["routh", "derivations/rod-rough-floor.toml", "--plot", "OUT"],
     "stun-shot.png": ["simulate", "derivations/stun-shot.toml", "--plot", "OUT"],
     "stun-shot.gif": ["simulate", "derivations/stun-shot.toml", "--animate", "OUT"],
 }

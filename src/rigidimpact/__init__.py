@@ -18,10 +18,12 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on first use
     from rigidimpact import mechanics as mechanics
+    from rigidimpact.analyses.distributions import distributions as distributions
     from rigidimpact.analyses.restrike import critical_angle as critical_angle
     from rigidimpact.errors import InputError as InputError
     from rigidimpact.figures import animate as animate
     from rigidimpact.figures import draw as draw
+    from rigidimpact.figures import draw_distributions as draw_distributions
     from rigidimpact.laws.cone import cone_impact as cone_impact
     from rigidimpact.laws.contact import Contact as Contact
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
@@ -91,7 +93,9 @@ _PUBLIC = {
     "Driven": "solve.rules.driven", "cone_impact": "laws.cone",
     # numbers from closed forms: a compiled kernel, one evaluation
     "Kernel": "symbolic.numeric", "evaluate": "symbolic.numeric",
-    # random inputs: the Monte Carlo, its histogram, the exact density
+    # random inputs: a scene's distributions and their picture; the Monte Carlo, its
+    # histogram, the exact density
+    "distributions": "analyses.distributions", "draw_distributions": "figures",
     "monte_carlo": "symbolic.distributions", "histogram": "symbolic.distributions",
     "pushforward": "symbolic.distributions",
 }

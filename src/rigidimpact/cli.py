@@ -129,22 +129,12 @@ def _check_workers(args: argparse.Namespace) -> None:
         raise InputError("--workers", f"must lie between 1 and 1024, got {args.workers}")
 
 
-def _distributions_figure(path: Path, scene: Any, results: dict, found: dict) -> None:
+def _distributions_figure(path: Path, scene: Any, found: dict) -> None:
     """Each [random] output's histogram of draws under its exact density, to `path`."""
-    from rigidimpact.analyses.distributions import distribution_curves
-    from rigidimpact.outputs.atomic import write_file
     _files_only()
-    from rigidimpact.figures import close
-    from rigidimpact.outputs.plots import random_outputs
+    from rigidimpact.figures import draw_distributions
 
-    curves = distribution_curves(scene, results, found)
-    if not curves:
-        raise InputError("--plot", "no [random] output here is driven by one random input "
-                         "with every other symbol given: nothing to draw")
-    figure = random_outputs(curves, f"{scene.title or scene.name}: draws at [values] "
-                            f"(seed {scene.random.seed})")
-    write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")
-    close(figure)
+    draw_distributions(scene, path, found)
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
@@ -168,7 +158,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         found = scene_distributions(scene, dict(d.results), args.workers, args.scheduler,
                                     progress=None if args.json else _tasks_bar)
         if args.plot:
-            _distributions_figure(Path(args.plot), scene, dict(d.results), found)
+            _distributions_figure(Path(args.plot), scene, found)
     from rigidimpact.outputs.latex import equation_latex, fragment, to_latex
     for warning in d.warnings:
         print(f"rigidimpact: warning: {warning}", file=sys.stderr)

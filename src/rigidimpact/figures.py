@@ -28,7 +28,7 @@ from rigidimpact.outputs.plots import (
 )
 from rigidimpact.simulate import impact_view
 
-__all__ = ["draw", "animate", "plot_outcome", "animate_outcome", "plot_space",
+__all__ = ["draw", "animate", "draw_distributions", "plot_outcome", "animate_outcome", "plot_space",
            "animate_space", "ends_at_impact", "close"]
 
 
@@ -66,6 +66,56 @@ def animate(scene: Any, outcome: Any, path: str | Path) -> None:
         animate_space(scene, outcome, Path(path))
     else:
         animate_outcome(scene, outcome, Path(path))
+
+
+def draw_distributions(scene: Any, path: str | Path,
+                       found: dict[str, dict[str, Any]] | None = None) -> None:
+    """Draw each random output of a scene to a PNG, as ``derive SCENE --plot`` does: the
+    histogram of its draws at the scene's ``[values]`` and, where it has one, its exact
+    density over it.
+
+    Parameters
+    ----------
+    scene : Scene, str or Path
+        A scene with a ``[random]`` table, or the path of its TOML file.
+    path : str or Path
+        The PNG to write (whole or not at all).
+    found : dict, optional
+        The distributions :func:`rigidimpact.distributions` gave for this scene, so
+        their closed forms are not derived again; derived here when not given.
+
+    Raises
+    ------
+    InputError
+        When the scene has no ``[random]`` table, or no random output is driven by one
+        random input with every other symbol given a value (nothing to draw).
+
+    Examples
+    --------
+    >>> import rigidimpact as ri
+    >>> ri.draw_distributions("derivations/random-barbell.toml",
+    ...                       "random-barbell.png")  # doctest: +SKIP
+    """
+    from rigidimpact.analyses.distributions import distribution_curves, distributions
+    from rigidimpact.outputs.plots import random_outputs
+
+    if isinstance(scene, (str, Path)):
+        from rigidimpact.scenes.space import load_any
+
+        scene = load_any(scene)
+    if found is None:
+        found = distributions(scene)
+    curves = distribution_curves(scene, dict(scene.derivation().results), found)
+    if not curves:
+        raise InputError("--plot", "no [random] output here is driven by one random input "
+                         "with every other symbol given: nothing to draw")
+    figure = random_outputs(curves, f"{scene.title or scene.name}: draws at [values] "
+                            f"(seed {scene.random.seed})")
+    try:
+        write_file(Path(path), lambda temporary: figure.savefig(temporary, format="png"),
+                   "--plot")
+    finally:
+        close(figure)
 
 
 def plot_space(scene: Any, outcome: Any, path: Path) -> None:

@@ -12,6 +12,7 @@ import contextlib
 import random
 import time
 from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -31,7 +32,7 @@ from rigidimpact.symbolic.distributions import (
 )
 from rigidimpact.symbolic.drawn import plan_run
 
-__all__ = ["scene_distributions", "monte_carlo_on_dask", "point_monte_carlo",
+__all__ = ["distributions", "scene_distributions", "monte_carlo_on_dask", "point_monte_carlo",
            "point_chunk", "distributions_json", "distributions_text"]
 
 CHUNK = 1_000_000  # draws a chunk (a worker takes a run of them)
@@ -243,6 +244,16 @@ def closed_form_refusal(g: sp.Expr, x: sp.Symbol) -> str | None:
             f"sin({x}) or tan({x})")
 
 
+def _refusal(g: sp.Expr, x: sp.Symbol, law: Distribution) -> str | None:
+    """Why no closed form of g's distribution is sought, as ``derive`` says it (the
+    change of variables is made for a uniform input, on an output of the form
+    :func:`closed_form_refusal` accepts), or None when it is."""
+    if law.kind != "uniform":
+        return f"{x} is {law.kind}, and the closed form is derived for a uniform input only"
+    refusal = closed_form_refusal(g, x)
+    return None if refusal is None else f"the output is {refusal}"
+
+
 def _points(symbols: Sequence[sp.Symbol], roles: Sequence[Any], count: int = 3
             ) -> list[dict[sp.Symbol, sp.Rational]]:
     """`count` seeded rational points of `symbols` inside the ranges their roles allow
@@ -324,6 +335,68 @@ def scene_distributions(scene: Any, results: dict[str, sp.Expr], workers: int | 
     return found
 
 
+def distributions(scene: Any, workers: int | None = None, scheduler: str | None = None
+                  ) -> dict[str, dict[str, Any]]:
+    """The distribution of each random output of a scene, as ``rigidimpact derive
+    SCENE`` prints it: the exact density, support, mean and chance of a negative value
+    where a closed form exists, and a seeded Monte Carlo at the scene's ``[values]``.
+
+    Parameters
+    ----------
+    scene : Scene, str or Path
+        A scene with a ``[random]`` table, or the path of its TOML file.
+    workers : int, optional
+        Draw the Monte Carlo on this many local Dask worker processes, as ``derive
+        --workers N`` does. Where the draws are too few to repay starting them (fewer
+        than 10^8 draws of a closed form, 200 solves of a scene without one), they are
+        made in this process instead and each drawn output's ``"workers"`` says so.
+        The numbers are the same either way.
+    scheduler : str, optional
+        The address of a running Dask scheduler (``tcp://host:8786``), as ``derive
+        --scheduler`` uses: its workers draw.
+
+    Returns
+    -------
+    dict
+        For each output (the ``[random]`` table's ``outputs``, or else every result
+        that one random input drives), a dict with:
+
+        - ``random``: the names of the random inputs it depends on;
+        - where a closed form was found, ``variable`` (the output's symbol, y),
+          ``density`` (in y), ``support`` (its least and greatest values), ``mean``
+          and, where 0 lies inside the support at ``[values]``, ``below_zero``
+          (the chance that the output is negative), each a SymPy expression in the
+          scene's symbols;
+        - ``monte_carlo``: the draws' ``mean``, ``standard_error``, ``below_zero``
+          (the fraction of draws below zero), ``samples``, ``seed`` and ``workers``
+          (how many Dask workers drew them; 0 where this process did);
+        - ``no_closed_form`` where none was sought, saying why;
+        - ``exact_seconds`` and ``monte_carlo_seconds``: what each took.
+
+    Raises
+    ------
+    InputError
+        When the scene has no ``[random]`` table, or an output it names is not one of
+        its results.
+
+    Examples
+    --------
+    >>> import rigidimpact as ri
+    >>> found = ri.distributions("derivations/random-barbell.toml")  # doctest: +SKIP
+    >>> found["barbell.vy"]["mean"]  # doctest: +SKIP
+    sqrt(2)*e/2 - 1 + sqrt(2)/2
+    """
+    if isinstance(scene, (str, Path)):
+        from rigidimpact.scenes.space import load_any
+
+        scene = load_any(scene)
+    if getattr(scene, "random", None) is None:
+        raise InputError("random", f"the scene {scene.name!r} has no [random] table: "
+                         "give a symbol a distribution there, such as theta = "
+                         "{ uniform = [\"0\", \"pi/2\"] }")
+    return scene_distributions(scene, dict(scene.derivation().results), workers, scheduler)
+
+
 def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[str],
                        inputs: Mapping[sp.Symbol, Distribution],
                        values: Mapping[sp.Symbol, Any], workers: int | None,
@@ -359,7 +432,7 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
     for key, (g, drivers, missing) in every.items():
         entry: dict[str, Any] = {"random": [str(s) for s in drivers]}
         if len(drivers) == 1 and inputs[drivers[0]].kind != "discrete":
-            refusal = closed_form_refusal(g, drivers[0])
+            refusal = _refusal(g, drivers[0], inputs[drivers[0]])
             if refusal is not None:
                 entry["no_closed_form"] = refusal
             else:
@@ -455,8 +528,7 @@ def distributions_text(table: Any, values: Any, found: dict[str, dict[str, Any]]
                 lines.append(f"      P({key} < 0) = {entry['below_zero']}  "
                              f"(= {chance:.10g})")
         elif "no_closed_form" in entry:
-            lines.append(f"      no closed form sought: the output is "
-                         f"{entry['no_closed_form']}")
+            lines.append(f"      no closed form sought: {entry['no_closed_form']}")
         elif "exact_seconds" in entry:
             lines.append("      no closed form found (not monotone in pieces in closed "
                          "form)")

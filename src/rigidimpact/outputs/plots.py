@@ -457,10 +457,12 @@ def sweep_curves(name: str, x: np.ndarray, outputs: Mapping[str, np.ndarray],
 def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
     """The impulse plane of one frictional impact (Routh's construction).
 
-    Normal impulse across, tangential impulse up: the friction cone ``|P_t| = mu P_n``,
-    the compression line (where the normal velocity is zero: compression ends where the
+    Normal impulse across, tangential impulse up: the friction cone ``|P_t| = mu P_n``
+    (shaded: while the points slip the path runs parallel to one of its edges), the
+    compression line (where the normal velocity is zero: compression ends where the
     path crosses it), the sticking line (where the tangential velocity is zero: slip
-    stops there), and the path the impulse takes, with its events marked.
+    stops there), and the path the impulse takes, with arrows along it and each event
+    marked and named (slip stops, compression ends, the impact ends).
 
     Examples
     --------
@@ -470,8 +472,11 @@ def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
     >>> from rigidimpact.laws.routh import diagram
     >>> d = diagram(Impact(Body.particle(1, (1, 1), "ball"), Body.fixed("floor"),
     ...             Contact(restitution=1, tangential="coulomb", friction=0.25)), {})
-    >>> len(routh_diagram(d).axes[0].lines)
+    >>> figure = routh_diagram(d)
+    >>> len(figure.axes[0].lines)
     5
+    >>> [t.get_text() for t in figure.axes[0].texts if t.get_text()]  # and an arrow
+    ['start', 'compression ends', 'the impact ends']
     """
     W = np.array(diagram.W.evalf(), dtype=float)
     v = np.array([float(x) for x in diagram.v_before])
@@ -479,7 +484,8 @@ def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
     path = np.array([[float(a), float(b)] for a, b in diagram.regime.path])
     right = 1.25 * max(path[:, 0].max(), 1e-12)
     p_n = np.linspace(0.0, right, 200)
-    fig, ax = plt.subplots(figsize=(6.0, 4.5), dpi=DPI)
+    fig, ax = plt.subplots(figsize=(7.0, 5.6), dpi=DPI, layout="constrained")
+    ax.fill_between(p_n, -mu * p_n, mu * p_n, color="grey", alpha=0.12, lw=0)
     ax.plot(p_n, mu * p_n, color="grey", lw=0.8, label=rf"friction cone $|P_t| = \mu P_n$, "
             rf"$\mu = {mu:g}$")
     ax.plot(p_n, -mu * p_n, color="grey", lw=0.8)
@@ -492,19 +498,54 @@ def routh_diagram(diagram, title: str = "Routh's diagram") -> Figure:
                     label=label)
         else:  # the line stands upright at the normal impulse that zeroes the velocity
             ax.axvline(-v[row] / W[row, 0], ls=style, color=colour, label=label)
-    ax.plot(path[:, 0], path[:, 1], "o-", color="C0", lw=2,
+    ax.plot(path[:, 0], path[:, 1], "-", color="C0", lw=2,
             label=f"impulse path: {diagram.regime.name}")
+    for a, b in zip(path[:-1], path[1:], strict=True):  # which way the impulse grows
+        ax.annotate("", xy=a + 0.55 * (b - a), xytext=a + 0.45 * (b - a),
+                    arrowprops={"arrowstyle": "-|>", "color": "C0", "lw": 2,
+                                "mutation_scale": 16})
     span = max(mu * right, abs(path[:, 1]).max(), 1e-12)
+    for point, text, colour, offset in _routh_events(path, v, W, diagram.regime.name):
+        ax.scatter([point[0]], [point[1]], s=45, color=colour, zorder=5)
+        ax.annotate(text, point, xytext=offset, textcoords="offset points",
+                    fontsize="small", color=colour, ha="left" if offset[0] >= 0 else "right",
+                    va="center", bbox={"boxstyle": "round,pad=0.2", "fc": "white",
+                                       "ec": "none", "alpha": 0.8})
     ax.set_ylim(-1.4 * span, 1.4 * span)
     ax.set_xlim(0.0, right)
     ax.set_xlabel(r"normal impulse $P_n$ (N s)")
     ax.set_ylabel(r"tangential impulse $P_t$ (N s)")
-    ax.set_title(f"{title}\n{diagram.law} restitution, e = {float(diagram.e):g}",
-                 fontsize="medium")
-    ax.legend(fontsize="small", loc="best")
+    ax.set_title(f"{title}\n{diagram.law} restitution, e = {float(diagram.e):g}, "
+                 f"$\\mu$ = {mu:g}", fontsize="medium")
+    fig.legend(loc="outside lower center", ncol=2, fontsize="small")
     ax.grid(alpha=0.3)
-    fig.tight_layout()
     return fig
+
+
+def _routh_events(path: np.ndarray, v: np.ndarray, W: np.ndarray, regime: str
+                  ) -> list[tuple[tuple[float, float], str, str, tuple[float, float]]]:
+    """The events of an impulse path, each as (point, name, colour, label offset in
+    points): its start, where slip stops (each bend), where compression ends (the
+    normal velocity zero along the path) and where the impact ends."""
+    bend = ("slip stops, then reverses" if "reversal" in regime else
+            "slip stops; the points stick" if "stick" in regime else
+            "slip and approach stop" if "lock" in regime else "slip stops")
+
+    def at(point: np.ndarray) -> tuple[float, float]:
+        return float(point[0]), float(point[1])
+
+    events = [(at(path[0]), "start", "C0", (8.0, -12.0))]
+    events += [(at(p), bend, "C2", (8.0, 12.0)) for p in path[1:-1]]
+    normal = v[0] + path @ W[0]  # the normal velocity at each event of the path
+    for k in range(len(path) - 1):
+        a, b = normal[k], normal[k + 1]
+        if a < 0 <= b and b != a:
+            where = path[k] + (path[k + 1] - path[k]) * (-a / (b - a))
+            if not any(np.allclose(where, p) for p in path[1:]):
+                events.append((at(where), "compression ends", "C1", (-8.0, -14.0)))
+            break
+    events.append((at(path[-1]), "the impact ends", "C0", (-10.0, -14.0)))
+    return events
 
 
 def space_views(points: np.ndarray | Mapping[str, np.ndarray], title: str,
