@@ -135,8 +135,7 @@ def example(stem: str, source_key: str) -> tuple[str, dict[str, str]]:
                                       "over the histogram of a seeded Monte Carlo.")
         code += [*_comment(["Each random output's exact density over the histogram of "
                             "its Monte Carlo, as ``rigidimpact derive --plot`` draws it:"]),
-                 "", "from rigidimpact.cli import main", "",
-                 f'main(["derive", "{stem}.toml", "--plot", "{stem}-density.png"])', ""]
+                 "", f'ri.draw_distributions(scene, "{stem}-density.png")', ""]
     scene_text = textwrap.indent(path.read_text().rstrip(), "   ")
     code += _comment(_math_lines(derivation) + [
         "The scene file", "--------------", "", ".. code-block:: toml", "",
