@@ -11,6 +11,10 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 
+# this file holds no doctests: not collected as a module (--doctest-modules), since it
+# would be imported as `conftest` beside tests/conftest.py when both folders are asked
+collect_ignore = ["conftest.py"]
+
 
 @pytest.fixture(autouse=True)
 def _in_a_folder_of_its_own(tmp_path: Path):
