@@ -84,7 +84,7 @@ def test_the_readme_is_a_front_door():
 # --- the shell sessions of the guide's pages: each command prints what its page shows ---
 
 GUIDE = DOCS.parent / "guide"
-SESSIONS = [GUIDE / "tutorial-3d.md"]
+SESSIONS = [GUIDE / "tutorial-3d.md", GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
 
 
 def _sessions(page: Path) -> list[tuple[str, str]]:
