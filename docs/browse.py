@@ -28,7 +28,7 @@ from pathlib import Path
 
 SITE = Path(__file__).resolve().parents[1] / "build" / "docs"
 PAGES = ["index.html", "getting-started.html", "guide/tutorial-paper.html",
-         "guide/tutorial-scene.html", "guide/tutorial-walker.html",
+         "guide/tutorial-scene.html", "guide/tutorial-3d.html", "guide/tutorial-walker.html",
          "guide/tutorial-random.html", "guide/mechanics.html", "guide/friction.html",
          "guide/random.html", "guide/three-dimensions.html",
          "notebooks/01-ball-meets-barbell.html", "gallery/index.html",

@@ -190,3 +190,100 @@ def test_the_random_tutorial_shows_the_shipped_scene_whole():
     page = (DOCS.parent / "guide" / "tutorial-random.md").read_text(encoding="utf-8")
     (toml,) = re.findall(r"```toml\n(.*?)```", page, re.S)
     assert toml == (DOCS.parents[1] / "derivations" / "random-barbell.toml").read_text()
+
+
+# --- the shell sessions of the guide's pages: each command prints what its page shows ---
+
+GUIDE = DOCS.parent / "guide"
+SESSIONS = [GUIDE / "tutorial-3d.md", GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
+
+
+def _sessions(page: Path) -> list[tuple[str, str]]:
+    """Each ```sh block followed at once by a ```text block: (the command, its output)."""
+    return re.findall(r"```sh\n(rigidimpact [^\n]*)\n```\n\n```text\n(.*?)```",
+                      page.read_text(encoding="utf-8"), re.S)
+
+
+def _shows(printed: str, shown: str) -> bool:
+    """Whether `printed` holds every line `shown` holds, in order, a line "..." standing
+    for any run of lines left out (and the shown lines after it starting anywhere)."""
+    lines = printed.splitlines()
+    at = 0
+    skip = False
+    for line in shown.splitlines():
+        if line == "...":
+            skip = True
+            continue
+        if skip:
+            if line not in lines[at:]:
+                return False
+            at = lines.index(line, at)
+        elif at >= len(lines) or lines[at] != line:
+            return False
+        at += 1
+        skip = False
+    return skip or at == len(lines)
+
+
+@pytest.fixture
+def _in_a_reader_folder(tmp_path, monkeypatch):
+    """A folder of its own holding the shipped scenes, as the guide's pages run."""
+    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
+    monkeypatch.chdir(tmp_path)
+
+
+@pytest.mark.parametrize("page", SESSIONS, ids=lambda p: p.name)
+def test_a_pages_shell_sessions_print_what_it_shows(page, capsys, _in_a_reader_folder):
+    import shlex
+
+    from rigidimpact.cli import main
+
+    sessions = _sessions(page)
+    assert sessions, page.name
+    for command, shown in sessions:
+        assert main(shlex.split(command)[1:]) == 0, command
+        printed = capsys.readouterr().out
+        assert _shows(printed, shown), (command, printed)
+
+
+def test_the_shown_output_may_leave_lines_out_but_not_change_them():
+    assert _shows("a\nb\nc\nd\n", "a\n...\nc\n...\n")
+    assert _shows("a\nb\nc\n", "a\nb\nc\n")
+    assert not _shows("a\nb\nc\n", "a\nb\n")  # the end is shown or marked left out
+    assert not _shows("a\nb\nc\n", "a\nc\n")
+    assert not _shows("a\nb\nc\n", "a\n...\nx\n")
+
+
+def test_the_3d_tutorial_shows_the_shipped_scene_as_it_is():
+    text = (GUIDE / "tutorial-3d.md").read_text(encoding="utf-8")
+    scene = (DOCS.parents[1] / "derivations" / "draw-shot.toml").read_text(encoding="utf-8")
+    blocks = re.findall(r"```toml\n(.*?)```", text, re.S)
+    assert len(blocks) >= 5
+    for block in blocks:
+        assert block in scene, block
+
+
+def _pictures() -> dict[str, list[str]]:
+    import importlib.util
+
+    path = DOCS.parent / "_ext" / "pictures.py"
+    spec = importlib.util.spec_from_file_location("pictures", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.PICTURES
+
+
+@pytest.mark.parametrize("page", SESSIONS, ids=lambda p: p.name)
+def test_each_picture_a_page_shows_is_made_by_the_command_it_shows(page):
+    # the build makes /_generated/NAME from PICTURES[NAME]: the command the page shows
+    # just before the picture, with its file named NAME
+    import shlex
+
+    pictures = _pictures()
+    text = page.read_text(encoding="utf-8")
+    shown = re.findall(r"```sh\n(rigidimpact [^\n]*)\n```\n\n!\[[^\]]+\]\(/_generated/([^)]+)\)",
+                       text)
+    assert len(shown) == text.count("](/_generated/"), page.name
+    for command, name in shown:
+        argv = [("OUT" if word == name else word) for word in shlex.split(command)[1:]]
+        assert pictures.get(name) == argv, (name, command)

@@ -104,10 +104,12 @@ PLANAR = [p for p in sorted(DERIVATIONS.glob("*.toml"))
 
 def test_the_3d_scenes_are_apart_and_checked_in_their_own_tests():
     # tests/test_space.py holds every shipped 3-D scene to its laws and hand answers,
-    # and tests/test_space_simulate.py the runs past the impact
+    # and tests/test_space_simulate.py the runs past the impact (tests/test_table_shots.py
+    # the stun shot's, tests/test_draw_shot.py the draw shot's)
     spatial = {p.stem for p in DERIVATIONS.glob("*.toml")} - {p.stem for p in PLANAR}
     assert spatial == {"spinning-ball-floor", "box-corner-floor", "cushion-rebound",
-                       "superball-under-table", "spinning-ball-bounces", "stun-shot"}
+                       "superball-under-table", "spinning-ball-bounces", "stun-shot",
+                       "draw-shot"}
 
 
 @pytest.mark.parametrize("path", PLANAR, ids=lambda p: p.stem)

@@ -47,7 +47,7 @@ TOPICS: list[tuple[str, str, str, list[str]]] = [
       "compass-gait-heel-strike"]),
     ("three-dimensions", "Three dimensions and billiards",
      "Bodies with spin in space: balls on a table and against cushions, a box on a corner.",
-     ["stun-shot", "superball-under-table", "spinning-ball-bounces",
+     ["stun-shot", "draw-shot", "superball-under-table", "spinning-ball-bounces",
       "spinning-ball-floor", "cushion-rebound", "box-corner-floor"]),
     ("random-inputs", "Random inputs",
      "An output's exact distribution when an input is random, beside its Monte Carlo.",

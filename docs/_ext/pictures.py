@@ -29,6 +29,8 @@ PICTURES: dict[str, list[str]] = {
     "routh-rod-rough-floor.png": ["routh", "derivations/rod-rough-floor.toml", "--plot", "OUT"],
     "stun-shot.png": ["simulate", "derivations/stun-shot.toml", "--plot", "OUT"],
     "stun-shot.gif": ["simulate", "derivations/stun-shot.toml", "--animate", "OUT"],
+    "draw-shot.png": ["simulate", "derivations/draw-shot.toml", "--plot", "OUT"],
+    "draw-shot.gif": ["simulate", "derivations/draw-shot.toml", "--animate", "OUT"],
 }
 # files a command reads that are not in the repository: written from the page's own text
 INPUTS: dict[str, str] = {"my-scene.toml": "docs/guide/tutorial-scene.md"}

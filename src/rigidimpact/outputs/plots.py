@@ -583,7 +583,7 @@ def space_views(points: np.ndarray | Mapping[str, np.ndarray], title: str,
             style = {"impact": ("x", "C3"), "stops": ("o", "0.2")}.get(kind, ("s", "C2"))
             ax.plot([where[i]], [where[j]], style[0], ms=7, color=style[1],
                     label=kind if first else None)
-    _taller(views).legend(fontsize="small", loc="best")
+    _taller(views).legend(fontsize="small", loc="best", ncol=2)  # short: off the paths
     return fig
 
 
@@ -624,6 +624,9 @@ def _two_views(paths: Mapping[str, np.ndarray], radii: Mapping[str, float],
             _draw_plane(ax, (0, j), label, p, n)
         views.append((ax, (0, j)))
     fig.suptitle(title, fontsize="medium")
+    fig.tight_layout()
+    for ax, _ in views:  # each box at its equal-axes size, then laid out again: room
+        ax.apply_aspect()  # for the labels of the boxes as drawn, not one over another
     fig.tight_layout()
     return fig, views
 
