@@ -16,16 +16,19 @@ import numpy as np
 import sympy as sp
 from matplotlib.animation import FFMpegWriter
 
+from rigidimpact.analyses.distributions import distribution_curves, distributions
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.plots import (
     animation,
     impact_picture,
+    random_outputs,
     space_impact,
     space_views,
     trajectories,
     write_gif,
 )
+from rigidimpact.scenes.space import SpaceScene, load_any
 from rigidimpact.simulate import impact_view
 
 __all__ = ["draw", "animate", "draw_distributions", "plot_outcome", "animate_outcome", "plot_space",
@@ -43,8 +46,6 @@ def draw(scene: Any, outcome: Any, path: str | Path) -> None:
     >>> scene = ri.load_any("derivations/restrike.toml")
     >>> ri.draw(scene, ri.run(scene), "restrike.png")  # doctest: +SKIP
     """
-    from rigidimpact.scenes.space import SpaceScene
-
     if not isinstance(scene, SpaceScene):
         plot_outcome(scene, outcome, Path(path))
     elif getattr(outcome, "trajectory", None) is None:
@@ -57,8 +58,6 @@ def animate(scene: Any, outcome: Any, path: str | Path) -> None:
     """Animate a run of :func:`rigidimpact.run` to a GIF, as ``simulate --animate``
     does (a 3-D run seen from above and from the side at once). A run that ends at the
     impact has nothing to animate: :class:`~rigidimpact.errors.InputError` says so."""
-    from rigidimpact.scenes.space import SpaceScene
-
     if isinstance(scene, SpaceScene):
         if getattr(outcome, "trajectory", None) is None:
             raise InputError("--animate", "this 3-D run ends at the impact: nothing moves "
@@ -96,12 +95,7 @@ def draw_distributions(scene: Any, path: str | Path,
     >>> ri.draw_distributions("derivations/random-barbell.toml",
     ...                       "random-barbell.png")  # doctest: +SKIP
     """
-    from rigidimpact.analyses.distributions import distribution_curves, distributions
-    from rigidimpact.outputs.plots import random_outputs
-
     if isinstance(scene, (str, Path)):
-        from rigidimpact.scenes.space import load_any
-
         scene = load_any(scene)
     if found is None:
         found = distributions(scene)

@@ -20,6 +20,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.outputs.workers import dask_client, gathered, guided, local_or_here
+from rigidimpact.scenes.space import load_any
 from rigidimpact.symbolic.distributions import (
     Distribution,
     chunk_sizes,
@@ -387,8 +388,6 @@ def distributions(scene: Any, workers: int | None = None, scheduler: str | None 
     sqrt(2)*e/2 - 1 + sqrt(2)/2
     """
     if isinstance(scene, (str, Path)):
-        from rigidimpact.scenes.space import load_any
-
         scene = load_any(scene)
     if getattr(scene, "random", None) is None:
         raise InputError("random", f"the scene {scene.name!r} has no [random] table: "
