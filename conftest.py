@@ -7,6 +7,7 @@ import os
 import sys
 from pathlib import Path
 
+import pictures  # docs/_ext (pytest's pythonpath): the files the guide asks to save
 import pytest
 
 ROOT = Path(__file__).resolve().parent
@@ -42,18 +43,10 @@ def _guide_in_a_folder_of_its_own(request: pytest.FixtureRequest):
         os.chdir(before)
 
 
-def page_block(page: str, name: str, language: str = "toml") -> str:
-    """The first ``language`` block after the line that names `name` on the guide's
-    `page`: a file the page asks the reader to save."""
-    text = (GUIDE / page).read_text()
-    after = text.split(f"`{name}`", 1)[1]
-    return after.split(f"```{language}\n", 1)[1].split("```", 1)[0]
-
-
 @pytest.fixture(autouse=True)
 def _the_files_guide_pages_ask_to_save(request: pytest.FixtureRequest):
     """The scene a tutorial asks the reader to save, as ``SCENE`` in its doctests."""
     if GUIDE in Path(request.node.path).parents:
         namespace = request.getfixturevalue("doctest_namespace")
-        namespace["SCENE"] = page_block("tutorial-scene.md", "my-scene.toml")
+        namespace["SCENE"] = pictures.input_text("my-scene.toml")
     yield

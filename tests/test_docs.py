@@ -6,6 +6,7 @@ import math
 import re
 from pathlib import Path
 
+import pictures  # docs/_ext (pytest's pythonpath): the pictures the build makes
 import pytest
 import sympy as sp
 
@@ -83,53 +84,24 @@ def test_the_readme_is_a_front_door():
     assert shown in printed
 
 
-TUTORIAL = DOCS.parent / "guide" / "tutorial-scene.md"
-
-
-def _block_after(text: str, marker: str, language: str) -> str:
-    return text.split(marker, 1)[1].split(f"```{language}\n", 1)[1].split("```", 1)[0]
-
-
-def test_your_own_scene_prints_on_the_command_line_what_its_page_shows(tmp_path, capsys,
-                                                                        monkeypatch):
-    from rigidimpact.cli import main
-
-    text = TUTORIAL.read_text()
-    (tmp_path / "my-scene.toml").write_text(_block_after(text, "`my-scene.toml`", "toml"))
-    monkeypatch.chdir(tmp_path)
-    assert main(["evaluate", "my-scene.toml", "--exact"]) == 0
-    shown = _block_after(text, "rigidimpact evaluate my-scene.toml --exact", "text")
-    assert capsys.readouterr().out.strip() == shown.strip()
-
-
-def test_your_own_scene_restrikes_when_the_hand_derivation_says(tmp_path):
-    # by hand (the page): J = (1 + e) v / (1/m + 1/M + d^2 / (M l^2 / 12)) = 4/5, so the
-    # puck keeps 1/5, the rod's centre 2/5 and its spin 6/5; seen from the rod's centre
-    # the puck is at (-t/5, -1/4) and the rod points along (-sin 6t/5, cos 6t/5): they
-    # meet where 0.25 sin(1.2 t) + 0.2 t cos(1.2 t) = 0 (first positive root)
-    import mpmath
-
-    import rigidimpact as ri
-
-    text = TUTORIAL.read_text()
-    (tmp_path / "s.toml").write_text(_block_after(text, "`my-scene.toml`", "toml"))
-    scene = ri.load_any(str(tmp_path / "s.toml"))
-    exact = scene.derivation().evaluate(scene.values, exact=True).exact
-    assert [exact[k] for k in ("puck.vx", "rod.vx", "rod.omega", "impulse")] == \
-        [sp.Rational(1, 5), sp.Rational(2, 5), sp.Rational(6, 5), sp.Rational(4, 5)]
-    root = mpmath.findroot(lambda t: 0.25 * mpmath.sin(1.2 * t) + 0.2 * t * mpmath.cos(1.2 * t),
-                           1.8)
-    grid = [k / 1000 for k in range(1, 1812)]  # no earlier root: the sign stays
-    assert all(0.25 * math.sin(1.2 * t) + 0.2 * t * math.cos(1.2 * t) > 0 for t in grid)
-    events = ri.run(scene).events
-    assert [e["kind"] for e in events] == ["impact", "restrike", "end"]
-    assert events[1]["t"] == pytest.approx(float(root), rel=1e-12)
-
-
-# guide pages whose shell commands run here as the page shows them, each compared with
-# the output block that follows it
-COMMAND_PAGES = ["guide/tutorial-random.md", "guide/random.md", "guide/friction.md"]
+GUIDE = DOCS.parent / "guide"
+TUTORIAL = GUIDE / "tutorial-scene.md"
+# the pages whose `rigidimpact` commands run here as the page shows them, each compared
+# with the output block that follows it
+COMMAND_PAGES = [GUIDE / "tutorial-scene.md", GUIDE / "tutorial-random.md",
+                 GUIDE / "tutorial-3d.md", GUIDE / "random.md", GUIDE / "friction.md",
+                 GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
 SECONDS = re.compile(r"\b\d+\.\d+ s\b")  # what a run took: differs from run to run
+
+
+@pytest.fixture
+def _in_a_reader_folder(tmp_path, monkeypatch):
+    """A folder of its own holding the shipped scenes under derivations/ and each file a
+    page asks the reader to save, as the guide's pages run."""
+    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
+    for name in pictures.INPUTS:
+        (tmp_path / name).write_text(pictures.input_text(name))
+    monkeypatch.chdir(tmp_path)
 
 
 def _shown_commands(page: Path) -> list[tuple[list[str], str | None]]:
@@ -147,70 +119,14 @@ def _shown_commands(page: Path) -> list[tuple[list[str], str | None]]:
     return found
 
 
-def _appears_in(shown: str, printed: str) -> bool:
-    """Whether the page's output block is what was printed: its runs of lines between
-    lines of ``...`` (lines left out) appear in the output in order, the seconds each
-    step took aside."""
-    printed = SECONDS.sub("#.## s", printed)
-    at = 0
-    for run in re.split(r"^\.\.\.\n", SECONDS.sub("#.## s", shown), flags=re.M):
-        if not run.strip():
-            continue
-        at = printed.find(run, at)
-        if at < 0:
-            return False
-        at += len(run)
-    return True
-
-
-def test_the_pages_that_show_commands_show_some():
-    for name in COMMAND_PAGES:
-        assert _shown_commands(DOCS.parent / name), name
-
-
-@pytest.mark.parametrize(("name", "argv", "shown"), [
-    pytest.param(name, argv, shown, id=f"{name}: rigidimpact {' '.join(argv)}")
-    for name in COMMAND_PAGES for argv, shown in _shown_commands(DOCS.parent / name)])
-def test_a_guide_pages_command_prints_what_the_page_shows(name, argv, shown, tmp_path,
-                                                          monkeypatch, capsys):
-    """Run from a folder of its own holding the shipped scenes under derivations/, as
-    the guide's doctests run; what a terminal shows is the standard error's warnings
-    and then the standard output."""
-    from rigidimpact.cli import main
-
-    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
-    monkeypatch.chdir(tmp_path)
-    assert main(argv) == 0, (name, argv)
-    printed = capsys.readouterr()
-    if shown is not None:
-        assert _appears_in(shown, printed.err + printed.out), (name, argv, printed.out)
-
-
-def test_the_random_tutorial_shows_the_shipped_scene_whole():
-    page = (DOCS.parent / "guide" / "tutorial-random.md").read_text(encoding="utf-8")
-    (toml,) = re.findall(r"```toml\n(.*?)```", page, re.S)
-    assert toml == (DOCS.parents[1] / "derivations" / "random-barbell.toml").read_text()
-
-
-# --- the shell sessions of the guide's pages: each command prints what its page shows ---
-
-GUIDE = DOCS.parent / "guide"
-SESSIONS = [GUIDE / "tutorial-3d.md", GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
-
-
-def _sessions(page: Path) -> list[tuple[str, str]]:
-    """Each ```sh block followed at once by a ```text block: (the command, its output)."""
-    return re.findall(r"```sh\n(rigidimpact [^\n]*)\n```\n\n```text\n(.*?)```",
-                      page.read_text(encoding="utf-8"), re.S)
-
-
 def _shows(printed: str, shown: str) -> bool:
-    """Whether `printed` holds every line `shown` holds, in order, a line "..." standing
-    for any run of lines left out (and the shown lines after it starting anywhere)."""
-    lines = printed.splitlines()
+    """Whether `printed` holds every line `shown` holds, in order, from its first line to
+    its last, a line "..." standing for any run of lines left out (and the shown lines
+    after it starting anywhere); the seconds a step took are not compared."""
+    lines = SECONDS.sub("#.## s", printed).splitlines()
     at = 0
     skip = False
-    for line in shown.splitlines():
+    for line in SECONDS.sub("#.## s", shown).splitlines():
         if line == "...":
             skip = True
             continue
@@ -225,33 +141,81 @@ def _shows(printed: str, shown: str) -> bool:
     return skip or at == len(lines)
 
 
-@pytest.fixture
-def _in_a_reader_folder(tmp_path, monkeypatch):
-    """A folder of its own holding the shipped scenes, as the guide's pages run."""
-    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
-    monkeypatch.chdir(tmp_path)
+def test_the_pages_that_show_commands_show_some_with_their_output():
+    for page in COMMAND_PAGES:
+        commands = _shown_commands(page)
+        assert any(shown for _, shown in commands), page.name
 
 
-@pytest.mark.parametrize("page", SESSIONS, ids=lambda p: p.name)
-def test_a_pages_shell_sessions_print_what_it_shows(page, capsys, _in_a_reader_folder):
-    import shlex
-
+@pytest.mark.parametrize(("page", "argv", "shown"), [
+    pytest.param(page, argv, shown, id=f"{page.name}: rigidimpact {' '.join(argv)}")
+    for page in COMMAND_PAGES for argv, shown in _shown_commands(page)])
+def test_a_pages_command_prints_what_the_page_shows(page, argv, shown, capsys,
+                                                    _in_a_reader_folder):
+    """What a terminal shows: the standard error's warnings, then the standard output."""
     from rigidimpact.cli import main
 
-    sessions = _sessions(page)
-    assert sessions, page.name
-    for command, shown in sessions:
-        assert main(shlex.split(command)[1:]) == 0, command
-        printed = capsys.readouterr().out
-        assert _shows(printed, shown), (command, printed)
+    assert main(argv) == 0, (page.name, argv)
+    printed = capsys.readouterr()
+    if shown is not None:
+        assert _shows(printed.err + printed.out, shown), (page.name, argv, printed.out)
 
 
 def test_the_shown_output_may_leave_lines_out_but_not_change_them():
     assert _shows("a\nb\nc\nd\n", "a\n...\nc\n...\n")
     assert _shows("a\nb\nc\n", "a\nb\nc\n")
+    assert _shows("took 0.12 s\n", "took 3.40 s\n")  # the seconds aside
     assert not _shows("a\nb\nc\n", "a\nb\n")  # the end is shown or marked left out
     assert not _shows("a\nb\nc\n", "a\nc\n")
     assert not _shows("a\nb\nc\n", "a\n...\nx\n")
+
+
+PICTURE_PAGES = sorted(p for p in [*GUIDE.glob("*.md"), DOCS.parent / "three-d.md"]
+                       if "](/_generated/" in p.read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize("page", PICTURE_PAGES, ids=lambda p: p.name)
+def test_each_picture_a_page_shows_is_made_by_the_command_it_shows(page):
+    # the build makes /_generated/NAME from PICTURES[NAME]: the command the page shows
+    # just before the picture, with its file named NAME
+    import shlex
+
+    text = page.read_text(encoding="utf-8")
+    shown = re.findall(r"```sh\n((?:rigidimpact|python) [^\n]*)\n```\n\n!\[[^\]]+\]"
+                       r"\(/_generated/([^)]+)\)", text)
+    assert len(shown) == text.count("](/_generated/"), page.name
+    for command, name in shown:
+        argv = [("OUT" if word == name else word) for word in shlex.split(command)[1:]]
+        assert pictures.PICTURES.get(name) == argv, (name, command)
+
+
+def test_your_own_scene_restrikes_when_the_hand_derivation_says(tmp_path):
+    # by hand (the page): J = (1 + e) v / (1/m + 1/M + d^2 / (M l^2 / 12)) = 4/5, so the
+    # puck keeps 1/5, the rod's centre 2/5 and its spin 6/5; seen from the rod's centre
+    # the puck is at (-t/5, -1/4) and the rod points along (-sin 6t/5, cos 6t/5): they
+    # meet where 0.25 sin(1.2 t) + 0.2 t cos(1.2 t) = 0 (first positive root)
+    import mpmath
+
+    import rigidimpact as ri
+
+    (tmp_path / "s.toml").write_text(pictures.input_text("my-scene.toml"))
+    scene = ri.load_any(str(tmp_path / "s.toml"))
+    exact = scene.derivation().evaluate(scene.values, exact=True).exact
+    assert [exact[k] for k in ("puck.vx", "rod.vx", "rod.omega", "impulse")] == \
+        [sp.Rational(1, 5), sp.Rational(2, 5), sp.Rational(6, 5), sp.Rational(4, 5)]
+    root = mpmath.findroot(lambda t: 0.25 * mpmath.sin(1.2 * t) + 0.2 * t * mpmath.cos(1.2 * t),
+                           1.8)
+    grid = [k / 1000 for k in range(1, 1812)]  # no earlier root: the sign stays
+    assert all(0.25 * math.sin(1.2 * t) + 0.2 * t * math.cos(1.2 * t) > 0 for t in grid)
+    events = ri.run(scene).events
+    assert [e["kind"] for e in events] == ["impact", "restrike", "end"]
+    assert events[1]["t"] == pytest.approx(float(root), rel=1e-12)
+
+
+def test_the_random_tutorial_shows_the_shipped_scene_whole():
+    page = (DOCS.parent / "guide" / "tutorial-random.md").read_text(encoding="utf-8")
+    (toml,) = re.findall(r"```toml\n(.*?)```", page, re.S)
+    assert toml == (DOCS.parents[1] / "derivations" / "random-barbell.toml").read_text()
 
 
 def test_the_3d_tutorial_shows_the_shipped_scene_as_it_is():
@@ -261,29 +225,3 @@ def test_the_3d_tutorial_shows_the_shipped_scene_as_it_is():
     assert len(blocks) >= 5
     for block in blocks:
         assert block in scene, block
-
-
-def _pictures() -> dict[str, list[str]]:
-    import importlib.util
-
-    path = DOCS.parent / "_ext" / "pictures.py"
-    spec = importlib.util.spec_from_file_location("pictures", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.PICTURES
-
-
-@pytest.mark.parametrize("page", SESSIONS, ids=lambda p: p.name)
-def test_each_picture_a_page_shows_is_made_by_the_command_it_shows(page):
-    # the build makes /_generated/NAME from PICTURES[NAME]: the command the page shows
-    # just before the picture, with its file named NAME
-    import shlex
-
-    pictures = _pictures()
-    text = page.read_text(encoding="utf-8")
-    shown = re.findall(r"```sh\n(rigidimpact [^\n]*)\n```\n\n!\[[^\]]+\]\(/_generated/([^)]+)\)",
-                       text)
-    assert len(shown) == text.count("](/_generated/"), page.name
-    for command, name in shown:
-        argv = [("OUT" if word == name else word) for word in shlex.split(command)[1:]]
-        assert pictures.get(name) == argv, (name, command)

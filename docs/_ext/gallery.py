@@ -17,11 +17,12 @@ example wrote, each with an alternative text that says what it shows.
 
 from __future__ import annotations
 
-import hashlib
 import shutil
 import textwrap
 from pathlib import Path
 from typing import Any
+
+from pictures import source_hash  # docs/_ext, on Sphinx's path
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENES = ROOT / "derivations"
@@ -88,12 +89,6 @@ def _math_lines(derivation: Any) -> list[str]:
     return lines
 
 
-def _moves(scene: Any) -> bool:
-    """Whether the scene's run goes on past the impact (there is motion to animate)."""
-    table = scene.simulate
-    return table.get("until", "separation") != "separation" or "impacts" in table
-
-
 def _what_is_drawn(scene: Any, moves: bool, spatial: bool) -> str:
     if spatial:
         return "the path of each ball's centre, seen from above and from the side"
@@ -105,13 +100,14 @@ def _what_is_drawn(scene: Any, moves: bool, spatial: bool) -> str:
 def example(stem: str, source_key: str) -> tuple[str, dict[str, str]]:
     """The example's text for scene `stem`, and the alternative texts of its files."""
     from rigidimpact.scenes.space import SpaceScene, load_any
+    from rigidimpact.simulate.planner import goes_past_impact
 
     path = SCENES / f"{stem}.toml"
     scene = load_any(str(path))
     derivation = scene.derivation()
     title = derivation.title or stem
     spatial = isinstance(scene, SpaceScene)
-    moves = _moves(scene)
+    moves = goes_past_impact(scene.simulate)
     random = bool(getattr(scene, "random", None))
     alt = {f"{stem}.png": f"{title}: {_what_is_drawn(scene, moves, spatial)}."}
     setup = [f"- {_rst_text(line)}" for line in derivation.setup]
@@ -143,13 +139,6 @@ def example(stem: str, source_key: str) -> tuple[str, dict[str, str]]:
     return "\n".join(code) + "\n", alt
 
 
-def source_key() -> str:
-    digest = hashlib.sha256()
-    for path in sorted((ROOT / "src" / "rigidimpact").rglob("*.py")):
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
-
-
 def write_examples(source: Path = SOURCE) -> list[str]:
     """Write every scene's example under `source`, one folder a topic; a scene in no
     topic, or a topic's scene that is not shipped, is an error (the gallery shows every
@@ -159,7 +148,7 @@ def write_examples(source: Path = SOURCE) -> list[str]:
     missing = sorted(shipped - set(listed))
     if missing:
         raise RuntimeError(f"docs/_ext/gallery.py: scenes in no gallery topic: {missing}")
-    key = source_key()
+    key = source_hash()
     source.mkdir(exist_ok=True)
     (source / "README.txt").write_text(
         "Gallery\n=======\n\nEvery scene shipped in ``derivations/``, run, drawn and derived "

@@ -50,17 +50,22 @@ def _inputs(argv: list[str], scratch: Path) -> list[Path]:
     for word in argv:
         if word in INPUTS:
             found.append(scratch / word)
-            (scratch / word).write_text(scene_from_page(ROOT / INPUTS[word], word))
+            (scratch / word).write_text(input_text(word))
         elif (ROOT / word).is_file():
             found.append(ROOT / word)
     return found
 
 
-def scene_from_page(page: Path, name: str) -> str:
-    """The TOML block that follows the line naming `name` on `page`."""
-    text = page.read_text()
-    after = text.split(f"`{name}`", 1)[1]
-    return after.split("```toml\n", 1)[1].split("```", 1)[0]
+def block_after(text: str, marker: str, language: str = "toml") -> str:
+    """The first ``language`` block of `text` after `marker`."""
+    after = text.split(marker, 1)[1]
+    return after.split(f"```{language}\n", 1)[1].split("```", 1)[0]
+
+
+def input_text(name: str) -> str:
+    """The file `name` of :data:`INPUTS` as its page gives it: the TOML block after the
+    page's first mention of `name` in backquotes (where it asks the reader to save it)."""
+    return block_after((ROOT / INPUTS[name]).read_text(), f"`{name}`")
 
 
 def make_pictures(out: Path = OUT, names: list[str] | None = None) -> list[str]:

@@ -579,12 +579,11 @@ def _simulate_space(scene: Any, args: argparse.Namespace) -> int:
     """``simulate`` of a 3-D scene: the impact, or a sphere's tangentially compliant
     bounce, until separation; past it, a sphere's bounces among fixed planes, with its
     path drawn from above and from the side (``--plot``) and animated (``--animate``)."""
-    from rigidimpact.simulate.planner import make_plan
+    from rigidimpact.simulate.planner import goes_past_impact, make_plan
     from rigidimpact.simulate.space import run_space
     from rigidimpact.solve.derivation import read_values
 
-    past = scene.simulate.get("until", "separation") != "separation" or \
-        "impacts" in scene.simulate
+    past = goes_past_impact(scene.simulate)
     for option, path, suffixes in (("--plot", args.plot, (".png",)),
                                    ("--animate", args.animate, (".gif",))):
         if path and not past:

@@ -133,19 +133,14 @@ def plot_space_impact(scene: Any, outcome: Any, path: Path) -> None:
     """A 3-D run that ends at the impact: each moving body's velocity before and after,
     seen from above and from the side, the contact points marked; a PNG written whole or
     not at all."""
-    values = {**scene.values}
-
-    def at(vector: Any) -> np.ndarray:
-        return np.array([float(sp.N(sp.sympify(x).subs(values))) for x in vector])
-
-    moving = [b for b in scene.bodies if b.support != "fixed"]
-    centres = {b.name: at(b.position) for b in moving}
-    before = {b.name: at(b.velocity) for b in moving}
+    moving = [b.at(scene.values) for b in scene.bodies if b.support != "fixed"]
+    centres = {b.name: np.array(b.position, dtype=float).ravel() for b in moving}
+    before = {b.name: np.array(b.velocity, dtype=float).ravel() for b in moving}
     after = {b.name: np.array([float(outcome.final[f"{b.name}.v{axis}"]) for axis in "xyz"])
              for b in moving}
-    points = [(c.name, at(c.point)) for c in scene.contacts]
-    radii = {b.name: float(sp.N(sp.sympify(b.radius).subs(values))) for b in moving
-             if getattr(b, "radius", None) is not None}
+    points = [(c.name, np.array(sp.Matrix(c.point).xreplace(scene.values), dtype=float)
+               .ravel()) for c in scene.contacts]
+    radii = {b.name: float(b.radius) for b in moving if b.radius is not None}
     figure = space_impact(centres, before, after, points, scene.title, radii)
     try:
         write_file(path, lambda temporary: figure.savefig(temporary, format="png"), "--plot")

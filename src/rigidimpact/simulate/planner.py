@@ -133,6 +133,18 @@ def _number(table: Mapping[str, Any], key: str) -> float:
     return float(value)
 
 
+def goes_past_impact(table: Mapping[str, Any]) -> bool:
+    """Whether a ``[simulate]`` table asks for the motion after the impact (``until`` a
+    time or ``"restrike"``, or a count of ``impacts``), not only the impact itself.
+
+    Examples
+    --------
+    >>> goes_past_impact({}), goes_past_impact({"until": 2}), goes_past_impact({"impacts": 3})
+    (False, True, True)
+    """
+    return table.get("until", "separation") != "separation" or "impacts" in table
+
+
 def make_plan(table: Mapping[str, Any]) -> Plan:
     """Check a ``[simulate]`` table and plan the run.
 

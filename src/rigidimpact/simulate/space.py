@@ -35,7 +35,7 @@ from rigidimpact.scenes.space import SpaceScene
 from rigidimpact.simulate.bounces import MAX_IMPACTS, Bounces, spheres
 from rigidimpact.simulate.numbers import scene_values
 from rigidimpact.simulate.outcome import Outcome
-from rigidimpact.simulate.planner import make_plan
+from rigidimpact.simulate.planner import goes_past_impact, make_plan
 from rigidimpact.simulate.tangential import STEPS
 
 __all__ = ["run_space", "run_in_plane", "bounces_in_plane", "BounceTrack"]
@@ -51,7 +51,7 @@ def run_space(scene: SpaceScene, values: dict | None = None) -> Outcome:
     missing = sorted(str(s) for s in scene.used if s not in values)
     if missing:
         raise InputError("values", f"give a value for {', '.join(missing)}")
-    if plan.until != "separation" or "impacts" in scene.simulate:
+    if goes_past_impact(scene.simulate):
         return _bouncing(scene, values, plan, start)
     if not effects <= {"tangential-compliance"}:
         raise InputError("simulate.effects", "until separation a 3-D scene is the rigid "
