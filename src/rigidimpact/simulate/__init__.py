@@ -7,4 +7,5 @@ answers it; :func:`run` carries it out.
 from rigidimpact.simulate.planner import EFFECTS, Plan, goes_past_impact, make_plan
 from rigidimpact.simulate.runner import Outcome, explain, impact_view, run
 
-__all__ = ["EFFECTS", "Plan", "goes_past_impact", "make_plan", "Outcome", "run", "explain", "impact_view"]
+__all__ = ["EFFECTS", "Plan", "goes_past_impact", "make_plan", "Outcome", "run", "explain",
+           "impact_view"]
