@@ -23,30 +23,36 @@ def _close_figures():
         pyplot.close("all")
 
 
+def _as_a_reader_has_it(folder: Path) -> None:
+    """`folder` as a reader's: the shipped scenes under ``derivations/`` and each file a
+    page of the guide asks the reader to save."""
+    (folder / "derivations").symlink_to(ROOT / "derivations")
+    for name in pictures.INPUTS:
+        (folder / name).write_text(pictures.input_text(name))
+
+
+@pytest.fixture
+def reader_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A test run from a reader's folder (:func:`_as_a_reader_has_it`)."""
+    _as_a_reader_has_it(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
 @pytest.fixture(autouse=True)
 def _guide_in_a_folder_of_its_own(request: pytest.FixtureRequest):
-    """A page of the guide runs from a folder of its own that holds the shipped scenes
-    under ``derivations/``, so the files it writes (figures, animations, scenes of one's
-    own) land there and not in the clone. (Here rather than in a conftest.py of the
-    guide's folder: a second module named conftest would shadow the tests' own, which
-    their modules import by that name.)"""
+    """A page of the guide runs from a reader's folder of its own, so the files it writes
+    (figures, animations) land there and not in the clone. (Here rather than in a
+    conftest.py of the guide's folder: a second module named conftest would shadow the
+    tests' own, which their modules import by that name.)"""
     if GUIDE not in Path(request.node.path).parents:
         yield
         return
     folder = request.getfixturevalue("tmp_path")
-    (folder / "derivations").symlink_to(ROOT / "derivations")
+    _as_a_reader_has_it(folder)
     before = Path.cwd()
     os.chdir(folder)
     try:
         yield
     finally:
         os.chdir(before)
-
-
-@pytest.fixture(autouse=True)
-def _the_files_guide_pages_ask_to_save(request: pytest.FixtureRequest):
-    """The scene a tutorial asks the reader to save, as ``SCENE`` in its doctests."""
-    if GUIDE in Path(request.node.path).parents:
-        namespace = request.getfixturevalue("doctest_namespace")
-        namespace["SCENE"] = pictures.input_text("my-scene.toml")
-    yield

@@ -131,10 +131,13 @@ def browse(site: Path = SITE, pages: list[str] = PAGES) -> dict[str, dict]:
             if not (site / page.split("?")[0]).exists():
                 found[page] = {"missing": True}
                 continue
-            dom = _run(browser, "--virtual-time-budget=60000", "--dump-dom",
-                       f"{base}/screens/probe.html#{base}/{page}")
-            match = re.search(r'<pre id="result">(.*?)</pre>', dom, re.S)
-            text = match.group(1) if match else "{}"
+            for _ in range(3):  # on a busy machine the probe may not have finished yet
+                dom = _run(browser, "--virtual-time-budget=60000", "--dump-dom",
+                           f"{base}/screens/probe.html#{base}/{page}")
+                match = re.search(r'<pre id="result">(.*?)</pre>', dom, re.S)
+                text = match.group(1) if match else "{}"
+                if text != "waiting":
+                    break
             result = json.loads(text.replace("&quot;", '"').replace("&amp;", "&")) \
                 if text.startswith("{") else {"failed": text[:200]}
             if not page.startswith("search"):

@@ -94,16 +94,6 @@ COMMAND_PAGES = [GUIDE / "tutorial-scene.md", GUIDE / "tutorial-random.md",
 SECONDS = re.compile(r"\b\d+\.\d+ s\b")  # what a run took: differs from run to run
 
 
-@pytest.fixture
-def _in_a_reader_folder(tmp_path, monkeypatch):
-    """A folder of its own holding the shipped scenes under derivations/ and each file a
-    page asks the reader to save, as the guide's pages run."""
-    (tmp_path / "derivations").symlink_to(DOCS.parents[1] / "derivations")
-    for name in pictures.INPUTS:
-        (tmp_path / name).write_text(pictures.input_text(name))
-    monkeypatch.chdir(tmp_path)
-
-
 def _shown_commands(page: Path) -> list[tuple[list[str], str | None]]:
     """Each `rigidimpact ...` command of the page's ```sh blocks, as its arguments, with
     the ```text block right after its block (for the block's last command) or None."""
@@ -151,7 +141,7 @@ def test_the_pages_that_show_commands_show_some_with_their_output():
     pytest.param(page, argv, shown, id=f"{page.name}: rigidimpact {' '.join(argv)}")
     for page in COMMAND_PAGES for argv, shown in _shown_commands(page)])
 def test_a_pages_command_prints_what_the_page_shows(page, argv, shown, capsys,
-                                                    _in_a_reader_folder):
+                                                    reader_folder):
     """What a terminal shows: the standard error's warnings, then the standard output."""
     from rigidimpact.cli import main
 
