@@ -89,6 +89,7 @@ TUTORIAL = GUIDE / "tutorial-scene.md"
 # the pages whose `rigidimpact` commands run here as the page shows them, each compared
 # with the output block that follows it
 COMMAND_PAGES = [GUIDE / "tutorial-scene.md", GUIDE / "tutorial-random.md",
+                 GUIDE / "several-contacts.md",
                  GUIDE / "tutorial-3d.md", GUIDE / "random.md", GUIDE / "friction.md",
                  GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
 SECONDS = re.compile(r"\b\d+\.\d+ s\b")  # what a run took: differs from run to run
@@ -129,6 +130,19 @@ def _shows(printed: str, shown: str) -> bool:
         at += 1
         skip = False
     return skip or at == len(lines)
+
+
+def test_the_guide_teaches_without_a_diary():
+    # the user guide names no file of the sources or the tests (the architecture page
+    # may), no date and no medians of timed runs: measured figures are on the
+    # performance page, written by the benchmark (a cited paper's year is no date)
+    for page in sorted(GUIDE.glob("*.md")):
+        if page.name == "architecture.md":
+            continue
+        text = page.read_text(encoding="utf-8")
+        for pattern in (r"\b(?:tests|src)/\w", r"\b20\d\d-\d\d-\d\d\b", r"\bmedian"):
+            found = re.search(pattern, text)
+            assert found is None, (page.name, found.group(0) if found else None)
 
 
 def test_the_pages_that_show_commands_show_some_with_their_output():
