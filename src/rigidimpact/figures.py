@@ -23,11 +23,10 @@ from rigidimpact.outputs.plots import (
     animation,
     impact_picture,
     random_outputs,
-    space_impact,
-    space_views,
     trajectories,
     write_gif,
 )
+from rigidimpact.outputs.views import space_impact, space_views
 from rigidimpact.scenes.space import SpaceScene, load_any
 from rigidimpact.simulate import impact_view
 
