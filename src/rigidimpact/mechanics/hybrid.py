@@ -82,6 +82,7 @@ def flow_of(system: Any, constants: dict) -> Callable:
     return rhs
 
 
+MAX_REFINEMENTS = 40  # times a flow's steps are shortened to find a stepped-over crossing
 ZENO_RATIO = 1e-6  # intervals this small next to the first are a pile-up, not a gait
 
 
@@ -98,6 +99,14 @@ def _piling_up(times: Sequence[float]) -> float | None:
             gaps[-1] > ZENO_RATIO * gaps[0]:
         return None
     return float(times[-1] + gaps[-1] * r / (1 - r))
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """The part of an integration kept before a stepped-over crossing."""
+
+    t: np.ndarray
+    y: np.ndarray
 
 
 @dataclass
@@ -168,12 +177,37 @@ class Hybrid:
         from scipy.integrate import solve_ivp  # scipy on first use
 
         start, x, pieces = t0, np.asarray(x0, float), []
+        end = t0 + self.max_step_time
+        # where a hop was stepped over, the stretch to search again with shorter steps
+        finest, stretch = np.inf, end
+        refinements = 0
         while True:
-            run = solve_ivp(self.rhs, (start, t0 + self.max_step_time), x, method="DOP853",
-                            events=event, rtol=self.rtol, atol=self.atol, dense_output=False)
-            pieces.append(run)
+            run = solve_ivp(self.rhs, (start, stretch), x, method="DOP853",
+                            events=event, rtol=self.rtol, atol=self.atol, dense_output=False,
+                            max_step=finest)
             if run.status == -1:
                 raise InputError("simulate", f"the integration failed: {run.message}")
+            passed = self._passed_through(run)
+            if passed is not None:  # a hop shorter than a step: go back, smaller steps
+                refinements += 1
+                if refinements > MAX_REFINEMENTS:
+                    raise InputError("simulate", f"the gap went negative near t = "
+                                     f"{run.t[passed]:.6g} without a crossing the steps "
+                                     f"could find ({MAX_REFINEMENTS} times shorter steps "
+                                     "tried): the contact would be passed through")
+                back = max(passed - 1, 0)
+                width = float(run.t[passed] - run.t[back])
+                finest = max(width / 20, 1e-14 * (1 + abs(start)))
+                stretch = min(float(run.t[passed]) + width, end)
+                kept = run.t[: back + 1], run.y[:, : back + 1]
+                pieces.append(_Piece(*kept))
+                start, x = float(run.t[back]), run.y[:, back]
+                continue
+            pieces.append(run)
+            if not run.t_events[0].size and stretch < end:  # the stretch was clear
+                start, x = float(run.t[-1]), run.y[:, -1]
+                finest, stretch = np.inf, end
+                continue
             if not run.t_events[0].size:
                 raise InputError("simulate", f"no impact within {self.max_step_time:g} s "
                                  "of flow: the gap never crosses zero")
@@ -184,6 +218,17 @@ class Hybrid:
                 return t, x, pieces
             start = t + 1e-9  # a crossing that is no impact (a foot scuffing): go on
             x = solve_ivp(self.rhs, (t, start), x, rtol=self.rtol, atol=self.atol).y[:, -1]
+
+    def _passed_through(self, run: Any) -> int | None:
+        """The first step of `run` (before its event) at which the gap is negative past
+        rounding, or None: a crossing the event search stepped over."""
+        gaps = np.array([float(self.gap(run.y[:, k])) for k in range(run.y.shape[1])])
+        end = len(gaps) - 1 if run.t_events[0].size else len(gaps)
+        tol = 1e-9 * (1.0 + float(np.max(np.abs(gaps))))
+        below = np.flatnonzero(gaps[:end] < -tol)
+        if below.size and self.guard is not None and not self.guard(run.y[:, below[0]]):
+            return None  # a crossing the guard says is no impact (a foot scuffing)
+        return int(below[0]) if below.size else None
 
     def simulate(self, x0: State, impacts: int = 10, until: float = np.inf,
                  steps: int = 1_000_000) -> Walk:
@@ -217,7 +262,17 @@ class Hybrid:
             if taken >= steps:
                 walk.stopped = "budget"
                 return walk
-            t_hit, before, pieces = self.step(x, t)
+            try:
+                t_hit, before, pieces = self.step(x, t)
+            except InputError as refusal:
+                gaps = np.diff(walk.impact_times)
+                if len(gaps) >= 4 and np.all(np.diff(gaps[-4:]) < 0):
+                    raise InputError(refusal.field, f"{refusal.message}; the impacts were "
+                                     f"piling up (the last {len(gaps[-4:])} intervals "
+                                     f"shrinking, the last {gaps[-1]:.3g} s): past their "
+                                     "pile-up the contact stays closed, which a flow "
+                                     "between impacts does not follow") from None
+                raise
             for run in pieces:
                 walk.times.append(run.t)
                 walk.states.append(run.y)
@@ -229,6 +284,10 @@ class Hybrid:
                 walk.stopped = "fell"
                 return walk
             x, t = np.asarray(self.jump(before), float), t_hit
+            if x.shape != before.shape or not np.all(np.isfinite(x)):
+                raise InputError("jump", f"the impact map gave no finite state at t = "
+                                 f"{t_hit:.6g} (from {np.round(before, 6).tolist()}): is "
+                                 "the contact approaching there?")
             walk.impact_times.append(t_hit)
             walk.before.append(before)
             walk.after.append(x)
