@@ -38,6 +38,17 @@ from rigidimpact.solve.derivation import model_name, physics_warnings
 __all__ = ["Outcome", "run", "flyer", "explain", "FlightTrack", "impact_view", "rigid_limit"]
 
 
+def _no_search(scene: Scene) -> str | None:
+    """Why the next contact of a two-body scene cannot be searched for, or None: the
+    search follows a point (the ball) against the other body's outline."""
+    if sum(b.shape == "particle" for b in scene.bodies) != 1:
+        shapes = " and ".join(f"a {b.shape}" for b in scene.bodies)
+        return (f"a search for the next contact needs one particle (the ball) and one "
+                f"barbell, rod, disc, ring or sphere, not {shapes}: make the striker a "
+                "particle, or follow only the impact (until = \"separation\")")
+    return None
+
+
 def explain(scene: Scene) -> str:
     """The plan in words; for a compliant model also the integrator and contact it picks.
 
@@ -64,6 +75,11 @@ def explain(scene: Scene) -> str:
             lines.append("note: without gravity nothing brings the bodies back to the "
                          "fixed body; ask for effects = [\"gravity\"] to see them land again")
         return "\n".join(lines)
+    if plan.until != "separation" and not bounces_in_plane(scene) and \
+            all(step.model != "compliant" for step in plan.steps):
+        unsearched = _no_search(scene)
+        if unsearched:
+            lines.append(f"refused: {unsearched}")
     if any(step.model == "compliant" for step in plan.steps):
         model = prepare(scene, plan, scene_values(scene))
         chosen = model.integrator
@@ -145,11 +161,10 @@ def run(scene: Scene | SpaceScene) -> Outcome:
     t_end, why = 0.0, "the bodies separate at the impact (until = separation)"
     if plan.until != "separation":
         horizon = math.inf if plan.until == "restrike" else float(plan.until)
-        points = [f for f in flyers if f.shape == "particle"]
-        if len(points) != 1:
-            raise InputError("simulate.until", "a search for the next contact needs one "
-                             "particle (the ball) and one barbell, rod, disc, ring or sphere")
-        ball = points[0]
+        unsearched = _no_search(scene)
+        if unsearched:
+            raise InputError("simulate.until", unsearched)
+        ball = next(f for f in flyers if f.shape == "particle")
         other = flyers[1 - flyers.index(ball)]
         more, t_end = _restrike(ball, other, horizon)
         events += more
