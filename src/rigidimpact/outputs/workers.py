@@ -53,8 +53,9 @@ def local_or_here(work: int, kind: str, workers: int | None,
     if workers is None or scheduler is not None or work >= least:
         return workers, None
     return None, (f"--workers {workers}: {work:,} {kind} are fewer than the {least:,} "
-                  "that repay starting local Dask workers (about 1 s on a 2-core "
-                  "machine); run in this process instead, with the same numbers")
+                  "from which local Dask workers are started (starting them costs about "
+                  "1 s on a 2-core machine); run in this process instead, with the same "
+                  "numbers")
 
 
 def guided(count: int, workers: int, least: int = 1) -> list[tuple[int, int]]:
