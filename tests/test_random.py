@@ -889,3 +889,24 @@ samples = 1000
                                        "for a uniform input only")
     assert "      no closed form sought: theta is normal, and the closed form is derived " \
         "for a uniform input only" in distributions_text(scene.random, scene.values, found)
+
+
+def test_an_output_of_two_random_inputs_says_why_it_has_no_closed_form_and_no_curve(
+        tmp_path, capsys):
+    # found by a new user: ball.vy (driven by e and mu) had a Monte Carlo with no word of
+    # why no density, and --plot left it out in silence; rod.omega (e alone, sliding
+    # throughout: P_n = m_eff (1 + e) v) keeps its closed form and its curve
+    import json
+
+    from rigidimpact.cli import main
+
+    scene = Path(__file__).parent / "data" / "random-two-inputs.toml"
+    assert main(["derive", str(scene), "--json"]) == 0
+    found = json.loads(capsys.readouterr().out)["distributions"]
+    assert found["ball.vy"]["no_closed_form"] == (
+        "the output is driven by 2 random inputs (e, mu): a closed form is derived for one")
+    assert "density" in found["rod.omega"] and "no_closed_form" not in found["rod.omega"]
+    assert main(["derive", str(scene), "--plot", str(tmp_path / "d.png")]) == 0
+    err = capsys.readouterr().err
+    assert "left out: ball.vy" in err and "rod.omega" not in err.split("left out:")[1]
+    assert (tmp_path / "d.png").stat().st_size > 10_000

@@ -134,7 +134,10 @@ def _distributions_figure(path: Path, scene: Any, found: dict) -> None:
     _files_only()
     from rigidimpact.figures import draw_distributions
 
-    draw_distributions(scene, path, found)
+    left_out = draw_distributions(scene, path, found)
+    if left_out:
+        print(f"rigidimpact: note: --plot draws an output driven by one random input with "
+              f"every other symbol given; left out: {', '.join(left_out)}", file=sys.stderr)
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:

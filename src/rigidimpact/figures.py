@@ -67,7 +67,7 @@ def animate(scene: Any, outcome: Any, path: str | Path) -> None:
 
 
 def draw_distributions(scene: Any, path: str | Path,
-                       found: dict[str, dict[str, Any]] | None = None) -> None:
+                       found: dict[str, dict[str, Any]] | None = None) -> list[str]:
     """Draw each random output of a scene to a PNG, as ``derive SCENE --plot`` does: the
     histogram of its draws at the scene's ``[values]`` and, where it has one, its exact
     density over it.
@@ -81,6 +81,12 @@ def draw_distributions(scene: Any, path: str | Path,
     found : dict, optional
         The distributions :func:`rigidimpact.distributions` gave for this scene, so
         their closed forms are not derived again; derived here when not given.
+
+    Returns
+    -------
+    list of str
+        The random outputs left out of the picture (driven by two or more random
+        inputs, or by a symbol without a value), for the caller to say so.
 
     Raises
     ------
@@ -109,6 +115,8 @@ def draw_distributions(scene: Any, path: str | Path,
                    "--plot")
     finally:
         close(figure)
+    drawn = {curve[0] for curve in curves}
+    return [key for key in found if key not in drawn]
 
 
 def plot_space(scene: Any, outcome: Any, path: Path) -> None:

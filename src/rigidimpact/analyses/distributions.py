@@ -442,6 +442,13 @@ def _each_distribution(scene: Any, results: dict[str, sp.Expr], keys: Sequence[s
                 entry["exact_seconds"] = time.perf_counter() - begin
                 if exact is not None:
                     entry.update(exact)
+        elif len(drivers) > 1:
+            entry["no_closed_form"] = (f"the output is driven by {len(drivers)} random "
+                                       f"inputs ({', '.join(map(str, drivers))}): a closed "
+                                       "form is derived for one")
+        else:
+            entry["no_closed_form"] = (f"{drivers[0]} is discrete: its distribution is the "
+                                       "Monte Carlo's, value by value")
         if missing:  # the closed form alone: the draws need every other number
             if "density" not in entry:
                 raise InputError("values", f"{key} needs a number for {missing[0]} under "
