@@ -473,8 +473,16 @@ def test_several_3d_contacts_are_refused_in_one_line_where_not_solved():
     smooth = SpaceCollision(bodies, (wall, floor), facets=8).solve()
     assert smooth.results() == SpaceCollision(bodies, (wall, floor)).solve().results()
     assert "exact" in smooth.notes[-1]
-    with pytest.raises(InputError, match="smooth or coulomb so far"):
-        SpaceCollision(bodies, (wall, replace(floor, tangential="stick")))
+    # a sticking floor under the default rule (the simultaneous one, as in the plane):
+    # the floor's point leaves at rest along the floor, its normal speed e times 1
+    stuck = SpaceCollision(bodies, (wall, replace(floor, tangential="stick"))).solve()
+    r = stuck.results()
+    assert float(r["ball.vz"]) == pytest.approx(0.5, abs=1e-12)
+    slip = float(r["ball.vx"]) - float(r["ball.omega_y"]) * 1  # v + omega x (0, 0, -1)
+    assert slip == pytest.approx(0.0, abs=1e-12)
+    with pytest.raises(InputError, match="driven rule follows Coulomb"):
+        SpaceCollision(bodies, (wall, replace(floor, tangential="stick")), rule="driven")\
+            .solve()
     x = sp.Symbol("x", positive=True)
     with pytest.raises(InputError, match="give numbers"):
         SpaceCollision((Body3.fixed("w"), Body3.fixed("floor"), _sphere((x, 0, 0), (0, 0, 0))),
@@ -492,11 +500,17 @@ def test_a_resting_contact_that_would_pull_lets_go():
                    friction=FIFTH, name="wall", bodies=("w", "ball"), point=(c, 0, 1 - s))
     floor = Contact(normal=(0, 0, 1), restitution=0, tangential="coulomb", friction=FIFTH,
                     name="floor", bodies=("floor", "ball"), point=(0, 0, 0))
-    out = SpaceCollision((Body3.fixed("w"), Body3.fixed("floor"), ball), (wall, floor)).solve()
+    bodies = (Body3.fixed("w"), Body3.fixed("floor"), ball)
+    out = SpaceCollision(bodies, (wall, floor), rule="driven").solve()
     r = out.results()
     assert float(r["floor.normal_impulse"]) == pytest.approx(0.0, abs=1e-12)
     assert float(r["ball.vz"]) > 0
     assert "lets go" in out.regime
+    # the default rule (simultaneous) releases the floor too, with the same speeds
+    default = SpaceCollision(bodies, (wall, floor)).solve()
+    assert "floor: released" in default.regime
+    for key, value in default.results().items():
+        assert float(value) == pytest.approx(float(r[key]), rel=1e-9, abs=1e-12), key
 
 
 # ---- several 3-D contacts striking at once: the cone as a pyramid ----

@@ -116,7 +116,7 @@ def cushion(speed: float, angle_degrees: float, topspin: float = 0.0, sidespin: 
                     friction=mu_table, name="table", bodies=("table", "ball"),
                     point=(0, 0, 0))
     solution = SpaceCollision((Body3.fixed("rail"), Body3.fixed("table"), ball),
-                              (rail, table), tolerance).solve()
+                              (rail, table), tolerance, rule="driven").solve()
     r = {k: float(x) for k, x in solution.results().items()}
     rebound = math.degrees(math.atan2(r["ball.vx"], -r["ball.vy"]))
     return {**r, "rebound_degrees": rebound,

@@ -24,7 +24,7 @@ import keyword
 import re
 import time
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
@@ -38,14 +38,7 @@ from rigidimpact.model.bodies import Body
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.roles import Role, check_assumptions, check_roles, roles_of
 from rigidimpact.model.shapes import SHAPES, Fields
-from rigidimpact.solve.collision import (
-    MAX_BUILT_CONTACTS,
-    Collision,
-    Compliant,
-    Rule,
-    Sequential,
-    Simultaneous,
-)
+from rigidimpact.solve.collision import MAX_BUILT_CONTACTS, Collision
 from rigidimpact.solve.derivation import (
     Derivation,
     Evaluation,
@@ -55,7 +48,7 @@ from rigidimpact.solve.derivation import (
     read_values,
 )
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.rules import RULE_TYPES, Driven
+from rigidimpact.solve.rules import DEFAULT_RULE, RULE_TYPES, Rule, RuleSettings, rule_named
 from rigidimpact.solve.rules.sequential import MAX_SAMPLED_ORDERS
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
@@ -133,7 +126,7 @@ class Scene:
     simulate: Mapping[str, Any] = field(default_factory=dict)
     name: str = "scene"
     contacts: tuple[Contact, ...] = ()
-    rule: str = "simultaneous"
+    rule: str = DEFAULT_RULE
     order: tuple[str, ...] | None = None
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
     sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
@@ -259,17 +252,8 @@ class Scene:
 
     @property
     def impact_rule(self) -> Rule:
-        """The ``[impact]`` rule as its object (the scene reader is where names end)."""
-        if self.rule == "compliant":
-            stiffness, hertz = self.compliance
-            return Compliant(stiffness, hertz)
-        if self.rule == "sequential":
-            if self.sample is not None:
-                return Sequential(None, *self.sample)
-            return Sequential(self.order)
-        if self.rule == "driven":
-            return Driven()
-        return Simultaneous()
+        """The ``[impact]`` rule as its object (the registry's, as in space)."""
+        return rule_named(self.rule, RuleSettings(self.order, self.sample, self.compliance))
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
                    printed: bool = True) -> Derivation:
@@ -365,18 +349,7 @@ class Scene:
             extra["checks"] = {k: float(v) for k, v in outcomes[0].checks.items()}
         if outcomes[0].courses:
             extra["courses"] = list(outcomes[0].courses)
-        if len(outcomes) > 1:
-            extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
-                                "results": {k: float(v) for k, v in o.results().items()}}
-                               for o in outcomes]
-        if self.sample is not None and self.order is None and self.rule == "sequential":
-            count, seed = self.sample
-            rows = [row["results"] for row in extra["orders"]] if len(outcomes) > 1 else [
-                {k: float(v) for k, v in outcomes[0].results().items()}]
-            extra["sample"] = {"orders": count, "seed": seed,
-                               "distinct": len({tuple(o.order) for o in outcomes})}
-            extra["spread"] = {k: [min(r[k] for r in rows), max(r[k] for r in rows)]
-                               for k in rows[0]}
+        extra.update(orders_extra(outcomes, self.impact_rule))
         warnings = physics_warnings(numbers, dps, f"the {self.rule} rule",
                                     outcomes[0].energy_tolerance)
         warnings = (*warnings, *outcomes[0].notes)
@@ -384,6 +357,26 @@ class Scene:
             extra["method"] = outcomes[0].method
         return Evaluation(numbers, warnings, None, extra,
                           exact_numbers(outcomes[0].results()) if exact else None)
+
+
+def orders_extra(outcomes: Sequence[Solution], rule: Rule) -> dict[str, Any]:
+    """What ``evaluate`` adds where a rule gives several outcomes (every order, or a
+    sample of orders): each order's results, and for a sample its size and the spread
+    of each result; the same in the plane and in space."""
+    extra: dict[str, Any] = {}
+    if len(outcomes) > 1:
+        extra["orders"] = [{"order": list(o.order), "acted": list(o.acted),
+                            "results": {k: float(v) for k, v in o.results().items()}}
+                           for o in outcomes]
+    sample = getattr(rule, "sample", None)
+    if sample is not None and getattr(rule, "order", None) is None:
+        rows = [row["results"] for row in extra["orders"]] if len(outcomes) > 1 else [
+            {k: float(v) for k, v in outcomes[0].results().items()}]
+        extra["sample"] = {"orders": sample, "seed": getattr(rule, "seed", 0),
+                           "distinct": len({tuple(o.order) for o in outcomes})}
+        extra["spread"] = {k: [min(r[k] for r in rows), max(r[k] for r in rows)]
+                           for k in rows[0]}
+    return extra
 
 
 def _cases(parts: list[sp.Expr], conditions: list[sp.Basic]) -> sp.Expr:
@@ -676,16 +669,17 @@ def _placed(table: dict[str, Any], index: int, touching: Contact | None,
     return body.shifted(origin)
 
 
-def _impact_table(table: Mapping[str, Any],
-                  names: list[str]) -> tuple[str, tuple[str, ...] | None]:
-    """Check ``[impact]`` and return its rule and order (None: every order).
+def _impact_table(table: Mapping[str, Any], names: list[str],
+                  more: tuple[str, ...] = ()) -> tuple[str, tuple[str, ...] | None]:
+    """Check ``[impact]`` and return its rule and order (None: every order): the one
+    reading for both dimensions (`more`: the fields a 3-D scene also takes).
 
     With one contact every rule gives the same answer."""
+    known = ("rule", "order", "orders", "seed", "stiffness", "model", *more)
     for key in table:
-        if key not in ("rule", "order", "orders", "seed", "stiffness", "model"):
-            raise InputError(f"impact.{key}", "unknown field; expected rule, order, "
-                             "orders, seed, stiffness, model")
-    rule = table.get("rule", "simultaneous")
+        if key not in known:
+            raise InputError(f"impact.{key}", f"unknown field; expected {', '.join(known)}")
+    rule = table.get("rule", DEFAULT_RULE)
     if rule not in IMPACT_RULES:
         raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
                          f"{rule!r}")

@@ -37,16 +37,20 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.scenes.scene import (
     Scene,
     _compliance,
+    _impact_table,
     _joints,
+    _sample,
     _symbols_table,
     _table,
     _values_table,
     is_spatial,
+    orders_extra,
     parse_expression,
     read_toml,
     scene_from_data,
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, exact_numbers, read_values
+from rigidimpact.solve.rules import DEFAULT_RULE, Rule, RuleSettings, rule_named
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
 from rigidimpact.symbolic.distributions import RandomInputs, random_table
@@ -80,13 +84,20 @@ class SpaceScene:
     used: frozenset[sp.Symbol] = field(default=frozenset(), repr=False)
     simulate: Mapping[str, Any] = field(default_factory=dict, repr=False)
     facets: int | None = None
-    rule: str | None = None  # [impact] rule: simultaneous | sequential | driven
+    rule: str = DEFAULT_RULE  # [impact] rule, a name of the one registry
     order: tuple[str, ...] | None = None
     joints: tuple[Joint, ...] = ()  # [[joints]]: ball joints and hinges
     random: RandomInputs | None = None  # [random]: symbols with a distribution
     compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)  # [impact] stiffness
     planes: tuple[Contact, ...] = ()  # [[planes]]: fixed planes struck later (simulate)
     pairs: tuple[Contact, ...] = ()  # [[pairs]]: two spheres' laws when they meet later
+    sample: tuple[int, int] | None = None  # [impact] orders = N, seed = S
+
+    @property
+    def impact_rule(self) -> Rule:
+        """The ``[impact]`` rule as its object (the registry's, as in the plane)."""
+        return rule_named(self.rule, RuleSettings(self.order, self.sample, self.compliance,
+                                                  self.tolerance))
 
     @property
     def roles(self) -> tuple:
@@ -105,7 +116,8 @@ class SpaceScene:
 
     def collision(self, values: Mapping[sp.Symbol, Any] | None = None) -> SpaceCollision:
         problem = SpaceCollision(self.bodies, self.contacts, self.tolerance, self.facets,
-                                 self.rule, self.order, self.joints, self.compliance)
+                                 self.impact_rule, joints=self.joints,
+                                 compliance=self.compliance)
         return problem.at(values) if values else problem
 
     def derivation(self, values: Mapping[sp.Symbol, Any] | None = None,
@@ -154,7 +166,8 @@ class SpaceScene:
         missing = sorted(str(s) for s in self.used if s not in given)
         if missing:
             raise InputError("values", f"give a value for {', '.join(missing)}")
-        solution = self.collision(given).solve()
+        outcomes = self.collision(given).outcomes()
+        solution = outcomes[0]
         digits = dps or 17
         numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
         extra: dict[str, Any] = {"rule": "one contact" if len(self.contacts) == 1 else
@@ -166,6 +179,7 @@ class SpaceScene:
             extra["courses"] = list(solution.courses)
         if solution.notes:
             extra["notes"] = list(solution.notes)
+        extra.update(orders_extra(outcomes, self.impact_rule))
         return Evaluation(numbers, tuple(solution.warnings), solution.regime, extra,
                           exact_numbers(solution.results()) if exact else None)
 
@@ -497,29 +511,18 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
     bodies = tuple(_read_body(t, i, symbols) for i, t in enumerate(raw))
     contacts = _read_contacts(data, symbols)
     joints = _read_joints(data, symbols, [b.name for b in bodies])
-    tolerance, facets, rule, order = None, None, None, None
+    tolerance, facets = None, None
     impact = _table(data, "impact", "settings")
-    for key, value in impact.items():
-        if key == "rule":
-            if not isinstance(value, str):
-                raise InputError("impact.rule", f"a rule's name, not {value!r}")
-            rule = value
-            continue
-        if key == "order":
-            if not isinstance(value, list) or not all(isinstance(x, str) for x in value):
-                raise InputError("impact.order", "a list of the contacts' names")
-            order = tuple(value)
-            continue
-        if key in ("stiffness", "model"):
-            continue  # the compliant rule's springs, read below
-        if key == "facets":
-            if isinstance(value, bool) or not isinstance(value, int):
-                raise InputError("impact.facets", f"a whole number, not {value!r}")
-            facets = value
-            continue
-        if key != "tolerance":
-            raise InputError(f"impact.{key}", "a 3-D scene's [impact] takes rule, order, "
-                             "tolerance, facets, stiffness and model")
+    # the plane's reading of the rule, its order or sample and its springs; space adds
+    # the integration's tolerance and the cone's facets
+    rule, order = _impact_table(impact, [c.name for c in contacts], ("tolerance", "facets"))
+    sample = _sample(impact)
+    if "facets" in impact:
+        facets = impact["facets"]
+        if isinstance(facets, bool) or not isinstance(facets, int):
+            raise InputError("impact.facets", f"a whole number, not {facets!r}")
+    if "tolerance" in impact:
+        value = impact["tolerance"]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or \
                 not 1e-14 <= value <= 1e-2:
             raise InputError("impact.tolerance", f"a number in [1e-14, 1e-2], not {value!r}")
@@ -538,9 +541,8 @@ def space_scene_from_data(data: dict[str, Any], name: str = "scene") -> SpaceSce
     compliance = _compliance(impact, len(contacts))
     scene = SpaceScene(title, symbols, values, bodies, contacts, name, tolerance, used,
                        simulate, facets, rule, order, joints, randoms, compliance, planes,
-                       pairs)
-    # its bodies, contacts, joints and rule agree
-    SpaceCollision(bodies, contacts, tolerance, facets, rule, order, joints, compliance)
+                       pairs, sample)
+    scene.collision()  # its bodies, contacts, joints and rule agree
     if randoms is not None:
         _check_random(scene)
     return scene

@@ -74,7 +74,8 @@ def coulomb_residual(W: Any, b: np.ndarray, mu: np.ndarray, lam: np.ndarray) -> 
         room = np.where(np.isfinite(mu), mu * ln - friction, np.inf)
     inside = room > 1e-9 * big
     sliding = ~inside & (slip > 1e-9 * scale) & np.isfinite(mu)
-    against = lt + (np.where(sliding, mu * ln, 0.0) / np.where(slip > 0, slip, 1.0)
+    against = lt + (np.where(sliding, np.where(np.isfinite(mu), mu, 0.0) * ln, 0.0)
+                    / np.where(slip > 0, slip, 1.0)
                     )[:, None] * gt
     worst = max(0.0, -float(ln.min()), -float(gn.min()), float(np.abs(ln * gn).max()),
                 -float(room.min()), float(np.where(inside, slip, 0.0).max()),
@@ -187,7 +188,8 @@ def coulomb_newton(W: Any, b: np.ndarray, mu: np.ndarray, stages: int = 4,
                                              * unit[:, None, :])
             turn = sps.csr_matrix((blocks.reshape(-1), (block_rows, block_columns)),
                                   shape=(n * d, n * d))
-            along = np.where((slip & finite & closed)[:, None], unit * cone[:, None], 0.0)
+            along = np.where((slip & finite & closed)[:, None],
+                             unit * np.where(finite, cone, 0.0)[:, None], 0.0)
             lift = sps.csr_matrix((along.reshape(-1), (np.arange(n * d),
                                                        np.repeat(np.arange(n), d))),
                                   shape=(n * d, n))

@@ -54,10 +54,15 @@ from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import residuals
 from rigidimpact.solve.problem import RowsProblem, check_facets
-from rigidimpact.solve.rules.compliant import compliant
-from rigidimpact.solve.rules.driven import driven
-from rigidimpact.solve.rules.sequential import sequential
-from rigidimpact.solve.rules.simultaneous import simultaneous
+from rigidimpact.solve.rules import (
+    Compliant,
+    Driven,
+    Rule,
+    RuleSettings,
+    Sequential,
+    Simultaneous,
+    rule_named,
+)
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.given import given_values
 from rigidimpact.symbolic.notation import Given
@@ -67,10 +72,7 @@ if TYPE_CHECKING:
 else:
     np = deferred("numpy")
 
-__all__ = ["SpaceCollision", "solve_space"]
-
-# the rules several 3-D contacts take: every rule, as in the plane
-RULES_3D = ("simultaneous", "sequential", "driven", "compliant")
+__all__ = ["SpaceCollision"]
 
 
 @dataclass(frozen=True)
@@ -88,9 +90,9 @@ class SpaceCollision:
     tolerance: float | None = None
     facets: int | None = None  # several contacts striking at once: the cone itself
     # (None) or a pyramid of this many edges
-    # how several contacts act (a rule of :data:`RULES_3D`): None, the driven rule where
-    # one approaches and the simultaneous rule where several do; `order` for sequential
-    rule: str | None = None
+    # how several contacts act: a Rule, or its name (the registry's: ``rule_named``);
+    # None is the default rule, the same as in the plane; `order` goes with a name
+    rule: Rule | str | None = None
     order: tuple[str, ...] | None = None
     # ball joints and hinges (:class:`~rigidimpact.model.joints.Joint` in space): their
     # bilateral rows G are eliminated by the projected inverse mass, as in the plane
@@ -110,13 +112,13 @@ class SpaceCollision:
                              f"{tolerance!r}")
         if not self.contacts:
             raise InputError("contacts", "at least one contact is needed")
-        if self.rule is not None and self.rule not in RULES_3D:
-            raise InputError("impact.rule", f"in 3-D: one of {', '.join(RULES_3D)}, not "
-                             f"{self.rule!r}")
-        if self.order is not None and (self.rule != "sequential" or sorted(
-                self.order) != sorted(c.name for c in self.contacts)):
-            raise InputError("impact.order", "with rule = \"sequential\": every contact's "
-                             "name, each once")
+        if not isinstance(self.rule, Rule):
+            if self.order is not None and (self.rule != Sequential.name or sorted(
+                    self.order) != sorted(c.name for c in self.contacts)):
+                raise InputError("impact.order", "with rule = \"sequential\": every "
+                                 "contact's name, each once")
+            object.__setattr__(self, "rule", rule_named(self.rule, RuleSettings(
+                self.order, compliance=self.compliance, tolerance=self.tolerance)))
         if len({c.name for c in self.contacts}) != len(self.contacts):
             raise InputError("contacts", "two contacts share a name")
         for c in self.contacts:
@@ -127,13 +129,6 @@ class SpaceCollision:
                 raise InputError(f"{c.name}.bodies", "must name two of the bodies")
             if c.tangential == "stick" and c.law != "newton":
                 raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
-            # several contacts acting together (or one driving the rest) take the laws
-            # that have a form for it; the sequential rule takes each contact alone
-            if len(self.contacts) > 1 and c.tangential not in ("smooth", "coulomb") and \
-                    self.rule not in ("sequential", "simultaneous"):
-                raise InputError(f"{c.name}.tangential", "with several 3-D contacts: smooth "
-                                 f"or coulomb so far, not {c.tangential!r} (the sequential "
-                                 "rule takes every law)")
         check_facets(self.facets)
         by_name = {b.name: b for b in self.bodies}
         for c in self.contacts:
@@ -284,22 +279,26 @@ class SpaceCollision:
 
     def solve(self) -> Solution:
         """The impact under the contact's laws (see the module's text); several contacts:
-        by the rule asked for (:meth:`driven`, :meth:`simultaneous`,
-        :meth:`sequential`), or by default the driven rule where one contact approaches
-        and the simultaneous rule where several do. One contact: its own answer under
-        every rule."""
-        if len(self.contacts) > 1:
-            if self.rule == "sequential":
-                solved = self.sequential(self.order or tuple(c.name for c in self.contacts))
-            elif self.rule == "compliant":
-                stiffness, hertz = self.compliance
-                solved = self.compliant(stiffness if len(stiffness) > 1 else stiffness[0],
-                                        hertz)
-            elif self.rule == "simultaneous":
-                solved = self.simultaneous()
-            else:
-                solved = self.driven(strict=self.rule == "driven")
-            return self._every_contact(solved)
+        by the collision's rule (the default rule where none is given, as in the plane).
+        Where the rule gives several outcomes (the sequential rule in every order), the
+        first; :meth:`outcomes` gives each."""
+        return self.outcomes()[0]
+
+    def outcomes(self) -> tuple[Solution, ...]:
+        """What the collision's rule makes of it: one outcome, or one per order. One
+        contact: its own answer under every rule."""
+        if len(self.contacts) == 1:
+            return (self._one(),)
+        _, _, approaching, _ = self._numbers()
+        if not approaching:
+            raise InputError("contacts", "several 3-D contacts are solved where one or more "
+                             "of them approach; here none approaches")
+        assert isinstance(self.rule, Rule)  # made one in __post_init__
+        found = self.rule.checked_outcomes(_SpaceProblem.of(self))
+        return tuple(self._every_contact(o) for o in found)
+
+    def _one(self) -> Solution:
+        """The one contact's impact under its laws (the law's face in contact space)."""
         (c,) = self.contacts
         J = self.rows(c)
         W = (J * self.M_inverse * J.T).applyfunc(_tidy)
@@ -386,77 +385,27 @@ class SpaceCollision:
         resting = [c for c in self.contacts if abs(speeds[c.name][0]) <= 1e-12 * size]
         return rows, u, approaching, resting
 
-    def _alone(self, contact: Contact) -> SpaceCollision:
-        """The same bodies with only `contact`."""
-        return SpaceCollision(self.bodies, (contact,), self.tolerance, joints=self.joints)
-
     def simultaneous(self) -> Solution:
         """Several contacts acting together at the velocity level (Newton's law, Coulomb's
-        circular cone by the plane's rule, or the pyramid of ``facets`` edges). Where one
-        contact closes and its own impact (under its own laws) leaves every other
-        contact opening, that is the answer, as for one contact under every rule."""
-        rows, u, approaching, resting = self._numbers()
-        if not approaching:
-            raise InputError("contacts", "several 3-D contacts are solved where one or more "
-                             "of them approach; here none approaches")
-        if len(approaching) == 1:
-            own = self._alone(approaching[0]).solve()
-            after = np.array(sp.Matrix(own.speeds_after).evalf(30), dtype=float).ravel()
-            size = max(float(np.abs(u).max()), 1e-300)
-            if all((rows[c.name] @ after)[0] >= -1e-12 * size for c in self.contacts):
-                return replace(own, rule="simultaneous", notes=own.notes + (
-                    f"only {approaching[0].name} acts: its own impact leaves every other "
-                    "contact opening",))
-        formless = [c for c in approaching + resting if c.tangential not in ("smooth",
-                                                                             "coulomb")]
-        if formless:
-            raise InputError(f"{formless[0].name}.tangential", f"the {formless[0].tangential} "
-                             "law has no form for contacts acting together: use the "
-                             "sequential rule (each contact's own impact)")
-        # the plane's rule, one implementation, on the problem of rows: exact for smooth
-        # contacts, Coulomb's circular cone (or its pyramid of facets) in floating point
-        return simultaneous(_SpaceProblem.of(self))
+        circular cone by the plane's rule, or the pyramid of ``facets`` edges): the
+        plane's one implementation on the problem of rows."""
+        return replace(self, rule=Simultaneous()).solve()
 
     def sequential(self, order: Sequence[str]) -> Solution:
-        """One contact at a time in `order`, each its own impact under its own laws (the
-        one-contact answer, exact where it has a closed form), passes repeated until none
-        approaches: the plane's rule, one implementation
-        (:func:`rigidimpact.solve.rules.sequential.sequential`), on this collision's
-        problem of rows; at numbers."""
-        self._numbers()
-        return sequential(_SpaceProblem.of(self), order)
+        """One contact at a time in `order`, each its own impact under its own laws,
+        passes repeated until none approaches: the plane's rule, at numbers."""
+        return replace(self, rule=Sequential(tuple(order))).solve()
 
     def compliant(self, stiffness: Sequence[float] | float = 1e6,
                   hertz: bool = False) -> Solution:
-        """Every contact a push-only spring-dashpot (or an elastic Hertz spring), with
-        one stiffness per contact, integrated until all let go: the planar rule's one
-        implementation (:func:`rigidimpact.solve.rules.compliant.compliant`) run on
-        this problem's speeds, M^-1 and normal rows; smooth contacts, at numbers."""
-        self._numbers()
-        return compliant(_SpaceProblem.of(self), stiffness, hertz)
+        """Every contact a push-only spring-dashpot (or an elastic Hertz spring),
+        integrated until all let go: the plane's rule, smooth contacts, at numbers."""
+        return replace(self, rule=Compliant(stiffness, hertz)).solve()
 
-    def driven(self, strict: bool = False) -> Solution:
-        """Several contacts: the one that approaches strikes, under its restitution law,
-        and every contact touching with zero normal velocity rests, staying closed while
-        it pushes (a ball on the table striking a cushion); contacts moving apart take no
-        part. Followed in the striking contact's normal impulse by
-        :func:`rigidimpact.laws.together.driven_impact`, in floating point. Where several
-        approach: refused when the rule was asked for (`strict`), else the simultaneous
-        rule."""
-        _, _, approaching, resting = self._numbers()
-        if len(approaching) > 1 and strict:
-            raise InputError("impact.rule", "the driven rule takes one striking contact and "
-                             f"others resting; here {len(approaching)} approach: use the "
-                             "simultaneous or sequential rule")
-        if len(approaching) > 1:  # the simultaneous rule
-            return self.simultaneous()
-        if not approaching:
-            raise InputError("contacts", "several 3-D contacts are solved where one or more "
-                             "of them approach; here none approaches")
-        left = [c.name for c in self.contacts if c not in approaching + resting]
-        solved = driven(_SpaceProblem.of(self), self.tolerance)
-        return replace(solved, notes=solved.notes + (
-            (f"moving apart, not acting: {', '.join(left)}",) if left else ()))
+    def driven(self) -> Solution:
+        """The one contact that approaches strikes, the others rest (the plane's rule,
+        :func:`rigidimpact.solve.rules.driven.driven`, in floating point)."""
+        return replace(self, rule=Driven(self.tolerance)).solve()
 
     def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
@@ -594,9 +543,3 @@ def _tidy(x: sp.Expr) -> sp.Expr:
     if x.is_Rational or not x.has(sp.sin, sp.cos):
         return sp.radsimp(x)
     return sp.N(x, 50)
-
-
-def solve_space(bodies: Sequence[Body3], contacts: Sequence[Contact],
-                tolerance: float | None = None) -> Solution:
-    """Shorthand for ``SpaceCollision(bodies, contacts, tolerance).solve()``."""
-    return SpaceCollision(tuple(bodies), tuple(contacts), tolerance).solve()

@@ -4,6 +4,7 @@ check of a whole-number argument.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from rigidimpact.errors import InputError
@@ -75,6 +76,19 @@ def whole_number(name: str, value: Any, least: int, most: int | None = None,
     return value
 
 
+@dataclass(frozen=True)
+class RuleSettings:
+    """What a scene's ``[impact]`` table says besides the rule's name, the same in the
+    plane and in space: the sequential rule's order (None: every order) or a seeded
+    sample of orders, the compliant rule's stiffness per contact and spring law, and
+    the relative tolerance of a rule that integrates."""
+
+    order: tuple[str, ...] | None = None
+    sample: tuple[int, int] | None = None  # (orders, seed)
+    compliance: tuple[tuple[float, ...], bool] = ((1e6,), False)
+    tolerance: float | None = None
+
+
 class Rule:
     """How several contacts that close at the same instant act together.
 
@@ -109,6 +123,13 @@ class Rule:
     """
 
     name: ClassVar[str] = ""
+
+    @classmethod
+    def from_settings(cls, settings: RuleSettings) -> Rule:
+        """The rule built from a scene's ``[impact]`` settings (each rule takes the ones
+        it has: an order, a sample of orders, springs, a tolerance); a rule with no
+        settings is built bare."""
+        return cls()
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         raise NotImplementedError

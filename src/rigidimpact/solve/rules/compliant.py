@@ -17,7 +17,7 @@ from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.law import NewtonRestitution
 from rigidimpact.lazy import deferred
 from rigidimpact.solve.problem import ImpactProblem
-from rigidimpact.solve.rules.base import Rule
+from rigidimpact.solve.rules.base import Rule, RuleSettings
 from rigidimpact.solve.solution import Solution
 
 if TYPE_CHECKING:
@@ -61,6 +61,11 @@ class Compliant(Rule):
                                  f"finite number, not {value!r}")
         if not isinstance(self.hertz, bool):
             raise InputError("hertz", f"must be True or False, not {self.hertz!r}")
+
+    @classmethod
+    def from_settings(cls, settings: RuleSettings) -> Compliant:
+        stiffness, hertz = settings.compliance
+        return cls(stiffness, hertz)
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         return (compliant(problem, self.stiffness, self.hertz),)

@@ -43,7 +43,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.lazy import deferred
 from rigidimpact.solve.problem import ImpactProblem
-from rigidimpact.solve.rules.base import Rule
+from rigidimpact.solve.rules.base import Rule, RuleSettings
 from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
 
@@ -62,6 +62,10 @@ class Driven(Rule):
 
     tolerance: float | None = None
     name: ClassVar[str] = "driven"
+
+    @classmethod
+    def from_settings(cls, settings: RuleSettings) -> Driven:
+        return cls(settings.tolerance)
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         return (driven(problem, self.tolerance),)
@@ -109,10 +113,12 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     more: dict[str, Any] = {"tangent_impulses": {
         c.name: (along[i], across[i]) for i, c in enumerate(problem.contacts)}} \
         if problem.tangents == 2 else {}
+    left = [c.name for i, c in enumerate(problem.contacts) if i not in acting]
     notes = (f"{striking.name} strikes" + (
         f" and {', '.join(rest)} rest{'s' if len(rest) == 1 else ''} (closed while "
         "pushing)" if rest else "") + f": the impulses are integrated in {striking.name}'s "
-        f"normal impulse to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",)
+        f"normal impulse to a relative tolerance of {out.tolerance:g} ({out.steps} steps)",
+        *((f"moving apart, not acting: {', '.join(left)}",) if left else ()))
     return problem.outcome(
         "driven", (), sp.Matrix([sp.Float(x, 17) for x in out.u_after]),
         problem.named(normal), tuple(problem.contacts[i].name for i in acting

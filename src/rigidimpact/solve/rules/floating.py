@@ -88,7 +88,9 @@ def frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     friction = lam[n:].reshape(n, t)
     big = max(1.0, float(np.abs(lam).max()))
     on = lam[:n] > 1e-12 * big
-    inside = np.linalg.norm(friction, axis=1) < cone * lam[:n] - 1e-9 * big
+    with np.errstate(invalid="ignore"):  # a sticking law's cone is infinite
+        reach = np.where(np.isfinite(cone), cone * lam[:n], np.inf)
+    inside = np.linalg.norm(friction, axis=1) < reach - 1e-9 * big
     acting = [i for i in range(n) if on[i]]
     if len(acting) == 1 and tangential[acting[0]].solved_by_regimes:
         return one_acting(problem, acting[0], list(target))  # its own answer, any rule

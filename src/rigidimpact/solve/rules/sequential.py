@@ -22,7 +22,7 @@ from rigidimpact.solve.conditions import (
     tidied,
 )
 from rigidimpact.solve.problem import ImpactProblem
-from rigidimpact.solve.rules.base import Rule, whole_number
+from rigidimpact.solve.rules.base import Rule, RuleSettings, whole_number
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -88,6 +88,12 @@ class Sequential(Rule):
             whole_number("sample", self.sample, 1, MAX_SAMPLED_ORDERS,
                           " sampled orders (each a whole sequential run)")
         whole_number("seed", self.seed, 0)
+
+    @classmethod
+    def from_settings(cls, settings: RuleSettings) -> Sequential:
+        if settings.sample is not None and settings.order is None:
+            return cls(None, *settings.sample)
+        return cls(settings.order)
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         if self.order is None and self.sample is not None:
