@@ -363,6 +363,17 @@ class ContactLaw:
         """The friction coefficient bounding a sticking contact (None: no bound)."""
         return None
 
+    def walton(self) -> tuple[Any, Any] | None:
+        """The law as Walton's: (beta, mu), the slip after being -beta times the slip
+        before unless that needs more than the cone mu allows (mu None: no cone); None
+        where the law is not of that form (a ball's bounces on a flat sum them)."""
+        return None
+
+    def coulomb(self) -> Any:
+        """Coulomb's coefficient where the law is Coulomb's friction alone (a ball
+        sliding on a plane, the tangentially compliant bounce), else None."""
+        return None
+
     @classmethod
     def from_contact(cls, contact: Any) -> ContactLaw:
         """The law with the coefficients it takes from a contact (none by default)."""
@@ -469,6 +480,11 @@ class NewtonRestitution(ContactLaw):
     # leaves at -e times its closing velocity), "impulse" (the compression impulses
     # solved with target zero, each scaled by 1 + e), None (no such form)
     together: ClassVar[str | None] = "velocity"
+
+    def newtons_e(self) -> Any:
+        """Newton's kinematic coefficient, where this is Newton's law (a simulator whose
+        model is built on it asks), else None."""
+        return self.e
 
     def equations(self, before, after):
         """The printed restitution equation of one contact, from :meth:`leaving` (the
@@ -602,6 +618,9 @@ class Smooth(ContactLaw):
     velocity_states = ("on",)
     grips = False
 
+    def walton(self) -> tuple[Any, Any] | None:
+        return sp.Integer(-1), None  # the slip is kept
+
     def equations(self, before, after):
         return tuple(tangential_momentum(b, a) for b, a in zip(before, after, strict=True)
                      if b.support == "free")
@@ -623,6 +642,9 @@ class Stick(ContactLaw):
     name = "stick"
     velocity_states = ("stick",)
     unknown_tangential = True
+
+    def walton(self) -> tuple[Any, Any] | None:
+        return sp.Integer(0), None  # no slip after, whatever it takes
 
     def energy_warning(self, restitution: NewtonRestitution) -> str | None:
         if sp.sympify(restitution.e).is_zero:
@@ -656,6 +678,9 @@ class PoissonRestitution(NewtonRestitution):
     splits_on_compression = True
     dissipative_on_bent_path = True
     together = "impulse"
+
+    def newtons_e(self) -> Any:
+        return None  # a kinetic or energetic law, Newton's only on a straight path
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
@@ -728,6 +753,9 @@ class EnergeticRestitution(NewtonRestitution):
     dissipative_on_bent_path = True
     together = None  # the work split of one contact: no form for contacts acting together
 
+    def newtons_e(self) -> Any:
+        return None  # a kinetic or energetic law, Newton's only on a straight path
+
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.energetic_end(first, second, v_n, self.e, stop_in_restitution)
@@ -795,6 +823,12 @@ class Coulomb(ContactLaw):
     def cone(self) -> Any:
         return self.mu
 
+    def walton(self) -> tuple[Any, Any] | None:
+        return sp.Integer(0), self.mu  # sticks where the cone holds it
+
+    def coulomb(self) -> Any:
+        return self.mu
+
     @classmethod
     def from_contact(cls, contact: Any) -> Coulomb:
         return cls(contact.friction)
@@ -859,6 +893,12 @@ class Rough(Coulomb):
     @classmethod
     def from_contact(cls, contact: Any) -> Rough:
         return cls(contact.friction, contact.tangential_restitution)
+
+    def walton(self) -> tuple[Any, Any] | None:
+        return None if self.beta is None else (sp.sympify(self.beta), self.mu)
+
+    def coulomb(self) -> Any:
+        return None  # Walton's law, not Coulomb's alone
 
     def energy_warning(self, restitution: NewtonRestitution) -> str | None:
         return None  # Walton's law sets the velocities after: said at numbers, if at all

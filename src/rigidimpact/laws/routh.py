@@ -392,7 +392,7 @@ def diagram(impact, values: dict) -> Diagram:
     """
 
     contact = impact.contact
-    if contact.tangential != "coulomb":
+    if contact.laws[1].coulomb() is None:
         raise InputError("contact.tangential", "Routh's diagram is drawn for a Coulomb "
                          "contact (tangential = \"coulomb\")")
     core = ImpulseProblem(impact.before)

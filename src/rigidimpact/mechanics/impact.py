@@ -285,7 +285,7 @@ class SystemImpact:
             sp.Matrix(self.M).LUsolve(J.T).applyfunc(sp.simplify)
         W = J * solved if numbers else (J * solved).applyfunc(sp.simplify)
         v = J * self.u_before
-        if tangential.name == "stick" and c.laws.law != "newton":
+        if tangential.unknown_tangential and restitution.newtons_e() is None:
             raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
         # the tangential law's one face, with two tangents (laws/law.py): stick, the
         # circular cone (or Routh's courses on the line a slip keeps), Walton's courses

@@ -85,20 +85,29 @@ class MapKernel:
         kinds: tuple[str, ...]
         for i, c in enumerate(system.contacts):
             laws = c.laws
-            if laws.law != "newton" or laws.tangential not in ("smooth", "stick"):
+            first, second = laws.laws
+            if first.together != "velocity" or second.solved_by_regimes:
                 raise InputError(f"{c.name}.laws", "the impact map's kernel takes smooth "
                                  "or sticking contacts under Newton's law, every contact "
                                  "acting; solve() takes the rest")
-            if laws.tangential == "smooth":
+            if not second.grips:
                 block, kinds = system.J[2 * i:2 * i + 1, :], ("n",)
             elif system.J_plane is not None:
                 block, kinds = system.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
             else:
                 block, kinds = system.J[2 * i:2 * i + 2, :], ("n", "t")
-            e = sp.sympify(sp.sympify(laws.restitution).xreplace(put))
+            # the law's own target, v+ = leaving(v-) = -k v- (a law at the velocity
+            # level is linear in the closing speed: checked at two speeds)
+            one, two = (sp.sympify(first.leaving(sp.Integer(x))).xreplace(put)
+                        for x in (-1, -2))
+            e = sp.nsimplify(one) if one.is_number else one
             if not e.is_number or not 0 <= e <= 1:
                 raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
                                  f"(values may give it), not {e}")
+            if sp.simplify(two - 2 * one) != 0:
+                raise InputError(f"{c.name}.laws", "the impact map's kernel takes a "
+                                 "restitution law linear in the closing speed; solve() "
+                                 "takes the rest")
             for k, kind in enumerate(kinds):
                 normal += [len(names)] if kind == "n" else []
                 names.append(f"{c.name}.{kind}")

@@ -48,7 +48,13 @@ from rigidimpact.solve.derivation import (
     read_values,
 )
 from rigidimpact.solve.impact import Impact
-from rigidimpact.solve.rules import DEFAULT_RULE, RULE_TYPES, Rule, RuleSettings, rule_named
+from rigidimpact.solve.rules import (
+    DEFAULT_RULE,
+    RULE_CLASSES,
+    Rule,
+    RuleSettings,
+    rule_named,
+)
 from rigidimpact.solve.rules.sequential import MAX_SAMPLED_ORDERS
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic import expr as expressions
@@ -535,7 +541,6 @@ def _from_contact(table: Mapping[str, Any], key: str, where: str,
 
 CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
                   "friction", "tangential_restitution")
-IMPACT_RULES = tuple(rule.name for rule in RULE_TYPES)  # the one registry's names
 
 
 def _body_tables(data: Mapping[str, Any]) -> dict[str, tuple[int, dict]]:
@@ -680,8 +685,8 @@ def _impact_table(table: Mapping[str, Any], names: list[str],
         if key not in known:
             raise InputError(f"impact.{key}", f"unknown field; expected {', '.join(known)}")
     rule = table.get("rule", DEFAULT_RULE)
-    if rule not in IMPACT_RULES:
-        raise InputError("impact.rule", f"must be one of {', '.join(IMPACT_RULES)}, got "
+    if not isinstance(rule, str) or rule not in RULE_CLASSES:  # the one registry
+        raise InputError("impact.rule", f"must be one of {', '.join(RULE_CLASSES)}, got "
                          f"{rule!r}")
     if "orders" in table or "seed" in table:
         if rule != "sequential" or "order" in table:

@@ -772,7 +772,8 @@ def _compliant(s: _Sphere, contact: Contact, n: sp.Matrix, ratio: float) -> str:
     """Sphere `s` bounces on `contact`'s plane through the tangentially compliant
     contact: its velocity and spin after, in 40-digit floats of the float64 answer;
     the course."""
-    if contact.law != "newton" or contact.tangential != "coulomb" or not contact.friction:
+    restitution, tangential = contact.laws
+    if restitution.newtons_e() is None or not tangential.coulomb():
         raise InputError(f"{contact.name}.tangential", "tangential-compliance bounces a "
                          "sphere on a plane with Newton's e and Coulomb's friction "
                          "(tangential = \"coulomb\", friction = mu)")
@@ -827,7 +828,7 @@ def _on_plane(contact: Contact, n: sp.Matrix, v: sp.Matrix, w: sp.Matrix, a: sp.
         rolling = all(abs(x) <= floor * scale for x in slip)
     mu = contact.friction
     if not rolling and (mu is None or mu == 0):
-        if contact.tangential not in ("smooth", "coulomb"):
+        if contact.laws[1].grips and contact.laws[1].coulomb() is None:
             raise InputError(f"{contact.name}.friction", "a sphere left lying on a plane "
                              "slides by Coulomb's friction: give the contact's friction")
         return _Phase(v, w, zero, zero, sp.Integer(0), "", False)  # smooth: for ever

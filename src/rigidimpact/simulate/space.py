@@ -151,7 +151,7 @@ def _compliant_sphere(scene: SpaceScene, values: dict, ratio: float) -> dict[str
         raise InputError("simulate.effects", "tangential-compliance takes one contact (a "
                          "sphere on a fixed flat) so far")
     (contact,) = scene.contacts
-    if contact.tangential != "coulomb" or contact.law != "newton":
+    if contact.laws[1].coulomb() is None or contact.laws[0].newtons_e() is None:
         raise InputError("simulate.effects", "tangential-compliance needs Newton's e and "
                          "a Coulomb contact (tangential = \"coulomb\", friction = mu)")
     ball = _the_sphere(scene, values, "simulate.effects", "tangential-compliance needs one "

@@ -43,10 +43,10 @@ def run_tangential(scene: Scene, plan: Plan, values: dict, start: float) -> Outc
         raise InputError("simulate.effects", "tangential-compliance runs alone, until = "
                          "\"separation\", so far")
     contact = scene.contacts[0]
-    if contact.tangential != "coulomb":
+    if contact.laws[1].coulomb() is None:
         raise InputError("simulate.effects", "tangential-compliance needs a Coulomb "
                          "contact (tangential = \"coulomb\", friction = mu)")
-    if contact.law != "newton":
+    if contact.laws[0].newtons_e() is None:
         raise InputError("simulate.effects", "tangential-compliance takes Newton's e (its "
                          "dashpot is chosen to return e)")
     free = [b for b in scene.bodies if b.support == "free"]

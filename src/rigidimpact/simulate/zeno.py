@@ -75,16 +75,11 @@ class Tail:
 def _law(contact: Contact) -> tuple[sp.Expr, sp.Expr | None] | None:
     """(beta, mu) of the contact's tangential law as Walton's law capped by Coulomb's
     cone (mu None: no cap); None for a law this module does not know."""
-    mu = None if contact.friction is None else sp.sympify(contact.friction)
-    if contact.tangential == "smooth":
-        return sp.Integer(-1), None
-    if contact.tangential == "stick":
-        return sp.Integer(0), None
-    if contact.tangential == "coulomb":
-        return sp.Integer(0), mu
-    if contact.tangential == "rough" and contact.tangential_restitution is not None:
-        return sp.sympify(contact.tangential_restitution), mu
-    return None
+    form = contact.laws[1].walton()
+    if form is None:
+        return None
+    beta, mu = form
+    return sp.sympify(beta), None if mu is None else sp.sympify(mu)
 
 
 def _across(x: sp.Matrix, n: sp.Matrix) -> sp.Matrix:

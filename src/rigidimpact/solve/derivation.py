@@ -305,8 +305,9 @@ def model_name(contact: Contact) -> str:
     """
     tangential = {"stick": "sticking", "coulomb": "Coulomb-friction"}.get(
         contact.tangential, contact.tangential)
-    law = {"newton": "Newton's", "poisson": "Poisson's", "energetic": "the energetic"}
-    return f"{law[contact.law]} restitution with a {tangential} contact"
+    law = {"newton": "Newton's", "poisson": "Poisson's", "energetic": "the energetic"}.get(
+        contact.law, f"the {contact.law}")  # a law added to the registry: its name
+    return f"{law} restitution with a {tangential} contact"
 
 
 def model_warnings(contact: Contact) -> tuple[str, ...]:

@@ -127,8 +127,6 @@ class SpaceCollision:
                                  "with three components")
             if c.bodies is None or not set(c.bodies) <= set(names):
                 raise InputError(f"{c.name}.bodies", "must name two of the bodies")
-            if c.tangential == "stick" and c.law != "newton":
-                raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
         check_facets(self.facets)
         by_name = {b.name: b for b in self.bodies}
         for c in self.contacts:

@@ -31,9 +31,15 @@ __all__ = ["Rule", "RuleSettings", "DEFAULT_RULE", "rule_named", "RULE_CLASSES",
            "Simultaneous", "Sequential", "Compliant", "Driven", "RULE_TYPES", "RULES",
            "RULE_LAWS", "rule_laws", "whole_number", "sequential_passes", "MAX_PASSES"]
 
-# the one registry of the built-in rules: the scene reader takes its names from here
-RULE_TYPES: tuple[type[Rule], ...] = (Simultaneous, Sequential, Compliant, Driven)
-RULE_CLASSES: dict[str, type[Rule]] = {rule.name: rule for rule in RULE_TYPES}
+# the one registry of rules, name to class: a new rule is one line here (the scene
+# readers of both dimensions, the 3-D collision and rule_named read it)
+RULE_CLASSES: dict[str, type[Rule]] = {
+    Simultaneous.name: Simultaneous,
+    Sequential.name: Sequential,
+    Compliant.name: Compliant,
+    Driven.name: Driven,
+}
+RULE_TYPES: tuple[type[Rule], ...] = tuple(RULE_CLASSES.values())  # the built-in ones
 DEFAULT_RULE = Simultaneous.name
 
 

@@ -97,8 +97,8 @@ class Rule:
     or one per case or order), so every rule returns the same
     :class:`~rigidimpact.solve.solution.Solution` whatever the source of the problem (the
     built-in shapes, joints, a sympy.physics.mechanics system).
-    :data:`~rigidimpact.solve.rules.RULE_TYPES` lists the built-in ones for the scene
-    reader; a new rule needs no entry there to be used from Python.
+    :data:`~rigidimpact.solve.rules.RULE_CLASSES` is the registry, name to class, the
+    scene readers read; a new rule needs no entry there to be used from Python.
 
     The protocol: what a rule may read of the problem, all public on
     :class:`~rigidimpact.solve.problem.ImpactProblem` (a mechanics system's problem has the

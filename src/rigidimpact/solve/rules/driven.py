@@ -75,7 +75,7 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     """The driven rule on a planar impulse problem (see the module's text)."""
     problem.numbers_only("driven")
     for c in problem.contacts:
-        if c.tangential not in ("smooth", "coulomb"):
+        if c.laws[1].grips and c.laws[1].coulomb() is None:
             raise InputError(f"{c.name}.tangential", "the driven rule follows Coulomb's "
                              f"friction (or none), not {c.tangential!r}")
     if problem.joints:
