@@ -22,6 +22,7 @@ from rigidimpact.solve.certificate import (
     contact_residuals,
     random_points,
 )
+from rigidimpact.solve.registry import conduct
 
 __all__ = ["checks", "FLOAT_DIGITS", "CHECK_TOLERANCE", "wide"]
 
@@ -77,7 +78,7 @@ def checks(system: Any, u_after: sp.Matrix, P: sp.Matrix,
                 c.name, c.laws.laws, p[k], [p[k + j] for j in range(1, width)],
                 [v0[k + j] for j in range(width)], [v[k + j] for j in range(width)], num,
                 exact=False, speed=scale, acted=p[k] > 0,
-                whole_impact=len(system.contacts) == 1 or rule == "simultaneous",
+                whole_impact=len(system.contacts) == 1 or conduct(rule).whole_impact,
                 rule=rule, alone=len(system.contacts) == 1))
         out["energy"] = max(0, kinetic[1] - kinetic[0])
         out["_scale"] = scale

@@ -72,6 +72,7 @@ from rigidimpact.solve.collision import (
     certified,
 )
 from rigidimpact.solve.lcp import least_norm
+from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.rules.simultaneous import simultaneous_cases
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.notation import labelled
@@ -637,7 +638,7 @@ class SystemImpact:
                          "e > 0 where the contact's directions are coupled)",)
         one = len(self.contacts) == 1
         checks = certify_checks(self, back(after), P, rule, conditions)
-        integrated = rule == "compliant" or rule == "driven" and any(
+        integrated = conduct(rule).stated_tolerance is not None and any(
             sp.sympify(x).has(sp.Float) for x in (*after, *P))
         if checks is not None and integrated:  # followed in floating point: the rule's
             checks.pop("_tolerance")  # own tolerance (its integrator's), not the exact paths'

@@ -12,6 +12,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.solve.problem import RowsProblem
+from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.solution import Solution
 
 __all__ = ["SystemRows"]
@@ -67,7 +68,8 @@ class SystemRows(RowsProblem):
                        for x in (impulses[c.name], along.get(c.name, 0))])
         states = dict(c.split(": ", 1) for c in more.pop("courses", ()))
         courses = {c.name: states.get(c.name, "released" if c.name not in acted else
-                                      ("acts" if rule == "simultaneous" else "in turn"))
+                                      ("acts" if conduct(rule).whole_impact
+                                       else "in turn"))
                    for c in self.contacts}
         M, u0 = system.M, sp.Matrix(system.u_before)
         energy = ((u0.T * M * u0)[0] - (u.T * M * u)[0]) / 2
@@ -75,7 +77,7 @@ class SystemRows(RowsProblem):
         # (Newton's law at each acting contact, smooth or sticking); otherwise the
         # rule's impulses are what is printed
         # (one contact: its own impact under every rule, its own laws printed)
-        own = len(self.contacts) == 1 or rule == "simultaneous" and all(
+        own = len(self.contacts) == 1 or conduct(rule).whole_impact and all(
             c.laws[0].together == "velocity" and courses[c.name] in ("acts", "released",
                                                                      "sticks")
             for c in self.contacts)

@@ -689,7 +689,7 @@ def _impact_table(table: Mapping[str, Any], names: list[str],
         raise InputError("impact.rule", f"must be one of {', '.join(RULE_CLASSES)}, got "
                          f"{rule!r}")
     if "orders" in table or "seed" in table:
-        if rule != "sequential" or "order" in table:
+        if not RULE_CLASSES[rule].in_turn or "order" in table:
             raise InputError("impact.orders", "a sample of orders (orders, seed) goes with "
                              "rule = \"sequential\" and no order")
     if "order" not in table:

@@ -76,6 +76,7 @@ from sympy.polys.domains import QQ
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
+from rigidimpact.solve.registry import conduct
 from rigidimpact.symbolic.evaluate import Unsupported, value_at
 
 __all__ = ["residuals", "contact_residuals", "friction_residuals", "path_residuals",
@@ -314,7 +315,7 @@ def _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num, 
     # contact's total is a sum of steps, under the driven rule a resting contact may be
     # unloaded (and its slip turn freely) for part of the impact, and a compliant run's
     # friction follows its own springs: their laws hold step by step, not in the totals
-    whole_impact = len(contacts) == 1 or rule == "simultaneous"
+    whole_impact = len(contacts) == 1 or conduct(rule).whole_impact
     approaching = False  # whether some contact approached before: an impact to check
     speed = None if how == "exact" else _scale(bodies, later, impulses, tangential, num,
                                                zero, flat)
@@ -482,7 +483,7 @@ def contact_residuals(name: str, laws: tuple[Any, Any], p_n: Any, p_t: Sequence[
                                       exact, speed))
     if locked:  # the course's own law: at rest along the normal after
         out[f"{name}.restitution"] = abs(v_after)
-    elif rule == "simultaneous" and restitution.together == "velocity":
+    elif conduct(rule).whole_impact and restitution.together == "velocity":
         # the law's own normal velocity after, from the closing one (a new law is
         # one class: the check asks it, as the rule does)
         target = num(restitution.leaving(as_sympy(min(v_before, zero))))
@@ -916,22 +917,21 @@ def assess(checks: Mapping[str, Any], rule: str,
     computed its residuals itself)."""
     if not checks:
         return [], []
+    promised = conduct(rule)
     symbolic = checks.get("_symbolic", False)
     scale = checks["_scale"] or 1
     kinetic = checks["_kinetic"] or 1
     if "_tolerance" in checks:
         tolerance: Any = checks["_tolerance"]
-    elif rule == "compliant":
-        tolerance = 1e-6
-    elif rule == "driven":  # integrated to 1e-10: the answer states 1000 times that
-        tolerance = 1e-7
+    elif promised.stated_tolerance is not None:  # an integrating rule's own
+        tolerance = promised.stated_tolerance
     elif checks["_exact"]:
         tolerance = 0
     elif checks["_floats"]:
         tolerance = FLOAT_TOLERANCE
     else:
         tolerance = ROUNDED_TOLERANCE
-    poisson_together = rule == "simultaneous" and len(contacts) > 1 and any(
+    poisson_together = promised.whole_impact and len(contacts) > 1 and any(
         c.laws[0].together == "impulse" for c in contacts)
     # a sticking law (no cone) fixes the normal impulse with the tangential one, and
     # with strong coupling that normal impulse pulls: the law's limit, not the solver's
@@ -943,8 +943,8 @@ def assess(checks: Mapping[str, Any], rule: str,
             continue
         size = value / (kinetic if key == "energy" else scale)
         allowed = tolerance
-        if key.endswith(".opens") and rule == "sequential":  # passes end when every
-            allowed = max(tolerance, SETTLED)  # closing speed left is below this
+        if key.endswith(".opens"):  # a rule's passes may end below a closing speed
+            allowed = max(tolerance, promised.settles)
         if not (size > 0 and (allowed == 0 or float(size) > allowed)):
             continue
         if symbolic and (key == "energy" or key.endswith((".opens", ".pushes"))):
@@ -952,7 +952,7 @@ def assess(checks: Mapping[str, Any], rule: str,
         if key == "energy":
             warnings.append(f"kinetic energy is created: {float(value):.6g} more after "
                             f"than before ({float(size):.3g} of it)")
-        elif key.endswith(".opens") and (poisson_together or rule == "compliant"):
+        elif key.endswith(".opens") and (poisson_together or promised.may_stay_closing):
             name = key.rsplit(".", 1)[0]
             warnings.append(f"{name} still approaches after the impact (normal velocity "
                             f"{-float(value):.6g}): the bodies would pass into each other")

@@ -27,6 +27,7 @@ from rigidimpact.model.bodies import Body
 from rigidimpact.model.impulse import Coordinate, coordinates_of, jacobian, moving
 from rigidimpact.model.joints import Joint, off_body
 from rigidimpact.solve.conditions import sample_points, tidied
+from rigidimpact.solve.registry import Conduct, conduct
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import perp
 from rigidimpact.symbolic.notation import COMPONENTS, labelled
@@ -600,22 +601,19 @@ class ImpactProblem:
                                       f"together at it, along {axis}", "", tidy(row), 0,
                                       law="joint"))
         u = self._u_of(outcome)
-        routh = outcome.rule == "simultaneous" and len(outcome.acted) == 1 and \
+        promised = conduct(outcome.rule)
+        routh = promised.whole_impact and len(outcome.acted) == 1 and \
             self.frictional and self._by_name(outcome.acted[0]).laws[1].solved_by_regimes
         for k, t in enumerate(self.contacts):
             restitution, tangential = t.laws
             closing = (J[k, :] * u_after)[0]
             slip = (J_t[k, :] * u_after)[0]
             normal, along = outcome.impulses[t.name], outcome.tangential.get(t.name, 0)
-            if outcome.rule != "simultaneous" or routh:
-                how = {"sequential": f"the sum of {t.name}'s impulses in turn (each its own "
-                                     "impact)",
-                       "compliant": f"{t.name}'s spring impulse, integrated",
-                       "driven": f"{t.name}'s impulse, integrated in the striking "
-                                 "contact's normal impulse",
-                       "simultaneous": f"{t.name} alone by its own {tangential.name} law "
-                                       "(Routh's or Walton's regimes)"}.get(
-                    outcome.rule, f"{t.name}'s impulse by the {outcome.rule} rule")
+            if not promised.whole_impact or routh:
+                how = (f"{t.name} alone by its own {tangential.name} law (Routh's or "
+                       "Walton's regimes)") if routh else promised.impulse_words.format(
+                    name=t.name) if promised is not Conduct else \
+                    f"{t.name}'s impulse by the {outcome.rule} rule"
                 found.append(Equation(how, "", P_n[k], normal, law="rule"))
                 if self.frictional:
                     found.append(Equation(how + ", tangential", "", P_t[k], along,

@@ -54,6 +54,7 @@ from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import residuals
 from rigidimpact.solve.problem import RowsProblem, check_facets
+from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.rules import (
     Compliant,
     Driven,
@@ -501,10 +502,9 @@ class _SpaceProblem(RowsProblem):
         courses = tuple(more.get("courses") or (
             f"{c.name}: {'acts' if c.name in acted else 'released'}" for c in self.contacts))
         notes = list(more.get("notes", ()))
-        if rule == "compliant":
-            notes.append("every contact a push-only spring-dashpot, integrated (LSODA, "
-                         "rtol 1e-10) until all let go")
-        elif exact and rule == "simultaneous":
+        if conduct(rule).summary:
+            notes.append(conduct(rule).summary)
+        elif exact and conduct(rule).whole_impact:
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
         return space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,

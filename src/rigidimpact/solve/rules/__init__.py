@@ -14,6 +14,7 @@ rest, followed through the impulse) is asked for by name.
 from __future__ import annotations
 
 from rigidimpact.errors import InputError
+from rigidimpact.solve.registry import RULES as REGISTRY
 from rigidimpact.solve.rules.base import (
     RULE_LAWS,
     RULES,
@@ -33,12 +34,13 @@ __all__ = ["Rule", "RuleSettings", "DEFAULT_RULE", "rule_named", "RULE_CLASSES",
 
 # the one registry of rules, name to class: a new rule is one line here (the scene
 # readers of both dimensions, the 3-D collision and rule_named read it)
-RULE_CLASSES: dict[str, type[Rule]] = {
+RULE_CLASSES: dict[str, type[Rule]] = REGISTRY
+RULE_CLASSES.update({
     Simultaneous.name: Simultaneous,
     Sequential.name: Sequential,
     Compliant.name: Compliant,
     Driven.name: Driven,
-}
+})
 RULE_TYPES: tuple[type[Rule], ...] = tuple(RULE_CLASSES.values())  # the built-in ones
 DEFAULT_RULE = Simultaneous.name
 

@@ -9,6 +9,7 @@ from typing import Any, ClassVar
 
 from rigidimpact.errors import InputError
 from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.registry import Conduct
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.given import shown
 
@@ -89,7 +90,7 @@ class RuleSettings:
     tolerance: float | None = None
 
 
-class Rule:
+class Rule(Conduct):
     """How several contacts that close at the same instant act together.
 
     A rule is one small class in its own module: :meth:`outcomes` says what it makes of

@@ -50,6 +50,11 @@ class Compliant(Rule):
     stiffness: tuple[float, ...] | float = 1e6
     hertz: bool = False
     name: ClassVar[str] = "compliant"
+    stated_tolerance: ClassVar[float | None] = 1e-6
+    may_stay_closing: ClassVar[bool] = True
+    impulse_words: ClassVar[str] = "{name}'s spring impulse, integrated"
+    summary: ClassVar[str] = ("every contact a push-only spring-dashpot, integrated (LSODA, "
+                              "rtol 1e-10) until all let go")
 
     def __post_init__(self) -> None:
         values = self.stiffness if isinstance(self.stiffness, (tuple, list)) \

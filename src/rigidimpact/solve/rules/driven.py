@@ -62,6 +62,9 @@ class Driven(Rule):
 
     tolerance: float | None = None
     name: ClassVar[str] = "driven"
+    stated_tolerance: ClassVar[float | None] = 1e-7  # integrated to 1e-10, stated 1000x
+    impulse_words: ClassVar[str] = ("{name}'s impulse, integrated in the striking contact's "
+                                    "normal impulse")
 
     @classmethod
     def from_settings(cls, settings: RuleSettings) -> Driven:

@@ -76,6 +76,10 @@ class Sequential(Rule):
     sample: int | None = None  # with no order: this many orders drawn with `seed`
     seed: int = 0
     name: ClassVar[str] = "sequential"
+    in_turn: ClassVar[bool] = True
+    settles: ClassVar[float] = CERTIFICATE_SETTLED  # passes end below this closing speed
+    impulse_words: ClassVar[str] = ("the sum of {name}'s impulses in turn (each its own "
+                                    "impact)")
 
     def __post_init__(self) -> None:
         if self.order is not None:

@@ -134,6 +134,7 @@ class Simultaneous(Rule):
     """
 
     name: ClassVar[str] = "simultaneous"
+    whole_impact: ClassVar[bool] = True
 
     def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
         if problem.symbols:
