@@ -29,6 +29,7 @@ from rigidimpact.cli import main
 from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import cone_impact, isotropic, tangents
 from rigidimpact.laws.contact import Contact
+from rigidimpact.laws.law import NewtonRestitution, PoissonRestitution
 from rigidimpact.model.space import Body3
 from rigidimpact.scenes.space import unknowns_at
 from rigidimpact.solve.space import SpaceCollision
@@ -99,7 +100,7 @@ def test_the_closed_form_with_symbols_is_a_piecewise_on_the_hand_condition():
     m, r, v, mu, e = sp.symbols("m r v mu e", positive=True)
     sx, sy = sp.symbols("s_x s_y", real=True)
     W = sp.diag(1 / m, sp.Rational(7, 2) / m, sp.Rational(7, 2) / m)
-    out = cone_impact(W, (-v, sx, sy), e, "newton", mu)
+    out = cone_impact(W, (-v, sx, sy), NewtonRestitution(e), mu)
     p = (1 + e) * m * v
     assert sp.simplify(out.impulse[0] - p) == 0
     piece = out.impulse[1]
@@ -212,10 +213,10 @@ def test_a_slip_direction_that_turns_obeys_every_law():
 
 def test_the_integration_converges_to_the_exact_sphere_answer():
     W = sp.diag(1, sp.Rational(7, 2), sp.Rational(7, 2))
-    exact = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), HALF, "poisson", FIFTH)
+    exact = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), PoissonRestitution(HALF), FIFTH)
     errors = []
     for tolerance in (1e-4, 1e-8, 1e-12):
-        numeric = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), HALF, "poisson", FIFTH,
+        numeric = cone_impact(W, (-2, HALF, sp.Rational(1, 3)), PoissonRestitution(HALF), FIFTH,
                               tolerance=tolerance)
         errors.append(max(abs(float(a - b)) for a, b in zip(exact.impulse, numeric.impulse,
                                                             strict=True)))

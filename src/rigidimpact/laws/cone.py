@@ -40,7 +40,8 @@ diag(1, 7/2, 7/2), p_f = 3, and mu w p_f = 21/10 < |v_t| = sqrt(65)/2, so it sli
 throughout:
 
 >>> W = sp.diag(1, sp.Rational(7, 2), sp.Rational(7, 2))
->>> out = cone_impact(W, (-2, 2, sp.Rational(7, 2)), sp.Rational(1, 2), "newton",
+>>> from rigidimpact.laws.law import NewtonRestitution
+>>> out = cone_impact(W, (-2, 2, sp.Rational(7, 2)), NewtonRestitution(sp.Rational(1, 2)),
 ...                   sp.Rational(1, 5))
 >>> out.course, out.impulse.T
 ('slides throughout', Matrix([[3, -12*sqrt(65)/325, -21*sqrt(65)/325]]))
@@ -56,16 +57,14 @@ from typing import TYPE_CHECKING, Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws import ends as ends_of
 from rigidimpact.symbolic.notation import Given
 
 if TYPE_CHECKING:  # numpy is imported where a path is integrated
     import numpy as np
 
-__all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "one_line", "LAWS",
+__all__ = ["ConeImpact", "cone_impact", "tangents", "isotropic", "one_line",
            "TOLERANCE"]
 
-LAWS = ("newton", "poisson", "energetic")
 TOLERANCE = 1e-10  # the integration's relative tolerance unless one is given
 MAX_PHASES = 50  # slip, stick and slip again: more changes than this are refused
 
@@ -126,19 +125,16 @@ def isotropic(W: sp.Matrix) -> bool:
     return all(sp.simplify(x) == 0 for x in gaps)
 
 
-def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
+def cone_impact(W: sp.Matrix, v: Sequence[Any], law: Any, mu: Any,
                 tolerance: float | None = None) -> ConeImpact:
     """The impulse of one rough contact (Coulomb's circular cone, coefficient `mu`) under
-    the restitution `law` with coefficient `e`; see the module's text. `law` is a
-    built-in law's name or a restitution law object (its :meth:`leaving` and
-    :meth:`end_event`, so a user's law is followed as it asks).
+    the restitution `law`, an object (its :meth:`leaving` and :meth:`end_event`, so a
+    user's law is followed as it asks); see the module's text.
 
     In closed form where the tangential block of W is isotropic and uncoupled (and no
     `tolerance` is asked); otherwise integrated in the normal impulse with relative
     `tolerance` (default :data:`TOLERANCE`), in floating point.
     """
-    if isinstance(law, str) and law not in LAWS:
-        raise InputError("contact.law", f"must be one of {', '.join(LAWS)}, not {law!r}")
     W = sp.Matrix(W)
     v0 = sp.Matrix(list(v))
     if W.shape != (3, 3) or v0.shape != (3, 1):
@@ -148,9 +144,10 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
     if tolerance is None and isotropic(W):
         # the normal is uncoupled: its velocity is linear in the normal impulse whatever
         # the slip does, so every law ends where the velocity reaches the law's target
-        target = -sp.sympify(e) * v0[0] if isinstance(law, str) else law.leaving(v0[0])
+        target = law.leaving(v0[0])
         return _closed_form(W, v0, target, sp.sympify(mu))
-    numbers = [*W, *v0, e, mu]
+    back = sp.sympify(law.leaving(sp.Integer(-1)))  # the law's rebound at unit speed
+    numbers = [*W, *v0, back, mu]
     if not all(sp.sympify(x).is_number for x in numbers):
         raise InputError("values", "the slip direction of this contact may turn during the "
                          "impact (its tangential block of W is not isotropic, or it is "
@@ -158,7 +155,7 @@ def cone_impact(W: sp.Matrix, v: Sequence[Any], e: Any, law: Any, mu: Any,
     import numpy as np  # only where the path is integrated: the command line starts light
 
     return _integrated(np.array(W.evalf(30), dtype=float),
-                       np.array(v0.evalf(30), dtype=float).ravel(), float(e), law,
+                       np.array(v0.evalf(30), dtype=float).ravel(), float(back), law,
                        float(mu), TOLERANCE if tolerance is None else float(tolerance))
 
 
@@ -212,7 +209,7 @@ def _closed_form(W: sp.Matrix, v0: sp.Matrix, target: sp.Expr, mu: sp.Expr) -> C
     return ConeImpact(impulse, after, course, exact=True)
 
 
-def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: Any, mu: float,
+def _integrated(W: np.ndarray, v0: np.ndarray, back: float, law: Any, mu: float,
                 tolerance: float) -> ConeImpact:
     """Follow the path in p with scipy's solve_ivp (DOP853), phase by phase."""
     import numpy as np
@@ -262,8 +259,7 @@ def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: Any, mu: float,
         return rates
 
     # the end of the impact: the law's own (laws.ends, one implementation a law)
-    end = ends_of.by_name(law, e, float(v0[0])) if isinstance(law, str) else \
-        law.end_event(float(v0[0]))
+    end = law.end_event(float(v0[0]))
 
     def ends(p: float, y: np.ndarray, p_c: float | None, work_c: float | None) -> float:
         return end(p, float(y[0]), p_c, work_c, float(y[5]))
@@ -273,7 +269,7 @@ def _integrated(W: np.ndarray, v0: np.ndarray, e: float, law: Any, mu: float,
     phases: list[tuple[str, float]] = []
     turned, steps = 0.0, 0
     kind = "slip" if np.linalg.norm(v0[1:]) > floor else "stick-test"
-    horizon = 10 * (1 + e) * max(p_c_guess, 1e-300) + 10
+    horizon = 10 * (1 + back) * max(p_c_guess, 1e-300) + 10
     # the slip's stop is seen as its component along a reference direction reaching
     # zero; the reference is renewed whenever the slip has turned 60 degrees from it, so
     # that component stays at least half the slip speed until the slip really stops

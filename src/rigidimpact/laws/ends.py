@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-__all__ = ["End", "kinematic", "poisson", "energetic", "by_name"]
+__all__ = ["End", "kinematic", "poisson", "energetic"]
 
 End = Callable[[float, float, float | None, float | None, float], float]
 
@@ -62,17 +62,3 @@ def energetic(e: float) -> End:
             work: float) -> float:
         return -1.0 if work_c is None else (work - work_c) + e * e * work_c
     return end
-
-
-def by_name(law: str, e: float, closing: float) -> End:
-    """The end of a built-in law named by its string (the integrators' callers that
-    hold a name, not a law object), at coefficient `e` and closing velocity `closing`.
-
-    Examples
-    --------
-    >>> by_name("newton", 0.5, -2.0)(1.0, 1.0, 0.5, -0.5, -0.2)
-    0.0
-    """
-    if law == "newton":
-        return kinematic(-e * closing)
-    return {"poisson": poisson, "energetic": energetic}[law](e)

@@ -363,6 +363,11 @@ class ContactLaw:
         """The friction coefficient bounding a sticking contact (None: no bound)."""
         return None
 
+    def words(self, spatial: bool = False) -> Given:
+        """The law in words with its coefficients, as a scene's givens print it (in
+        space, with its cone named); a law added to the registry is named by its name."""
+        return Given(self.name)
+
     def walton(self) -> tuple[Any, Any] | None:
         """The law as Walton's: (beta, mu), the slip after being -beta times the slip
         before unless that needs more than the cone mu allows (mu None: no cone); None
@@ -618,6 +623,9 @@ class Smooth(ContactLaw):
     velocity_states = ("on",)
     grips = False
 
+    def words(self, spatial: bool = False) -> Given:
+        return Given("smooth")
+
     def walton(self) -> tuple[Any, Any] | None:
         return sp.Integer(-1), None  # the slip is kept
 
@@ -642,6 +650,9 @@ class Stick(ContactLaw):
     name = "stick"
     velocity_states = ("stick",)
     unknown_tangential = True
+
+    def words(self, spatial: bool = False) -> Given:
+        return Given("sticking (no slip after)" if spatial else "sticking")
 
     def walton(self) -> tuple[Any, Any] | None:
         return sp.Integer(0), None  # no slip after, whatever it takes
@@ -823,6 +834,10 @@ class Coulomb(ContactLaw):
     def cone(self) -> Any:
         return self.mu
 
+    def words(self, spatial: bool = False) -> Given:
+        return Given("Coulomb friction, circular cone, mu = {}" if spatial
+                     else "Coulomb friction {}", self.mu)
+
     def walton(self) -> tuple[Any, Any] | None:
         return sp.Integer(0), self.mu  # sticks where the cone holds it
 
@@ -860,7 +875,7 @@ class Coulomb(ContactLaw):
             p_n, p_t = flat.impulse
             return ContactImpulse(sp.Matrix([p_n, p_t * line[0], p_t * line[1]]),
                                   flat.course)
-        out = cone.cone_impact(W, v, restitution.e, restitution, self.mu, tolerance)
+        out = cone.cone_impact(W, v, restitution, self.mu, tolerance)
         notes = () if out.exact else (
             f"the contact's path is integrated in the normal impulse to a relative "
             f"tolerance of {out.tolerance:g} ({out.steps} steps; the slip direction "
@@ -893,6 +908,16 @@ class Rough(Coulomb):
     @classmethod
     def from_contact(cls, contact: Any) -> Rough:
         return cls(contact.friction, contact.tangential_restitution)
+
+    def words(self, spatial: bool = False) -> Given:
+        if spatial:
+            return Given("Walton's rough law, beta = {}", self.beta) + (
+                Given(", without a friction limit") if self.mu is None
+                else Given(", mu = {}", self.mu))
+        friction = Given("without a friction limit") if self.mu is None \
+            else Given("friction {}", self.mu)
+        return Given("rough (Walton), ") + friction + Given(
+            ", tangential restitution {}", self.beta)
 
     def walton(self) -> tuple[Any, Any] | None:
         return None if self.beta is None else (sp.sympify(self.beta), self.mu)

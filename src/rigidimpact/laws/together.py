@@ -44,8 +44,9 @@ floor takes nothing and the ball leaves the wall at e times its speed.
 >>> Minv = np.diag([1, 1, 1, 2.5, 2.5, 2.5])
 >>> wall = np.array([[-1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 1], [0, 0, -1, 0, 1, 0.]])
 >>> floor = np.array([[0, 0, 1, 0, 0, 0], [1, 0, 0, 0, -1, 0], [0, 1, 0, 1, 0, 0.]])
->>> out = driven_impact(Minv, [wall, floor], np.array([2, 0, 0, 0, 0, 0.]), 0.5,
-...                     "energetic", [0.0, 0.0])
+>>> from rigidimpact.laws.law import EnergeticRestitution
+>>> out = driven_impact(Minv, [wall, floor], np.array([2, 0, 0, 0, 0, 0.]),
+...                     EnergeticRestitution(0.5), [0.0, 0.0])
 >>> np.round(out.u_after[:3], 9).tolist(), np.round(out.impulses[1], 12).tolist()
 ([-1.0, 0.0, 0.0], [0.0, 0.0, 0.0])
 """
@@ -58,7 +59,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from rigidimpact.errors import InputError
-from rigidimpact.laws import ends as ends_of
 from rigidimpact.lazy import deferred
 
 if TYPE_CHECKING:
@@ -70,7 +70,6 @@ __all__ = ["DrivenImpact", "driven_impact", "TOLERANCE"]
 
 TOLERANCE = 1e-10
 MAX_PHASES = 200
-LAWS = ("newton", "poisson", "energetic")
 
 
 @dataclass(frozen=True)
@@ -90,7 +89,7 @@ class DrivenImpact:
 
 
 def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarray,
-                  e: float, law: Any, mu: Sequence[float],
+                  law: Any, mu: Sequence[float],
                   tolerance: float | None = None) -> DrivenImpact:
     """Follow the impact in which contact 0 strikes and every other contact rests (see
     the module's text).
@@ -100,13 +99,11 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     M_inverse : (n, n) array
     rows : one (3, n) array per contact, its rows n, t1, t2
     u : (n,) array, the speeds before
-    e, law : the striking contact's restitution coefficient and law
+    law : the striking contact's restitution law (an object: its end is its own)
     mu : each contact's friction coefficient
     tolerance : the integration's relative tolerance
     """
     tolerance = TOLERANCE if tolerance is None else tolerance
-    if isinstance(law, str) and law not in LAWS:
-        raise InputError("contact.law", f"must be one of {', '.join(LAWS)}, not {law!r}")
     k = len(rows)
     if len(mu) != k:
         raise InputError("contacts", "one friction coefficient per contact")
@@ -115,8 +112,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     u0 = np.asarray(u, float)
     v0 = [r @ u0 for r in J]
     # the end of the impact: the striking contact's law's own (laws.ends)
-    end = ends_of.by_name(law, e, float(v0[0][0])) if isinstance(law, str) else \
-        law.end_event(float(v0[0][0]))
+    end = law.end_event(float(v0[0][0]))
     if not v0[0][0] < 0:
         raise InputError("bodies", "the striking contact is not approaching")
     scale = max(float(np.abs(u0).max()), 1e-300)
@@ -269,7 +265,8 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     courses: list[list[str]] = [[] for _ in range(k)]
     phases: list[tuple[float, tuple[str, ...]]] = []
     steps = 0
-    horizon = 100.0 * (1 + e) * (-v0[0][0]) / max(float((J[0] @ A[0])[0, 0]), 1e-300) + 1.0
+    back = float(law.leaving(-1.0))  # the law's rebound at unit speed
+    horizon = 100.0 * (1 + back) * (-v0[0][0]) / max(float((J[0] @ A[0])[0, 0]), 1e-300) + 1.0
 
     def note(i: int, what: str) -> None:
         if not courses[i] or courses[i][-1].split(" from")[0] != what:

@@ -291,7 +291,7 @@ class SystemImpact:
         # the tangential law's one face, with two tangents (laws/law.py): stick, the
         # circular cone (or Routh's courses on the line a slip keeps), Walton's courses
         out = tangential.impulse(W, v, restitution)
-        P, course = out.impulse, "sticks" if tangential.name == "stick" else out.course
+        P, course = out.impulse, "sticks" if tangential.unknown_tangential else out.course
         after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
         return self._in_plane(after, P, {c.name: course}, exact=out.exact and all(
             x.is_Rational or not x.is_Float for x in P), notes=tuple(out.notes))
@@ -422,7 +422,7 @@ class SystemImpact:
                                  "(by regimes) has no closed form for several contacts of "
                                  "a mechanics system acting together: give numbers "
                                  "(SystemImpact.at), or use smooth or stick there")
-            if restitution.name != "newton":
+            if restitution.newtons_e() is None:
                 raise InputError(f"{c.name}.law", f"{restitution.name}'s law has no closed "
                                  "form for several contacts of a mechanics system acting "
                                  "together here: give numbers (SystemImpact.at), or use "

@@ -401,15 +401,8 @@ def _contact_line(c: Contact) -> Given:
 
 
 def _tangential_words(c: Contact) -> Given:
-    """The contact's tangential law in words, with its coefficients."""
-    if c.tangential == "coulomb":
-        return Given("Coulomb friction {}", c.friction)
-    if c.tangential == "rough":
-        friction = Given("without a friction limit") if c.friction is None \
-            else Given("friction {}", c.friction)
-        return Given("rough (Walton), ") + friction + Given(
-            ", tangential restitution {}", c.tangential_restitution)
-    return Given({"smooth": "smooth", "stick": "sticking"}[c.tangential])
+    """The contact's tangential law in words, with its coefficients (the law's own)."""
+    return c.laws[1].words()
 
 
 def _described(b: Body) -> Given:

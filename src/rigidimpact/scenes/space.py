@@ -207,13 +207,9 @@ def _unnamed(course: str) -> str:
 
 
 def _law_words(c: Contact) -> Given:
-    """A contact's laws in words: restitution, then the tangential law."""
-    law = {"smooth": Given("smooth"), "stick": Given("sticking (no slip after)"),
-           "coulomb": Given("Coulomb friction, circular cone, mu = {}", c.friction),
-           "rough": Given("Walton's rough law, beta = {}", c.tangential_restitution) + (
-               Given(", without a friction limit") if c.friction is None
-               else Given(", mu = {}", c.friction))}[c.tangential]
-    return Given(f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {{}}, ", c.restitution) + law
+    """A contact's laws in words: restitution, then the tangential law (its own)."""
+    return Given(f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {{}}, ", c.restitution) + \
+        c.laws[1].words(spatial=True)
 
 
 def _contact_words(c: Contact, kind: str = "contact", note: str = "") -> Given:

@@ -278,8 +278,7 @@ def residuals(before: Sequence[Any], after: Sequence[Any], contacts: Sequence[An
     with mpmath.workdps(digits):
         found = _residuals(bodies, later, contacts, impulses, tangential, rule, acted, num,
                            root, how, locked, joints, joint_impulses, flat)
-        straight = len(contacts) == 1 and (not contacts[0].laws[1].grips or
-                                           contacts[0].laws[1].name == "stick")
+        straight = len(contacts) == 1 and not contacts[0].laws[1].solved_by_regimes
         if len(contacts) == 1 and not joints and not locked and (path or straight):
             (c,) = contacts
             end = (impulses[c.name], *_components(tangential.get(c.name, 0)))

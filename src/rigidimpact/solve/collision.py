@@ -149,7 +149,7 @@ class Collision(ImpactProblem):
             solved = self.alone()  # reported under the rule that was asked
             if solved.rule != rule.name:
                 solved = replace(solved, rule=rule.name, order=(
-                    (self.contacts[0].name,) if rule.name == "sequential" else ()))
+                    (self.contacts[0].name,) if rule.in_turn else ()))
             return (solved,)
         return tuple(replace(o, pivot_reactions=reactions)
                      if (reactions := self._pivot_reactions(o)) else o

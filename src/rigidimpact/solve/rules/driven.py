@@ -104,7 +104,7 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
     rows = [problem.frame_rows(i) for i in acting]
     friction = [float(problem.contacts[i].friction or 0) for i in acting]
     Minv = np.array(problem.M_inverse.evalf(30), dtype=float)
-    out = driven_impact(Minv, rows, u, float(striking.restitution), striking.laws[0], friction,
+    out = driven_impact(Minv, rows, u, striking.laws[0], friction,
                         tolerance)
     n = len(problem.contacts)
     normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
