@@ -80,7 +80,7 @@ def rotation(axis: Sequence[Any], angle: Any) -> sp.ImmutableMatrix:
     return sp.ImmutableMatrix(R if angle.is_number else R.applyfunc(sp.simplify))
 
 
-def _tidy(x: sp.Expr) -> sp.Expr:
+def _exact_or_50_digits(x: sp.Expr) -> sp.Expr:
     """A number kept exact when rational, else to 50 digits (sines of numbers simplify
     slowly and gain nothing)."""
     return x if x.is_Rational or not x.has(sp.sin, sp.cos) else sp.N(x, 50)
@@ -205,7 +205,7 @@ class Body3:
             inverse = None
             if tensor.is_diagonal() and all(x.is_number for x in tensor):
                 inverse = R * sp.diag(*[1 / tensor[i, i] for i in range(3)]) * R.T
-            tidy = _tidy if all(x.is_number for x in (*R, *tensor)) else sp.simplify
+            tidy = _exact_or_50_digits if all(x.is_number for x in (*R, *tensor)) else sp.simplify
             tensor = (R * tensor * R.T).applyfunc(tidy)
             body = cls(name, _expr(mass, f"{name}.mass"), sp.ImmutableMatrix(tensor),
                        as_vector3(position, f"{name}.position"),

@@ -52,8 +52,8 @@ from rigidimpact.scenes.scene import Scene
 from rigidimpact.simulate.flight import Flyer, _certified_first_root, first_contact
 from rigidimpact.simulate.outcome import FlightTrack, Outcome, finite, flyer
 from rigidimpact.simulate.planner import make_plan
-from rigidimpact.solve.collision import Outcome as RuleOutcome
 from rigidimpact.solve.derivation import physics_warnings, read_values
+from rigidimpact.solve.solution import Solution
 
 __all__ = ["run_several", "scene_numbers", "Watch", "watches", "SeveralTrack"]
 
@@ -201,7 +201,7 @@ def watches(touches: Sequence[Contact], flyers: Mapping[str, Flyer],
     return tuple(out)
 
 
-def _fly(scene: Scene, outcome: RuleOutcome, until: str | float, gravity: float):
+def _fly(scene: Scene, outcome: Solution, until: str | float, gravity: float):
     """The flight after one rule's impact: flyers, the events, the end time and why."""
     shapes = {b.name: b.shape for b in scene.bodies}
     moving = [b for b in outcome.after if b.support != "fixed"]

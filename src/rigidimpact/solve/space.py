@@ -178,7 +178,7 @@ class SpaceCollision:
                 what = "point" if j.axis is None else "point, then turn across the axis,"
                 raise InputError(j.name, f"its two bodies do not move together at "
                                  f"{list(j.point)} before the impact (the second's {what} "
-                                 f"less the first's: {[_tidy(x) for x in gap]}): give "
+                                 f"less the first's: {[_simplified(x) for x in gap]}): give "
                                  "velocities and spins that keep the joint together")
         block = G * self._free_M_inverse * G.T
         if all(x.is_number for x in block) and block.rank() < block.rows:
@@ -239,7 +239,7 @@ class SpaceCollision:
             return free
         G = self.G
         across = free * G.T
-        return (free - across * (G * across).inv() * across.T).applyfunc(_tidy)
+        return (free - across * (G * across).inv() * across.T).applyfunc(_simplified)
 
     def joint_impulses(self, generalized: sp.Matrix) -> dict[str, tuple[sp.Expr, ...]]:
         """Each joint's impulse on its second body, ``(x, y, z)`` and, for a hinge, its
@@ -252,7 +252,7 @@ class SpaceCollision:
         out, row = {}, 0
         for j in self.joints:
             size = 3 if j.axis is None else 5
-            out[j.name] = tuple(_tidy(x) if not x.has(sp.Float) else x
+            out[j.name] = tuple(_simplified(x) if not x.has(sp.Float) else x
                                 for x in lam[row:row + size, 0])
             row += size
         return out
@@ -274,7 +274,7 @@ class SpaceCollision:
     def W(self, contact: Contact) -> sp.Matrix:
         """The contact's block ``J M^-1 J^T`` in its frame (n, t1, t2)."""
         J = self.rows(contact)
-        return (J * self.M_inverse * J.T).applyfunc(_tidy)
+        return (J * self.M_inverse * J.T).applyfunc(_simplified)
 
     def solve(self) -> Solution:
         """The impact under the contact's laws (see the module's text); several contacts:
@@ -300,8 +300,8 @@ class SpaceCollision:
         """The one contact's impact under its laws (the law's face in contact space)."""
         (c,) = self.contacts
         J = self.rows(c)
-        W = (J * self.M_inverse * J.T).applyfunc(_tidy)
-        v = (J * self.u_before).applyfunc(_tidy)
+        W = (J * self.M_inverse * J.T).applyfunc(_simplified)
+        v = (J * self.u_before).applyfunc(_simplified)
         if v[0].is_number and not v[0] < 0:
             raise InputError("bodies", f"the touching points at {c.name} are not "
                              "approaching (their normal velocity is "
@@ -399,7 +399,8 @@ class SpaceCollision:
                   hertz: bool = False) -> Solution:
         """Every contact a push-only spring-dashpot (or an elastic Hertz spring),
         integrated until all let go: the plane's rule, smooth contacts, at numbers."""
-        return replace(self, rule=Compliant(stiffness, hertz)).solve()
+        springs = tuple(stiffness) if isinstance(stiffness, Sequence) else stiffness
+        return replace(self, rule=Compliant(springs, hertz)).solve()
 
     def driven(self) -> Solution:
         """The one contact that approaches strikes, the others rest (the plane's rule,
@@ -534,7 +535,7 @@ def _touches_its_surface(body: Body3, contact: Contact) -> None:
                          "sphere's contact normal runs through its centre")
 
 
-def _tidy(x: sp.Expr) -> sp.Expr:
+def _simplified(x: sp.Expr) -> sp.Expr:
     """Simplified with symbols; exact when rational; else 50 digits (sines of numbers)."""
     if not x.is_number:
         return sp.simplify(x)
