@@ -38,7 +38,7 @@ class SystemRows(RowsProblem):
             normal_rows=sp.ImmutableMatrix(plane[::3, :]),
             tangent_rows=sp.ImmutableMatrix(plane[1::3, :]),
             second_tangent_rows=sp.ImmutableMatrix(plane[2::3, :]))
-        return cls((), tuple(c.laws for c in system.contacts), system=system,
+        return cls(tuple(c.laws for c in system.contacts), system=system,
                    speeds=tuple(str(u) for u in system.u),
                    velocities=sp.ImmutableMatrix(system.u_before),
                    inverse_mass=sp.ImmutableMatrix(sp.Matrix(system.M).inv()),

@@ -47,8 +47,239 @@ def check_facets(facets: Any) -> None:
                          f"not {facets!r}")
 
 
+class ImpulseRows:
+    """The one impulse problem, holding no bodies: generalized speeds u and u before,
+    the inverse mass M^-1, one row block per contact (its normal row in J, its tangent
+    rows in J_t and, in space, a second), the contacts with their law objects; W =
+    J M^-1 J^T. Every rule reads only this (:mod:`rigidimpact.solve.rules`), whatever
+    the source: the planar shapes with their supports and joints
+    (:class:`ImpactProblem`), a 3-D collision and a sympy.physics.mechanics system
+    (:class:`RowsProblem`).
+
+    A source supplies ``contacts``, ``u_before``, ``M_inverse``, ``J`` and ``J_t`` (and
+    their rows scaled by ``row_scale``), ``coordinates``, ``symbols``, whether M^-1 is
+    ``dense``, and :meth:`outcome`, its reading back: what a rule's speeds after and
+    impulses are in the source's own terms, as a certified Solution.
+    """
+
+    contacts: tuple[Contact, ...]
+    joints: tuple[Joint, ...] = ()  # bilateral rows the source keeps itself
+    facets: int | None = None  # Coulomb's cone as a pyramid of this many edges
+
+    # what a source supplies
+    u_before: sp.Matrix
+    M_inverse: sp.Matrix
+    J: sp.Matrix
+    J_t: sp.Matrix
+    scaled_J: sp.Matrix
+    scaled_J_t: sp.Matrix
+
+    @property
+    def row_scale(self) -> tuple[sp.Expr, ...]:
+        """Each contact's rows in the scaled J and J_t are its unit ones times this."""
+        raise NotImplementedError
+
+    @property
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        """The generalized speeds, with their names and values before."""
+        raise NotImplementedError
+
+    @property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        """The symbols left in the problem (none: at numbers)."""
+        raise NotImplementedError
+
+    @property
+    def dense(self) -> bool:
+        """Whether M^-1 couples the speeds (then an impulse moves every speed through it)."""
+        return True
+
+    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
+                impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
+                **more: Any) -> Solution:
+        """The source's own Solution of what a rule made of the rows (its reading back:
+        the bodies after, its checks from its own kinematics)."""
+        raise NotImplementedError(f"{type(self).__name__} reads a rule's answer back into "
+                                  "its source's Solution")
+
+    def smooth_only(self, where: str) -> None:
+        rough = [t.name for t in self.contacts if t.laws[1].grips]
+        if rough:
+            needed = (f": give [values] (or --set) for "
+                      f"{', '.join(sorted(map(str, self.symbols)))}, or ask for one "
+                      "sequential pass in an order (solved with symbols, case by case)"
+                      if where == "with symbols" and self.symbols else "")
+            raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
+                             f"solved with numbers, by the simultaneous or sequential rule; "
+                             f"not {where}{needed}")
+
+    def numbers_only(self, rule: str) -> None:
+        if self.symbols:
+            raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
+                             f"{', '.join(sorted(map(str, self.symbols)))}")
+
+    @property
+    def frictional(self) -> bool:
+        """Whether any contact's tangential law gives a tangential impulse."""
+        return any(t.laws[1].grips for t in self.contacts)
+
+    @cached_property
+    def W(self) -> sp.Matrix:
+        """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
+        return self._product(self.J)
+
+    @cached_property
+    def scaled_W(self) -> sp.Matrix:
+        """W of the scaled rows (:attr:`row_scale`): what the rules solve with."""
+        return self.W if self.scaled_J is self.J else self._product(self.scaled_J)
+
+    def _product(self, J: sp.Matrix) -> sp.Matrix:
+        """``J M^-1 J^T``."""
+        exact = _in_field(J, self.M_inverse)
+        if exact:  # numbers: in their own field, where the product of sparse rows is
+            J, Minv = exact  # exact and fast at hundreds of contacts
+            return (J * Minv * J.transpose()).to_Matrix()
+        return (J * self.M_inverse * J.T).applyfunc(tidied)
+
+    @cached_property
+    def velocity_before(self) -> sp.Matrix:
+        """Normal closing velocity of every contact before (negative: approaching)."""
+        return (self.J * self.u_before).applyfunc(tidy)
+
+    @cached_property
+    def scaled_velocity_before(self) -> sp.Matrix:
+        """The closing velocities of the scaled rows (:attr:`row_scale`)."""
+        return self.closings(self.u_before)
+
+    def closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
+        """Contact k's normal closing velocity at the generalized velocities u (its row
+        of J, two bodies' coordinates), tidied."""
+        return tidy(sp.Add(*(value * u[j] for j, value in self.sparse_rows[k])))
+
+    def closings(self, u: Sequence[sp.Expr]) -> sp.Matrix:
+        """``J u``: every contact's normal closing velocity, one sparse row at a time."""
+        return sp.Matrix([self.closing(k, u) for k in range(len(self.contacts))])
+
+    @cached_property
+    def sparse_rows(self) -> list[list[tuple[int, sp.Expr]]]:
+        """Each row of J as its nonzero (column, value) pairs."""
+        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
+        for i, j, value in self.scaled_J.row_list():
+            found[i].append((j, value))
+        return found
+
+    @cached_property
+    def inverse_inertia(self) -> list[sp.Expr]:
+        """The diagonal of M^-1, one entry per coordinate."""
+        return [1 / c.inertia for c in self.coordinates]
+
+    def kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
+        """u after `impulses` on the scaled rows: ``u + M^-1 J^T P``."""
+        if self.dense:  # M^-1 spreads each impulse over every coupled speed
+            push = self.scaled_J.T * sp.Matrix(impulses)
+            return (sp.Matrix(u) + self._moved_by(push)).applyfunc(tidy)
+        change: dict[int, sp.Expr] = {}
+        for i, row in enumerate(self.sparse_rows):
+            if impulses[i] != 0:
+                for j, value in row:
+                    change[j] = change.get(j, 0) + value * impulses[i]
+        inverse = self.inverse_inertia
+        return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
+                          else u[j] for j in range(len(u))])
+
+    def _moved_by(self, push: sp.Matrix) -> sp.Matrix:
+        """``M^-1 push``: the speeds' change under a generalized impulse."""
+        return self.M_inverse * push
+
+    def leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
+        """The normal velocity after that contact k's restitution law asks on a straight
+        impulse path, from its closing velocity before (the law's own, so a new law is
+        one class)."""
+        return tidy(self.contacts[k].laws[0].leaving(closing))
+
+    def acts_by_impulse(self) -> bool:
+        """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
+        if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
+            return False
+        forms = [t.laws[0].together for t in self.contacts]
+        if None in forms:
+            name = self.contacts[forms.index(None)].name
+            raise InputError(f"{name}.law", f"the {self.contacts[forms.index(None)].law} "
+                             "law has no form for contacts acting together: use the "
+                             "sequential rule (each contact's own impact)")
+        if len(set(forms)) > 1:
+            raise InputError("contacts", "give every contact the same law to act together")
+        return forms[0] == "impulse"
+
+    @cached_property
+    def rational_rows(self) -> bool:
+        """Whether J's rows and M^-1 are rational (then so is W)."""
+        return not self.dense and \
+            all(isinstance(x, sp.Rational) for row in self.sparse_rows for _, x in row) and \
+            all(isinstance(x, sp.Rational) for x in self.inverse_inertia)
+
+    @cached_property
+    def rational_W(self) -> bool:
+        """Whether W is rational (it can be where J is not: sqrt(3)^2)."""
+        return self.rational_rows or all(isinstance(x, sp.Rational)
+                                          for _, _, x in self.W_entries)
+
+    def float_W(self) -> Any:
+        """W in float64 as a SciPy sparse matrix, from J's sparse rows (W itself, dense
+        when one body touches every contact, is never formed exactly at scale)."""
+        import scipy.sparse as sps
+
+        rows = self.sparse_rows
+        J = sps.csr_matrix(([float(x) for row in rows for _, x in row],
+                            ([i for i, row in enumerate(rows) for _ in row],
+                             [j for row in rows for j, _ in row])),
+                           shape=(len(rows), len(self.coordinates)))
+        inverse = sps.diags([float(x) for x in self.inverse_inertia])
+        return (J @ inverse @ J.T).tocsc()
+
+    @cached_property
+    def W_entries(self) -> list[tuple[int, int, sp.Expr]]:
+        return [(i, j, x) for (i, j), x in sorted(self.scaled_W.todok().items()) if x != 0]
+
+    def order_index(self, order: Sequence[str]) -> dict[str, int]:
+        index = {t.name: k for k, t in enumerate(self.contacts)}
+        unknown = [name for name in order if name not in index]
+        if unknown or sorted(order) != sorted(index):
+            raise InputError("impact.order", f"must list every contact once: "
+                             f"{', '.join(index)}")
+        return index
+
+    @property
+    def tangents(self) -> int:
+        """Tangent rows a contact: one in the plane (two in space, :class:`RowsProblem`)."""
+        return 1
+
+    def contact_rows(self, k: int) -> sp.Matrix:
+        """Contact k's rows in its own frame, exact: (normal, tangent) in the plane."""
+        return sp.Matrix.vstack(self.scaled_J[k, :], self.scaled_J_t[k, :])
+
+    def frame_rows(self, k: int) -> Any:
+        """Contact k's rows in its own frame as float64, (normal, t1, t2): the rows the
+        rules that follow an impulse path read, in the plane with t2 zero (nothing moves
+        across the plane, so nothing slips or rubs there)."""
+        import numpy as np
+
+        n = np.array(self.scaled_J.row(k).evalf(30), dtype=float).ravel()
+        t = np.array(self.scaled_J_t.row(k).evalf(30), dtype=float).ravel()
+        return np.vstack([n, t, np.zeros_like(n)])
+
+    def _by_name(self, name: str) -> Contact:
+        return next(t for t in self.contacts if t.name == name)
+
+    def named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
+        """Each contact's impulse along its unit normal (or tangent), by name, from the
+        impulses of its scaled rows (see :attr:`row_scale`)."""
+        return {t.name: impulses[k] if s == 1 else tidy(impulses[k] * s)
+                for k, (t, s) in enumerate(zip(self.contacts, self.row_scale, strict=True))}
+
+
 @dataclass(frozen=True)
-class ImpactProblem:
+class ImpactProblem(ImpulseRows):
     """Bodies in the world frame and the smooth contacts that close together.
 
     Parameters
@@ -232,22 +463,6 @@ class ImpactProblem:
                                                   t.tangential_restitution or 0).free_symbols
                                          for t in self.contacts)))
 
-    def smooth_only(self, where: str) -> None:
-        rough = [t.name for t in self.contacts if t.laws[1].grips]
-        if rough:
-            needed = (f": give [values] (or --set) for "
-                      f"{', '.join(sorted(map(str, self.symbols)))}, or ask for one "
-                      "sequential pass in an order (solved with symbols, case by case)"
-                      if where == "with symbols" and self.symbols else "")
-            raise InputError(f"{rough[0]}.tangential", f"friction at several contacts is "
-                             f"solved with numbers, by the simultaneous or sequential rule; "
-                             f"not {where}{needed}")
-
-    def numbers_only(self, rule: str) -> None:
-        if self.symbols:
-            raise InputError("values", f"the {rule} rule needs numbers: give [values] for "
-                             f"{', '.join(sorted(map(str, self.symbols)))}")
-
     @classmethod
     def from_values(cls, bodies: Sequence[Body], contacts: Sequence[Contact],
                     values: dict, joints: Sequence[Joint] = ()) -> Self:
@@ -344,11 +559,6 @@ class ImpactProblem:
                         [(t.first, t.second, t.point, direction_of(t, s))
                          for t, s in zip(self.contacts, self.row_scale, strict=True)])
 
-    @property
-    def frictional(self) -> bool:
-        """Whether any contact's tangential law gives a tangential impulse."""
-        return any(t.laws[1].grips for t in self.contacts)
-
     @cached_property
     def M_inverse(self) -> sp.Matrix:
         """M^-1 (diagonal for free and pivoted bodies); with joints, the projected
@@ -363,16 +573,6 @@ class ImpactProblem:
         free = sp.Matrix(self._free_M_inverse)
         return (free - free * sp.Matrix(self.G).T * self._joint_map).applyfunc(tidy)
 
-    @cached_property
-    def W(self) -> sp.Matrix:
-        """``J M^-1 J^T``: how the contacts' impulses change their closing velocities."""
-        return self._product(self.J)
-
-    @cached_property
-    def scaled_W(self) -> sp.Matrix:
-        """W of the scaled rows (:attr:`row_scale`): what the rules solve with."""
-        return self.W if self.scaled_J is self.J else self._product(self.scaled_J)
-
     def _product(self, J: sp.Matrix) -> sp.Matrix:
         if self.joints:  # J M^-1 J^T without the dense M^-1 (a chain of hundreds of rods)
             exact = _in_field(J, sp.Matrix(self.G), self._free_M_inverse)
@@ -381,47 +581,15 @@ class ImpactProblem:
                 joined = G * free * J.transpose()  # the joints' opening by each row
                 return (J * free * J.transpose() - joined.transpose()
                         * _joint_solve(G * free * G.transpose(), joined)).to_Matrix()
-        exact = _in_field(J, self.M_inverse)
-        if exact:  # numbers: in their own field, where the product of sparse rows is
-            J, Minv = exact  # exact and fast at hundreds of contacts
-            return (J * Minv * J.transpose()).to_Matrix()
-        return (J * self.M_inverse * J.T).applyfunc(tidied)
+        return super()._product(J)
+
+    def _moved_by(self, push: sp.Matrix) -> sp.Matrix:
+        exact = self._joint_response(push) if self.joints else None  # the joints spread
+        return exact[0].to_Matrix() if exact else self.M_inverse * push  # each impulse
 
     @cached_property
     def u_before(self) -> sp.Matrix:
         return sp.Matrix([c.before for c in self.coordinates])
-
-    @cached_property
-    def velocity_before(self) -> sp.Matrix:
-        """Normal closing velocity of every contact before (negative: approaching)."""
-        return (self.J * self.u_before).applyfunc(tidy)
-
-    @cached_property
-    def scaled_velocity_before(self) -> sp.Matrix:
-        """The closing velocities of the scaled rows (:attr:`row_scale`)."""
-        return self.closings(self.u_before)
-
-    def closing(self, k: int, u: Sequence[sp.Expr]) -> sp.Expr:
-        """Contact k's normal closing velocity at the generalized velocities u (its row
-        of J, two bodies' coordinates), tidied."""
-        return tidy(sp.Add(*(value * u[j] for j, value in self.sparse_rows[k])))
-
-    def closings(self, u: Sequence[sp.Expr]) -> sp.Matrix:
-        """``J u``: every contact's normal closing velocity, one sparse row at a time."""
-        return sp.Matrix([self.closing(k, u) for k in range(len(self.contacts))])
-
-    @cached_property
-    def sparse_rows(self) -> list[list[tuple[int, sp.Expr]]]:
-        """Each row of J as its nonzero (column, value) pairs."""
-        found: list[list[tuple[int, sp.Expr]]] = [[] for _ in self.contacts]
-        for i, j, value in self.scaled_J.row_list():
-            found[i].append((j, value))
-        return found
-
-    @cached_property
-    def inverse_inertia(self) -> list[sp.Expr]:
-        """The diagonal of M^-1, one entry per coordinate."""
-        return [1 / c.inertia for c in self.coordinates]
 
     def _after(self, u: sp.Matrix) -> tuple[Body, ...]:
         """The bodies moving with `u`, tidied (a pivoted body's centre by its turn)."""
@@ -448,79 +616,6 @@ class ImpactProblem:
         """Whether M^-1 is dense (joints couple the bodies' coordinates; a model source
         with a full mass matrix): then an impulse moves every coordinate through it."""
         return bool(self.joints)
-
-    def kick(self, u: sp.Matrix, impulses: sp.Matrix) -> sp.Matrix:
-        if self.dense:  # the joints spread each impulse over every joined body
-            push = self.scaled_J.T * sp.Matrix(impulses)
-            exact = self._joint_response(push) if self.joints else None
-            moved = exact[0].to_Matrix() if exact else self.M_inverse * push
-            return (sp.Matrix(u) + moved).applyfunc(tidy)
-        change: dict[int, sp.Expr] = {}
-        for i, row in enumerate(self.sparse_rows):
-            if impulses[i] != 0:
-                for j, value in row:
-                    change[j] = change.get(j, 0) + value * impulses[i]
-        inverse = self.inverse_inertia
-        return sp.Matrix([tidy(u[j] + inverse[j] * change[j]) if j in change
-                          else u[j] for j in range(len(u))])
-
-    def leaving(self, k: int, closing: sp.Expr) -> sp.Expr:
-        """The normal velocity after that contact k's restitution law asks on a straight
-        impulse path, from its closing velocity before (the law's own, so a new law is
-        one class)."""
-        return tidy(self.contacts[k].laws[0].leaving(closing))
-
-    def acts_by_impulse(self) -> bool:
-        """Whether the contacts act under Poisson's law (else Newton's); they must agree."""
-        if len(self.contacts) == 1:  # a straight impulse path: every law reads as Newton's
-            return False
-        forms = [t.laws[0].together for t in self.contacts]
-        if None in forms:
-            name = self.contacts[forms.index(None)].name
-            raise InputError(f"{name}.law", f"the {self.contacts[forms.index(None)].law} "
-                             "law has no form for contacts acting together: use the "
-                             "sequential rule (each contact's own impact)")
-        if len(set(forms)) > 1:
-            raise InputError("contacts", "give every contact the same law to act together")
-        return forms[0] == "impulse"
-
-    @cached_property
-    def rational_rows(self) -> bool:
-        """Whether J's rows and M^-1 are rational (then so is W)."""
-        return not self.dense and \
-            all(isinstance(x, sp.Rational) for row in self.sparse_rows for _, x in row) and \
-            all(isinstance(x, sp.Rational) for x in self.inverse_inertia)
-
-    @cached_property
-    def rational_W(self) -> bool:
-        """Whether W is rational (it can be where J is not: sqrt(3)^2)."""
-        return self.rational_rows or all(isinstance(x, sp.Rational)
-                                          for _, _, x in self.W_entries)
-
-    def float_W(self) -> Any:
-        """W in float64 as a SciPy sparse matrix, from J's sparse rows (W itself, dense
-        when one body touches every contact, is never formed exactly at scale)."""
-        import scipy.sparse as sps
-
-        rows = self.sparse_rows
-        J = sps.csr_matrix(([float(x) for row in rows for _, x in row],
-                            ([i for i, row in enumerate(rows) for _ in row],
-                             [j for row in rows for j, _ in row])),
-                           shape=(len(rows), len(self.coordinates)))
-        inverse = sps.diags([float(x) for x in self.inverse_inertia])
-        return (J @ inverse @ J.T).tocsc()
-
-    @cached_property
-    def W_entries(self) -> list[tuple[int, int, sp.Expr]]:
-        return [(i, j, x) for (i, j), x in sorted(self.scaled_W.todok().items()) if x != 0]
-
-    def order_index(self, order: Sequence[str]) -> dict[str, int]:
-        index = {t.name: k for k, t in enumerate(self.contacts)}
-        unknown = [name for name in order if name not in index]
-        if unknown or sorted(order) != sorted(index):
-            raise InputError("impact.order", f"must list every contact once: "
-                             f"{', '.join(index)}")
-        return index
 
     def _pivot_reactions(self, outcome: Solution) -> dict[str, tuple[sp.Expr, sp.Expr]]:
         """What each pivot gives its body: the body's change of linear momentum less the
@@ -679,34 +774,6 @@ class ImpactProblem:
             values.update({symbols[start]: x, symbols[start + 1]: y})
         return values
 
-    @property
-    def tangents(self) -> int:
-        """Tangent rows a contact: one in the plane (two in space, :class:`RowsProblem`)."""
-        return 1
-
-    def contact_rows(self, k: int) -> sp.Matrix:
-        """Contact k's rows in its own frame, exact: (normal, tangent) in the plane."""
-        return sp.Matrix.vstack(self.scaled_J[k, :], self.scaled_J_t[k, :])
-
-    def frame_rows(self, k: int) -> Any:
-        """Contact k's rows in its own frame as float64, (normal, t1, t2): the rows the
-        rules that follow an impulse path read, in the plane with t2 zero (nothing moves
-        across the plane, so nothing slips or rubs there)."""
-        import numpy as np
-
-        n = np.array(self.scaled_J.row(k).evalf(30), dtype=float).ravel()
-        t = np.array(self.scaled_J_t.row(k).evalf(30), dtype=float).ravel()
-        return np.vstack([n, t, np.zeros_like(n)])
-
-    def _by_name(self, name: str) -> Contact:
-        return next(t for t in self.contacts if t.name == name)
-
-    def named(self, impulses: sp.Matrix) -> dict[str, sp.Expr]:
-        """Each contact's impulse along its unit normal (or tangent), by name, from the
-        impulses of its scaled rows (see :attr:`row_scale`)."""
-        return {t.name: impulses[k] if s == 1 else tidy(impulses[k] * s)
-                for k, (t, s) in enumerate(zip(self.contacts, self.row_scale, strict=True))}
-
 
 def _in_field(*matrices: Any) -> tuple[Any, ...] | None:
     """The matrices as DomainMatrices over one field of numbers (the rationals, or with
@@ -766,15 +833,13 @@ def _full_rank(S: sp.Matrix) -> bool:
     return abs(sp.N(S.det(), 30)) >= 1e-20
 
 
-
 @dataclass(frozen=True)
-class RowsProblem(ImpactProblem):
+class RowsProblem(ImpulseRows):
     """The one impulse problem given as rows: any source's generalized speeds, its
-    inverse mass and, per contact, its normal row (and its one tangent row, for the
-    planar friction the rules solve). A source of models (a 3-D collision, a
-    sympy.physics.mechanics system) is one assembly function into this and one
-    :meth:`outcome` back to its own :class:`Solution`, so every rule runs its one
-    implementation on it, at numbers.
+    inverse mass and, per contact, its normal row (and its tangent rows). A source of
+    models (a 3-D collision, a sympy.physics.mechanics system) is one assembly function
+    into this and one :meth:`outcome` back to its own :class:`Solution`, so every rule
+    runs its one implementation on it.
 
     Parameters
     ----------
@@ -785,14 +850,17 @@ class RowsProblem(ImpactProblem):
     normal_rows : J, one row a contact.
     tangent_rows : J_t, one row a contact, or None where every contact is smooth.
     second_tangent_rows : in space, each contact's second tangent row (t2 = n x t1).
+    facets : Coulomb's cone as a pyramid of this many edges (None: the cone).
     """
 
+    contacts: tuple[Contact, ...]
     speeds: tuple[str, ...] = ()
     velocities: sp.ImmutableMatrix | None = None
     inverse_mass: sp.ImmutableMatrix | None = None
     normal_rows: sp.ImmutableMatrix | None = None
     tangent_rows: sp.ImmutableMatrix | None = None
     second_tangent_rows: sp.ImmutableMatrix | None = None  # in space: t2 = n x t1
+    facets: int | None = None
 
     @property
     def tangents(self) -> int:
@@ -810,13 +878,6 @@ class RowsProblem(ImpactProblem):
         import numpy as np
 
         return np.array(self.contact_rows(k).evalf(30), dtype=float)
-
-    def __post_init__(self) -> None:
-        pass  # the source checked its contacts and that one approaches
-
-    @property
-    def dense(self) -> bool:
-        return True
 
     @cached_property
     def symbols(self) -> frozenset[sp.Symbol]:
@@ -858,17 +919,3 @@ class RowsProblem(ImpactProblem):
     @cached_property
     def M_inverse(self) -> sp.Matrix:
         return sp.Matrix(self.inverse_mass)
-
-    def _after(self, u: sp.Matrix) -> tuple:
-        return ()
-
-    def _pivot_reactions(self, outcome: Solution) -> dict:
-        return {}
-
-    def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
-                impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,
-                **more: Any) -> Solution:
-        """The source's own Solution of what a rule made of the rows: each source
-        overrides this (its bodies after, its checks from its own kinematics)."""
-        raise NotImplementedError(f"{type(self).__name__} maps a rule's answer back to "
-                                  "its source's Solution")

@@ -463,7 +463,7 @@ class _SpaceProblem(RowsProblem):
     def of(cls, space: SpaceCollision) -> _SpaceProblem:
         """The one assembly of a 3-D collision into the problem of rows."""
         rows = [space.rows(c) for c in space.contacts]
-        return cls((), space.contacts, speeds=tuple(map(str, space.speeds)),
+        return cls(space.contacts, speeds=tuple(map(str, space.speeds)),
                    velocities=sp.ImmutableMatrix(space.u_before),
                    inverse_mass=sp.ImmutableMatrix(space.M_inverse),
                    normal_rows=sp.ImmutableMatrix([list(J[0, :]) for J in rows]),

@@ -1,5 +1,5 @@
 """How contacts that close at the same instant act together: one rule a module, each
-working on the one impulse problem (:class:`~rigidimpact.solve.problem.ImpactProblem`)
+working on the one impulse problem (:class:`~rigidimpact.solve.problem.ImpulseRows`)
 and returning the same :class:`~rigidimpact.solve.solution.Solution`.
 
 A new rule is one class (subclass :class:`Rule`, give it ``name`` and ``outcomes``, and

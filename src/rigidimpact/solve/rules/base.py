@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from rigidimpact.errors import InputError
-from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.registry import Conduct
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.given import shown
@@ -94,7 +94,7 @@ class Rule(Conduct):
     """How several contacts that close at the same instant act together.
 
     A rule is one small class in its own module: :meth:`outcomes` says what it makes of
-    an impulse problem (:class:`~rigidimpact.solve.problem.ImpactProblem`: one outcome,
+    an impulse problem (:class:`~rigidimpact.solve.problem.ImpulseRows`: one outcome,
     or one per case or order), so every rule returns the same
     :class:`~rigidimpact.solve.solution.Solution` whatever the source of the problem (the
     built-in shapes, joints, a sympy.physics.mechanics system).
@@ -102,11 +102,14 @@ class Rule(Conduct):
     scene readers read; a new rule needs no entry there to be used from Python.
 
     The protocol: what a rule may read of the problem, all public on
-    :class:`~rigidimpact.solve.problem.ImpactProblem` (a mechanics system's problem has the
-    same members):
+    :class:`~rigidimpact.solve.problem.ImpulseRows`, the one problem without bodies that
+    every source assembles (the planar shapes, a 3-D collision, a mechanics system):
 
     - the data: ``contacts`` (each with its ``laws``: restitution, tangential),
-      ``u_before``, ``M_inverse``, ``symbols``, ``frictional``, ``dense``;
+      ``coordinates``, ``u_before``, ``M_inverse``, ``J``, ``symbols``, ``frictional``,
+      ``dense``, ``joints`` (rows a source keeps itself), ``facets`` (a pyramid asked
+      for), ``tangents`` (0, 1 or 2 a contact) and each contact's block of rows,
+      ``contact_rows(k)`` exact and ``frame_rows(k)`` in floating point;
     - the rows the rules solve with, each contact's scaled by its :attr:`row_scale`
       (rational where the data are): ``scaled_J``, ``scaled_J_t``, ``scaled_W``,
       ``scaled_velocity_before``, ``sparse_rows``, ``inverse_inertia``, and at scale
@@ -132,7 +135,7 @@ class Rule(Conduct):
         settings is built bare."""
         return cls()
 
-    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+    def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         raise NotImplementedError
 
     def checked_outcomes(self, problem: Any) -> tuple[Solution, ...]:

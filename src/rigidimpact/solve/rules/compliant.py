@@ -16,7 +16,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import damping_ratio_for
 from rigidimpact.laws.law import NewtonRestitution
 from rigidimpact.lazy import deferred
-from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.rules.base import Rule, RuleSettings
 from rigidimpact.solve.solution import Solution
 
@@ -72,11 +72,11 @@ class Compliant(Rule):
         stiffness, hertz = settings.compliance
         return cls(stiffness, hertz)
 
-    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+    def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         return (compliant(problem, self.stiffness, self.hertz),)
 
 
-def compliant(problem: ImpactProblem, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
+def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, hertz: bool = False,
               tolerance: float = 1e-10, record: bool = False) -> Solution:
     """Every contact a push-only spring-dashpot, integrated until all have let go.
 

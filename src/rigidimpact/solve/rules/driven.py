@@ -10,7 +10,7 @@ none): that exact answer is the rule's, and nothing is integrated (two balls lyi
 table meeting along a level line of centres).
 
 It is one implementation in the plane and in space: each contact's rows in its own frame
-(:meth:`~rigidimpact.solve.problem.ImpactProblem.frame_rows`) go to the integrator, a
+(:meth:`~rigidimpact.solve.problem.ImpulseRows.frame_rows`) go to the integrator, a
 planar contact's second tangent row zero (the bodies cannot move across the plane, so
 nothing slips there and no friction acts there), a 3-D contact's its own.
 
@@ -42,7 +42,7 @@ import sympy as sp
 from rigidimpact.errors import InputError
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.lazy import deferred
-from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.rules.base import Rule, RuleSettings
 from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
@@ -70,11 +70,11 @@ class Driven(Rule):
     def from_settings(cls, settings: RuleSettings) -> Driven:
         return cls(settings.tolerance)
 
-    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+    def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         return (driven(problem, self.tolerance),)
 
 
-def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
+def driven(problem: ImpulseRows, tolerance: float | None = None) -> Solution:
     """The driven rule on a planar impulse problem (see the module's text)."""
     problem.numbers_only("driven")
     for c in problem.contacts:
@@ -131,7 +131,7 @@ def driven(problem: ImpactProblem, tolerance: float | None = None) -> Solution:
 
 
 
-def _alone(problem: ImpactProblem, k: int, resting: list[int]) -> Solution | None:
+def _alone(problem: ImpulseRows, k: int, resting: list[int]) -> Solution | None:
     """The striking contact k's own impact, where it is a closed form (exact, or in the
     numbers' own floating point) and leaves every resting contact not closing (so they
     carry nothing); else None."""

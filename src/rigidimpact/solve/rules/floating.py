@@ -18,7 +18,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.lazy import deferred
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual, least_norm_rough
 from rigidimpact.solve.lcp import NoSolution, lemke_float
-from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.rules.sequential import _own_step
 from rigidimpact.solve.solution import Solution
 
@@ -35,7 +35,7 @@ STATE = {"off": "released", "on": "acts", "stick": "sticks", "slide+": "slides",
          "slide-": "slides", "mixed": "differs between the solutions"}
 
 
-def float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t: sp.Matrix,
+def float_problem(problem: ImpulseRows, rows: sp.Matrix, v_n: sp.Matrix, v_t: sp.Matrix,
                   mu: Sequence[Any], target: Sequence[sp.Expr], tangential: Sequence[Any]
                   ) -> tuple[Any, Any, Any, np.ndarray, np.ndarray, np.ndarray]:
     """The frictional problem in float64: J (normal rows, then tangential) and M^-1 as
@@ -61,7 +61,7 @@ def float_problem(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix, v_t: 
     return J, Minv, W, b, cone, np.array([float(x) for x in problem.u_before])
 
 
-def frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
+def frictional_newton(problem: ImpulseRows, rows: sp.Matrix, v_n: sp.Matrix,
                       v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
                       tangential: Sequence[Any]) -> Solution:
     """Many frictional contacts, or numbers out of the rationals (sqrt(3) in a hexagonal
@@ -117,7 +117,7 @@ def frictional_newton(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     return _in_floats(problem, u, lam, on, states, note, "newton")
 
 
-def _in_floats(problem: ImpactProblem, u: np.ndarray, lam: np.ndarray, on: np.ndarray,
+def _in_floats(problem: ImpulseRows, u: np.ndarray, lam: np.ndarray, on: np.ndarray,
                states: Sequence[str], note: str, method: str) -> Solution:
     """The rule's outcome from impulses found in floating point (`lam`: the normal
     ones, then each contact's one or two tangential ones; `on`: which push), each
@@ -145,7 +145,7 @@ def _in_floats(problem: ImpactProblem, u: np.ndarray, lam: np.ndarray, on: np.nd
                            notes=(note,), method=method, **more)
 
 
-def frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
+def frictional_pyramid(problem: ImpulseRows, rows: sp.Matrix, v_n: sp.Matrix,
                        v_t: sp.Matrix, mu: Sequence[Any], target: Sequence[sp.Expr],
                        tangential: Sequence[Any]) -> Solution:
     """The same conditions as :func:`frictional_newton` with each contact's cone
@@ -222,7 +222,7 @@ def frictional_pyramid(problem: ImpactProblem, rows: sp.Matrix, v_n: sp.Matrix,
     return _in_floats(problem, u, lam, on, states, note, "pyramid")
 
 
-def one_acting(problem: ImpactProblem, k: int, target: list[sp.Expr]) -> Solution:
+def one_acting(problem: ImpulseRows, k: int, target: list[sp.Expr]) -> Solution:
     """Only contact k acts: its frictional impact alone by Routh's method (the answer
     for one contact under every rule), if that leaves every other contact opening
     at least as fast as its law asks; otherwise one line saying so."""

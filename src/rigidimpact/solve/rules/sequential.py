@@ -21,7 +21,7 @@ from rigidimpact.solve.conditions import (
     case_conditions,
     tidied,
 )
-from rigidimpact.solve.problem import ImpactProblem
+from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.rules.base import Rule, RuleSettings, whole_number
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
@@ -99,7 +99,7 @@ class Sequential(Rule):
             return cls(None, *settings.sample)
         return cls(settings.order)
 
-    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+    def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         if self.order is None and self.sample is not None:
             return sampled_orders(problem, self.sample, self.seed)
         if self.order is None:
@@ -109,7 +109,7 @@ class Sequential(Rule):
         return (sequential(problem, self.order),)
 
 
-def _smooth_step(problem: ImpactProblem, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
+def _smooth_step(problem: ImpulseRows, k: int, u: list[sp.Expr], closing: sp.Expr) -> sp.Expr:
     """Contact k alone, smooth, with Newton's e: its impulse, with u changed in place
     (only the two bodies' coordinates the contact moves)."""
     impulse = tidy((problem.leaving(k, closing) - closing) / problem.scaled_W[k, k])
@@ -123,7 +123,7 @@ def _smooth_step(problem: ImpactProblem, k: int, u: list[sp.Expr], closing: sp.E
     return impulse
 
 
-def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
+def sequential(problem: ImpulseRows, order: Sequence[str]) -> Solution:
     """One contact at a time in `order`, passes repeated until none approaches.
 
     With e < 1 the passes can go on forever while the closing speeds shrink
@@ -209,7 +209,7 @@ def sequential(problem: ImpactProblem, order: Sequence[str]) -> Solution:
                             if problem.tangents == 2 else {}))
 
 
-def _check_step(problem: ImpactProblem, k: int, before: Sequence[sp.Expr],
+def _check_step(problem: ImpulseRows, k: int, before: Sequence[sp.Expr],
                 after: Sequence[sp.Expr], impulse: sp.Expr, closing: sp.Expr,
                 rounded: bool, number: int, tolerance: float | None = None) -> None:
     """Each step of the sequential rule is an impact of its own, checked on its own from
@@ -248,7 +248,7 @@ def _check_step(problem: ImpactProblem, k: int, before: Sequence[sp.Expr],
                          "given; please report the scene")
 
 
-def _own_step(problem: ImpactProblem, k: int, u: sp.Matrix
+def _own_step(problem: ImpulseRows, k: int, u: sp.Matrix
               ) -> tuple[sp.Matrix, str, sp.Matrix, float | None]:
     """Contact k's impact alone under its own laws, in its frame with one tangent or two
     (the tangential law's one face, :meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
@@ -270,7 +270,7 @@ def _own_step(problem: ImpactProblem, k: int, u: sp.Matrix
     return P, out.course, u_after, None if out.exact else out.tolerance
 
 
-def sequential_pass(problem: ImpactProblem, order: Sequence[str]) -> Solution:
+def sequential_pass(problem: ImpulseRows, order: Sequence[str]) -> Solution:
     """The sequential rule with symbols: one pass in `order`, every contact acting
     once, with the conditions that make it so (each contact closing at its turn) and
     that end the rule there (no contact closing after the pass).
@@ -305,7 +305,7 @@ def sequential_pass(problem: ImpactProblem, order: Sequence[str]) -> Solution:
                    conditions=case_conditions(conditions))
 
 
-def sequential_cases(problem: ImpactProblem, order: Sequence[str]) -> tuple[Solution, ...]:
+def sequential_cases(problem: ImpulseRows, order: Sequence[str]) -> tuple[Solution, ...]:
     """The sequential rule with symbols, friction allowed: one pass in `order`, each
     contact's step its own impact under its own laws, as in :func:`sequential_pass`.
     A Coulomb or rough step can take several courses (Routh's and Walton's regimes,
@@ -409,7 +409,7 @@ def _no_nested_roots(name: str, v: sp.Matrix, courses: Sequence[str],
                          f"closed form can carry: give [values] (or --set) for {given}")
 
 
-def every_order(problem: ImpactProblem) -> tuple[Solution, ...]:
+def every_order(problem: ImpulseRows) -> tuple[Solution, ...]:
     """The sequential rule in every order of the contacts."""
     names = [t.name for t in problem.contacts]
     count = math.factorial(len(names))  # counted before any order is made
@@ -423,7 +423,7 @@ def every_order(problem: ImpactProblem) -> tuple[Solution, ...]:
     return tuple(sequential(problem, order) for order in orders)
 
 
-def sampled_orders(problem: ImpactProblem, count: int, seed: int) -> tuple[Solution, ...]:
+def sampled_orders(problem: ImpulseRows, count: int, seed: int) -> tuple[Solution, ...]:
     """The sequential rule in `count` orders drawn at random (``random.Random(seed)``,
     each a uniform shuffle; repeats possible when the orders are few): a sample of
     the outcomes' spread, not every order."""

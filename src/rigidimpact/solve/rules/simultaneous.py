@@ -42,7 +42,7 @@ from rigidimpact.solve.lcp import (
     residual,
     rounded_solve,
 )
-from rigidimpact.solve.problem import MAX_ENUMERATED, ImpactProblem
+from rigidimpact.solve.problem import MAX_ENUMERATED, ImpulseRows
 from rigidimpact.solve.rules.base import Rule
 from rigidimpact.solve.rules.floating import (
     STATE,
@@ -78,7 +78,7 @@ MAX_ENUMERATION_WORK = 20_000
 class _Work:
     """Work counted against MAX_ENUMERATION_WORK; past it, one line (`refusal`)."""
 
-    def __init__(self, problem: ImpactProblem, refusal: str) -> None:
+    def __init__(self, problem: ImpulseRows, refusal: str) -> None:
         symbols = len(problem.symbols)
         self.done, self.refusal = 0, refusal
         self.weight = 10 * (1 + symbols) if symbols else 1
@@ -136,13 +136,13 @@ class Simultaneous(Rule):
     name: ClassVar[str] = "simultaneous"
     whole_impact: ClassVar[bool] = True
 
-    def outcomes(self, problem: ImpactProblem) -> tuple[Solution, ...]:
+    def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         if problem.symbols:
             return simultaneous_cases(problem)
         return (simultaneous(problem),)
 
 
-def simultaneous(problem: ImpactProblem) -> Solution:
+def simultaneous(problem: ImpulseRows) -> Solution:
     """All contacts at once, no contact pulling (a complementarity problem).
 
     Newton's law: every acting contact leaves at ``-e`` times its closing velocity
@@ -171,7 +171,7 @@ def simultaneous(problem: ImpactProblem) -> Solution:
                          method=method)
 
 
-def _still_closing(problem: ImpactProblem, u: sp.Matrix) -> tuple[str, ...]:
+def _still_closing(problem: ImpulseRows, u: sp.Matrix) -> tuple[str, ...]:
     """A warning for every contact that still approaches after the impact (the bodies
     would pass into each other): Poisson's law scales each compression impulse by
     its own 1 + e, which need not leave every contact opening."""
@@ -185,7 +185,7 @@ def _still_closing(problem: ImpactProblem, u: sp.Matrix) -> tuple[str, ...]:
                  f"(the sequential rule can)" for name, speed in closing)
 
 
-def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
+def _frictional_simultaneous(problem: ImpulseRows) -> Solution:
     """All contacts at once with Coulomb friction, at the velocity level.
 
     Each contact is released (no impulse, separating at least as fast as Newton's
@@ -284,7 +284,7 @@ def _frictional_simultaneous(problem: ImpactProblem) -> Solution:
     return _friction_outcome(problem, rows, found, not_unique)
 
 
-def _friction_outcome(problem: ImpactProblem, rows: sp.Matrix,
+def _friction_outcome(problem: ImpulseRows, rows: sp.Matrix,
                       found: Sequence[tuple[sp.Matrix, tuple[str, ...]]],
                       not_unique: bool, tried_all: bool = True) -> Solution:
     """The outcome of the combinations of states that fit the rule (`found`, each with
@@ -349,7 +349,7 @@ def _rational(x: Any) -> sp.Rational:
     return sp.Rational(int(x.numerator), int(x.denominator))
 
 
-def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
+def _frictional_lcp(problem: ImpulseRows, v_n: sp.Matrix, v_t: sp.Matrix,
                     mu: Sequence[Any], target: Sequence[sp.Expr],
                     tangential: Sequence[Any]) -> Solution:
     """Coulomb friction at many contacts acting together as one linear complementarity
@@ -511,7 +511,7 @@ def _frictional_lcp(problem: ImpactProblem, v_n: sp.Matrix, v_t: sp.Matrix,
                             notes=(note,), method="lemke")
 
 
-def _friction_pattern(problem: ImpactProblem, pattern, W, v_n, v_t, target,
+def _friction_pattern(problem: ImpulseRows, pattern, W, v_n, v_t, target,
                       mu) -> tuple[sp.Matrix, bool] | None:
     """The impulses (normal then tangential) for one choice of contact states, if
     that choice is consistent, and whether they are the only ones."""
@@ -641,7 +641,7 @@ def _fitting_share(matrix: sp.Matrix, rhs: sp.Matrix, pattern: Sequence[str],
     return rounded_solve(system, values)[0] if rounded else least_norm(system, values)
 
 
-def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
+def _active_sets(problem: ImpulseRows, v: sp.Matrix, target: sp.Matrix):
     """Each set of acting contacts whose block of W is invertible, largest first:
     ``(active, P, v + W P)`` with P solving ``(v + W P)_i = target_i`` where it acts
     and zero elsewhere (the conditions that pick a set are the caller's)."""
@@ -665,7 +665,7 @@ def _active_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix):
             yield active, impulses, v + problem.scaled_W * impulses
 
 
-def _lcp(problem: ImpactProblem, v: sp.Matrix,
+def _lcp(problem: ImpulseRows, v: sp.Matrix,
          target: sp.Matrix) -> tuple[sp.Matrix, tuple[str, ...], str]:
     """The complementarity problem: exactly by Lemke's method (:mod:`rigidimpact.solve.lcp`)
     when its numbers are rational, W invertible (then exactly one answer fits, the one
@@ -697,7 +697,7 @@ def _lcp(problem: ImpactProblem, v: sp.Matrix,
     return _complementarity(problem, v, target), (), ""
 
 
-def _lcp_at_scale(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix,
+def _lcp_at_scale(problem: ImpulseRows, v: sp.Matrix, target: sp.Matrix,
                   rational: bool) -> tuple[sp.Matrix, tuple[str, ...], str]:
     """Many contacts: the acting set by block principal pivoting in floating point
     (sparse W), then, with rational numbers, that set solved and checked exactly.
@@ -806,7 +806,7 @@ def _confirm_in_field(W: sp.Matrix, v: sp.Matrix, target: sp.Matrix,
     return sp.Matrix([sp.radsimp(K.to_sympy(x)) for x in P])
 
 
-def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
+def _complementarity(problem: ImpulseRows, v: sp.Matrix, target: sp.Matrix) -> sp.Matrix:
     """P >= 0 with ``v + W P >= target`` and equality wherever P > 0, by trying the
     acting sets (largest first) within MAX_ENUMERATION_WORK: past that, one line says
     how large the problem is instead of a run of minutes."""
@@ -817,7 +817,7 @@ def _complementarity(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix) ->
     return sp.zeros(len(v), 1)
 
 
-def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
+def simultaneous_cases(problem: ImpulseRows) -> tuple[Solution, ...]:
     """The simultaneous rule with symbols: one outcome per set of acting contacts,
     each with the conditions under which it is the one (its impulses >= 0, every
     released contact separating at least as fast as its law asks, every contact
@@ -905,7 +905,7 @@ def simultaneous_cases(problem: ImpactProblem) -> tuple[Solution, ...]:
     return tuple(cases)
 
 
-def _sticking_sets(problem: ImpactProblem, v: sp.Matrix, target: sp.Matrix, stick: Sequence[int]):
+def _sticking_sets(problem: ImpulseRows, v: sp.Matrix, target: sp.Matrix, stick: Sequence[int]):
     """As :func:`_active_sets`, with the contacts in `stick` leaving without slip
     where they act (their tangential impulse an unknown of its own, no cone):
     ``(active, P_n, v_n + (W P)_n, P_t)`` for each set whose block is invertible."""
