@@ -27,7 +27,10 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.laws.cone import cone_impact as cone_impact
     from rigidimpact.laws.contact import Contact as Contact
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
+    from rigidimpact.laws.law import EnergeticRestitution as EnergeticRestitution
     from rigidimpact.laws.law import Equation as Equation
+    from rigidimpact.laws.law import NewtonRestitution as NewtonRestitution
+    from rigidimpact.laws.law import PoissonRestitution as PoissonRestitution
     from rigidimpact.model.bodies import Body as Body
     from rigidimpact.model.bodies import join as join
     from rigidimpact.model.space import Body3 as Body3
@@ -71,7 +74,8 @@ _PUBLIC = {
     "InputError": "errors",
     # solving
     "Impact": "solve.impact", "Equation": "laws.law", "Solution": "solve.solution",
-    "RESTITUTION_LAWS": "laws.law",
+    "RESTITUTION_LAWS": "laws.law", "NewtonRestitution": "laws.law",
+    "PoissonRestitution": "laws.law", "EnergeticRestitution": "laws.law",
     "symbol": "symbolic.notation", "PROBLEMS": "paper.problems",
     "Derivation": "solve.derivation", "derive": "paper.problems",
     # several contacts: the collision, its rules and what they give
