@@ -491,6 +491,10 @@ class NewtonRestitution(ContactLaw):
         model is built on it asks), else None."""
         return self.e
 
+    def words(self, spatial: bool = False) -> Given:
+        return Given("Newton's restitution" if type(self) is NewtonRestitution
+                     else f"the {self.name} restitution law,")
+
     def equations(self, before, after):
         """The printed restitution equation of one contact, from :meth:`leaving` (the
         law's one face): the normal velocity after equals what the law asks of the
@@ -693,6 +697,9 @@ class PoissonRestitution(NewtonRestitution):
     def newtons_e(self) -> Any:
         return None  # a kinetic or energetic law, Newton's only on a straight path
 
+    def words(self, spatial: bool = False) -> Given:
+        return Given("Poisson's restitution")
+
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
         return routh.poisson_end(first, second, v_n, self.e, stop_in_restitution)
@@ -766,6 +773,9 @@ class EnergeticRestitution(NewtonRestitution):
 
     def newtons_e(self) -> Any:
         return None  # a kinetic or energetic law, Newton's only on a straight path
+
+    def words(self, spatial: bool = False) -> Given:
+        return Given("the energetic restitution law,")
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:

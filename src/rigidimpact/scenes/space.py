@@ -50,6 +50,7 @@ from rigidimpact.scenes.scene import (
     scene_from_data,
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, exact_numbers, read_values
+from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.rules import DEFAULT_RULE, Rule, RuleSettings, rule_named
 from rigidimpact.solve.solution import Solution
 from rigidimpact.solve.space import SpaceCollision
@@ -64,8 +65,6 @@ BODY_FIELDS = {"sphere": ("name", "shape", "mass", "radius", "inertia", "positio
                "rigid": ("name", "shape", "mass", "inertia", "orientation", "position",
                          "velocity", "spin"),
                "fixed": ("name", "shape")}
-RESTITUTION_WORDS = {"newton": "Newton's restitution", "poisson": "Poisson's restitution",
-                     "energetic": "the energetic restitution law,"}
 CONTACT_FIELDS = ("name", "bodies", "point", "normal", "restitution", "law", "tangential",
                   "friction", "tangential_restitution")
 
@@ -171,7 +170,7 @@ class SpaceScene:
         digits = dps or 17
         numbers = {k: float(sp.N(v, digits)) for k, v in solution.results().items()}
         extra: dict[str, Any] = {"rule": "one contact" if len(self.contacts) == 1 else
-                                 RULE_WORDS.get(solution.rule, solution.label),
+                                 conduct(solution.rule).spoken or solution.label,
                                  "acted": list(solution.acted)}
         if solution.checks:
             extra["checks"] = {k: float(v) for k, v in solution.checks.items()}
@@ -184,8 +183,6 @@ class SpaceScene:
                           exact_numbers(solution.results()) if exact else None)
 
 
-# the rule as evaluate --json has long named it in 3-D
-RULE_WORDS = {"driven": "one strikes, the others rest"}
 
 
 def _described(b: Body3) -> Given:
@@ -208,7 +205,7 @@ def _unnamed(course: str) -> str:
 
 def _law_words(c: Contact) -> Given:
     """A contact's laws in words: restitution, then the tangential law (its own)."""
-    return Given(f"{RESTITUTION_WORDS.get(c.law, c.law)} e = {{}}, ", c.restitution) + \
+    return Given(f"{c.laws[0].words()} e = {{}}, ", c.restitution) + \
         c.laws[1].words(spatial=True)
 
 
@@ -251,7 +248,7 @@ def _equations(collision: SpaceCollision) -> tuple[Equation, ...]:
     after = sp.Matrix([x for b in collision.free for x in _after(b)])
     if len(collision.contacts) == 1 and not c.laws[0].splits_on_compression:
         J = collision.rows(c)  # a kinematic law: its normal velocity after, as it asks
-        out.append(Equation(f"{RESTITUTION_WORDS.get(c.law, c.law)} at {c.name}".replace(
+        out.append(Equation(f"{c.laws[0].words()} at {c.name}".replace(
             ",", ""), "", (J * after)[0], c.laws[0].leaving((J * collision.u_before)[0]),
             law="restitution"))
     row = 0

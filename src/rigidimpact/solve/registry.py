@@ -44,6 +44,8 @@ class Conduct:
     impulse_words: ClassVar[str] = "{name}'s impulse under the rule"
     # what every answer of the rule says of itself, in space (empty: nothing)
     summary: ClassVar[str] = ""
+    # the rule as a 3-D scene's evaluate names it (empty: its label)
+    spoken: ClassVar[str] = ""
 
 
 RULES: dict[str, Any] = {}  # name to Rule class, filled by rigidimpact.solve.rules

@@ -62,6 +62,7 @@ class Driven(Rule):
 
     tolerance: float | None = None
     name: ClassVar[str] = "driven"
+    spoken: ClassVar[str] = "one strikes, the others rest"  # as 3-D evaluate long said
     stated_tolerance: ClassVar[float | None] = 1e-7  # integrated to 1e-10, stated 1000x
     impulse_words: ClassVar[str] = ("{name}'s impulse, integrated in the striking contact's "
                                     "normal impulse")
