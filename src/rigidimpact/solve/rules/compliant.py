@@ -102,9 +102,7 @@ def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, he
     >>> round(float(out.results()["ball1.vx"]), 6)
     1.0
     """
-    import scipy.sparse as sps  # scipy on demand: a smooth derivation never loads it
     from scipy.integrate import ode, solve_ivp
-    from scipy.sparse.csgraph import reverse_cuthill_mckee
 
     problem.numbers_only("compliant")
     problem.smooth_only("under the compliant rule")
@@ -114,44 +112,8 @@ def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, he
                              "spring-dashpot form: use the simultaneous or sequential "
                              "rule")
     k = len(problem.contacts)
-    stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
-    if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
-        raise InputError("stiffness", "every contact stiffness must be a positive number")
-    # only the coordinates some contact moves are integrated (a chain's balls do not
-    # spin or move across it); J is sparse, each contact touching two bodies
-    entries = problem.J.row_list()  # the springs push along the unit normals
-    dense = problem.dense  # joints or a mechanics system: M^-1 couples the speeds
-    moved = list(range(len(problem.coordinates))) if dense else \
-        sorted({j for _, j, _ in entries})
-    column = {j: c for c, j in enumerate(moved)}
+    moved, J, JT, accelerate, frequency, force = _springs(problem, stiffness, hertz)
     n = len(moved)
-    J = sps.csr_matrix(([float(x) for _, _, x in entries],
-                        ([i for i, _, _ in entries], [column[j] for _, j, _ in entries])),
-                       shape=(k, n))
-    JT = J.T.tocsr()
-    if dense:
-        m_full = np.array(problem.M_inverse.evalf(30), dtype=float)
-        w_diag = np.einsum("ij,jk,ik->i", J.toarray(), m_full, J.toarray())
-    else:
-        m_inv = np.array([float(problem.inverse_inertia[j]) for j in moved])
-        w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
-
-    def accelerate(f):
-        """M^-1 J^T f: the speeds' rates under the contact forces."""
-        return m_full @ (JT @ f) if dense else m_inv * (JT @ f)
-    e = np.array([float(t.restitution) for t in problem.contacts])
-    if hertz and np.any(e < 1):
-        raise InputError("restitution", "Hertzian contacts here are elastic (e = 1)")
-    ratio = np.array([damping_ratio_for(float(x)) for x in e])
-    damping = 0.0 if hertz else 2 * ratio * np.sqrt(stiff / w_diag)
-
-    def force(depth, rate):
-        pressed = depth > 0
-        if hertz:
-            push = stiff * np.where(pressed, depth, 0.0) ** 1.5
-        else:
-            push = stiff * depth + damping * rate
-        return np.where(pressed, np.maximum(push, 0.0), 0.0)
 
     def rhs(_, y):
         u, depth = y[:n], y[n:n + k]
@@ -162,26 +124,17 @@ def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, he
     u_all = np.array(problem.u_before.evalf(), dtype=float).ravel()
     y = np.concatenate([u_all[moved], np.zeros(k), np.zeros(k)])
     speed = float(max(abs(v) for v in problem.scaled_velocity_before))
-    mass = 1 / w_diag  # each contact's effective mass
+    # each contact's effective mass over its stiffness, 1 / (k W_ii)
     if hertz:  # a Hertz contact lasts about 3 (m^2 / (k^2 v))^(1/5)
-        period = 3 * float(((mass / stiff) ** 2 / speed).max() ** 0.2)
+        period = 3 * float(((1 / frequency) ** 2 / speed).max() ** 0.2)
     else:
-        period = math.pi * float(np.sqrt(mass / stiff).max())
+        period = math.pi * float(np.sqrt(1 / frequency).max())
     # LSODA (compiled, switching between Adams and BDF as the problem asks) with the
     # Jacobian's sparsity given as a band: u couples to the depths and impulses only
     # through the sparse J, and the state, ordered by reverse Cuthill-McKee, has a
     # narrow band (a chain's a few wide), so a stiff stretch costs a band
     # factorisation, not LSODA's dense n^2 one
-    none = sps.csr_matrix((n, k))  # u', depth', impulse' against u, depth, impulse
-    coupled = sps.csr_matrix(np.ones((n, n))) if dense else JT @ J
-    pattern = sps.bmat([[coupled, JT, none], [J, None, None], [J, sps.identity(k), None]],
-                       format="csr")
-    pattern = (pattern + pattern.T + sps.identity(n + 2 * k)).tocsr()
-    order = reverse_cuthill_mckee(pattern, symmetric_mode=True)
-    place = np.empty_like(order)
-    place[order] = np.arange(len(order))
-    rows, cols = pattern.nonzero()
-    band = int(np.abs(place[rows] - place[cols]).max())
+    order, place, band = _banded(J, JT, problem.dense)
 
     def ordered(t, y):
         return rhs(t, y[place])[order]
@@ -262,3 +215,73 @@ def _restart(solver: Any, y: Any, t: float) -> None:
     solver.t = t
     integrator.call_args[3] = 1  # istate 1: a new problem, the same arrays
     integrator.istate = 1
+
+
+def _banded(J: Any, JT: Any, dense: bool) -> tuple[np.ndarray, np.ndarray, int]:
+    """The state's order (reverse Cuthill-McKee), its inverse and the half-width of the
+    band that ordering gives the Jacobian of (u, depths, impulses): u couples to the
+    depths and impulses only through the sparse J."""
+    import scipy.sparse as sps
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    k, n = J.shape
+    none = sps.csr_matrix((n, k))  # u', depth', impulse' against u, depth, impulse
+    coupled = sps.csr_matrix(np.ones((n, n))) if dense else JT @ J
+    pattern = sps.bmat([[coupled, JT, none], [J, None, None], [J, sps.identity(k), None]],
+                       format="csr")
+    pattern = (pattern + pattern.T + sps.identity(n + 2 * k)).tocsr()
+    order = reverse_cuthill_mckee(pattern, symmetric_mode=True)
+    place = np.empty_like(order)
+    place[order] = np.arange(len(order))
+    rows, cols = pattern.nonzero()
+    return order, place, int(np.abs(place[rows] - place[cols]).max())
+
+
+def _springs(problem: ImpulseRows, stiffness: Sequence[float] | float, hertz: bool
+             ) -> tuple[list[int], Any, Any, Any, np.ndarray, Any]:
+    """The springs' model on the coordinates some contact moves: those coordinates, J
+    and J^T there (sparse, along the unit normals), M^-1 J^T f as a function, each
+    contact's stiffness, and its force as a function of its depth and rate."""
+    import scipy.sparse as sps
+
+    k = len(problem.contacts)
+    stiff = np.broadcast_to(np.asarray(stiffness, dtype=float), (k,)).copy()
+    if np.any(~np.isfinite(stiff)) or np.any(stiff <= 0):
+        raise InputError("stiffness", "every contact stiffness must be a positive number")
+    # only the coordinates some contact moves are integrated (a chain's balls do not
+    # spin or move across it); J is sparse, each contact touching two bodies
+    entries = problem.J.row_list()  # the springs push along the unit normals
+    dense = problem.dense  # joints or a mechanics system: M^-1 couples the speeds
+    moved = list(range(len(problem.coordinates))) if dense else \
+        sorted({j for _, j, _ in entries})
+    column = {j: c for c, j in enumerate(moved)}
+    n = len(moved)
+    J = sps.csr_matrix(([float(x) for _, _, x in entries],
+                        ([i for i, _, _ in entries], [column[j] for _, j, _ in entries])),
+                       shape=(k, n))
+    JT = J.T.tocsr()
+    if dense:
+        m_full = np.array(problem.M_inverse.evalf(30), dtype=float)
+        w_diag = np.einsum("ij,jk,ik->i", J.toarray(), m_full, J.toarray())
+    else:
+        m_inv = np.array([float(problem.inverse_inertia[j]) for j in moved])
+        w_diag = np.asarray(J.multiply(J) @ m_inv).ravel()  # diag(J M^-1 J^T)
+
+    def accelerate(f):
+        """M^-1 J^T f: the speeds' rates under the contact forces."""
+        return m_full @ (JT @ f) if dense else m_inv * (JT @ f)
+    e = np.array([float(t.restitution) for t in problem.contacts])
+    if hertz and np.any(e < 1):
+        raise InputError("restitution", "Hertzian contacts here are elastic (e = 1)")
+    ratio = np.array([damping_ratio_for(float(x)) for x in e])
+    damping = 0.0 if hertz else 2 * ratio * np.sqrt(stiff / w_diag)
+
+    def force(depth, rate):
+        pressed = depth > 0
+        if hertz:
+            push = stiff * np.where(pressed, depth, 0.0) ** 1.5
+        else:
+            push = stiff * depth + damping * rate
+        return np.where(pressed, np.maximum(push, 0.0), 0.0)
+
+    return moved, J, JT, accelerate, stiff / w_diag, force
