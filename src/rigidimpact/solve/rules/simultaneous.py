@@ -385,43 +385,8 @@ def _frictional_lcp(problem: ImpulseRows, v_n: sp.Matrix, v_t: sp.Matrix,
         return frictional_newton(problem, rows, v_n, v_t, mu, target, tangential)
     W = (J * Minv * J.transpose()).to_sdm()  # sparse: {row: {column: value}}
 
-    # every entry an element of QQ (python-flint's fmpq where installed, as W's own
-    # entries are): the confirmation below adds and compares them without converting
-    def g(x: Any) -> Any:
-        x = sp.Rational(x)
-        return QQ(int(x.p), int(x.q))
-
-    sticks = [m is None and law.grips for m, law in zip(mu, tangential, strict=True)]
-    cone = [QQ(0) if (m is None or not law.grips) else g(m)
-            for m, law in zip(mu, tangential, strict=True)]
+    M, q, sticks, cone = _friction_tableau(W, v_n, v_t, mu, target, tangential)
     size = 4 * n
-    M: list[dict[int, Any]] = [{} for _ in range(size)]  # sparse rows
-    q = [QQ(0)] * size
-    for i in range(n):
-        q[i] = g(v_n[i]) - g(target[i])
-        q[n + i], q[2 * n + i] = g(v_t[i]), -g(v_t[i])
-    for i, row in W.items():
-        for j, value in row.items():
-            x = value
-            if i < n and j < n:
-                M[i][j] = x
-            elif i < n:  # W_nt: the tangential impulses' effect on the normal velocity
-                M[i][j] = x
-                M[i][n + j] = -x
-            elif j < n:  # W_tn
-                M[i][j] = x
-                M[n + i][j] = -x
-            else:  # W_tt
-                M[i][j], M[i][n + j] = x, -x
-                M[n + i][j], M[n + i][n + j] = -x, x
-    for i in range(n):
-        if sticks[i]:
-            M[3 * n + i][3 * n + i] = QQ(1)  # no slack: the slip after is zero
-        else:
-            M[n + i][3 * n + i] = M[2 * n + i][3 * n + i] = QQ(1)
-            if cone[i]:
-                M[3 * n + i][i] = cone[i]
-            M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = QQ(-1)
     def confirmed(guess: np.ndarray) -> list[Any] | None:
         """The exact solution on the support of a floating-point `guess`, if it is one."""
         cut = 1e-9 * max(1.0, float(np.abs(guess).max()))
@@ -509,6 +474,52 @@ def _frictional_lcp(problem: ImpulseRows, v_n: sp.Matrix, v_t: sp.Matrix,
                             courses=tuple(f"{t.name}: {STATE[s]}" for t, s in
                                           zip(problem.contacts, states, strict=True)),
                             notes=(note,), method="lemke")
+
+
+def _friction_tableau(W: Any, v_n: sp.Matrix, v_t: sp.Matrix, mu: Sequence[Any],
+                      target: Sequence[sp.Expr], tangential: Sequence[Any]
+                      ) -> tuple[list[dict[int, Any]], list[Any], list[bool], list[Any]]:
+    """The frictional complementarity problem's sparse rows M and q over the rationals
+    (see :func:`_frictional_lcp`), which contacts stick and each contact's cone."""
+    n = len(v_n)
+    # every entry an element of QQ (python-flint's fmpq where installed, as W's own
+    # entries are): the confirmation below adds and compares them without converting
+    def g(x: Any) -> Any:
+        x = sp.Rational(x)
+        return QQ(int(x.p), int(x.q))
+
+    sticks = [m is None and law.grips for m, law in zip(mu, tangential, strict=True)]
+    cone = [QQ(0) if (m is None or not law.grips) else g(m)
+            for m, law in zip(mu, tangential, strict=True)]
+    size = 4 * n
+    M: list[dict[int, Any]] = [{} for _ in range(size)]  # sparse rows
+    q = [QQ(0)] * size
+    for i in range(n):
+        q[i] = g(v_n[i]) - g(target[i])
+        q[n + i], q[2 * n + i] = g(v_t[i]), -g(v_t[i])
+    for i, row in W.items():
+        for j, value in row.items():
+            x = value
+            if i < n and j < n:
+                M[i][j] = x
+            elif i < n:  # W_nt: the tangential impulses' effect on the normal velocity
+                M[i][j] = x
+                M[i][n + j] = -x
+            elif j < n:  # W_tn
+                M[i][j] = x
+                M[n + i][j] = -x
+            else:  # W_tt
+                M[i][j], M[i][n + j] = x, -x
+                M[n + i][j], M[n + i][n + j] = -x, x
+    for i in range(n):
+        if sticks[i]:
+            M[3 * n + i][3 * n + i] = QQ(1)  # no slack: the slip after is zero
+        else:
+            M[n + i][3 * n + i] = M[2 * n + i][3 * n + i] = QQ(1)
+            if cone[i]:
+                M[3 * n + i][i] = cone[i]
+            M[3 * n + i][n + i] = M[3 * n + i][2 * n + i] = QQ(-1)
+    return M, q, sticks, cone
 
 
 def _friction_pattern(problem: ImpulseRows, pattern, W, v_n, v_t, target,
