@@ -523,27 +523,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     law = scene.contact.laws[0]
 
     def impulse(y: np.ndarray) -> np.ndarray:
-        """The contact's restitution law in an instant between the touching points (a
-        rigid contact, smooth: a straight impulse path, where the law asks a normal
-        velocity after; Newton's ``e`` times the closing speed)."""
-        d, rate = penetration(y)
-        if rate <= 0:
-            return y
-        point = _application_point(first, second, y)
-        m1 = _effective_mass(first, y, normal, point)
-        m2 = _effective_mass(second, y, normal, point)
-        leaving = as_float(law.leaving(sp.Float(-rate, 30)), values)
-        j = (leaving + rate) / (1 / m1 + 1 / m2)
-        before = _energy(parts, y)[0]
-        y = y.copy()
-        for part, sign in ((first, -1.0), (second, 1.0)):
-            dy = np.zeros_like(y)
-            _apply(part, dy, y, sign * j * normal, point)
-            s, n = part.slot, part.size
-            vel = slice(s + n // 2, s + n)
-            y[vel] += dy[vel]
-        y[-1] += _energy(parts, y)[0] - before
-        return y
+        return _rigid_impulse(parts, normal, law, values, y, penetration(y)[1])
 
     calls = [0]
     most = MAX_RHS_WORK // max(len(y0), 1)
@@ -653,23 +633,56 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
         raise InputError("simulate", f"more than {MAX_SEGMENTS} contacts: the bodies chatter"
                          " (a rigid contact with e near 0 sticks; ask for contact-compliance)")
     events.append({"kind": "end", "t": t, "why": why})
-    final: dict[str, float] = {}
     origin = as_array(scene.contact.point, values)
+    final: dict[str, float] = {}
     for p in parts:
         final |= _final(p, y, origin)
     final["t"] = t
+    energy = _balance(parts, y0, y, flown, g)
+    _check_balance(energy, plan.settings["tolerance"], integrator["method"])
+    details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
+    track = Trajectory(np.array(times), np.array(states), tuple(parts), origin)
+    return Outcome(plan, final, events, time.perf_counter() - start, steps, details, track)
+
+
+def _rigid_impulse(parts: list[_Part], normal: np.ndarray, law: Any, values: Mapping,
+                   y: np.ndarray, rate: float) -> np.ndarray:
+    """The state after the contact's restitution law acts in an instant between the
+    touching points, closing at `rate` (a rigid contact, smooth: a straight impulse
+    path, where the law asks a normal velocity after; Newton's ``e`` times the closing
+    speed); the contact's work is added to the last entry."""
+    if rate <= 0:
+        return y
+    first, second = parts
+    point = _application_point(first, second, y)
+    m1 = _effective_mass(first, y, normal, point)
+    m2 = _effective_mass(second, y, normal, point)
+    leaving = as_float(law.leaving(sp.Float(-rate, 30)), values)
+    j = (leaving + rate) / (1 / m1 + 1 / m2)
+    before = _energy(parts, y)[0]
+    y = y.copy()
+    for part, sign in ((first, -1.0), (second, 1.0)):
+        dy = np.zeros_like(y)
+        _apply(part, dy, y, sign * j * normal, point)
+        s, n = part.slot, part.size
+        vel = slice(s + n // 2, s + n)
+        y[vel] += dy[vel]
+    y[-1] += _energy(parts, y)[0] - before
+    return y
+
+
+def _balance(parts: list[_Part], y0: np.ndarray, y: np.ndarray, flown: Any,
+             g: float) -> dict[str, float]:
+    """The run's energies: at the start, kinetic and stored at the end, the contact's
+    work (integrated alongside), and what the balance of them misses."""
     kinetic0, stored0 = _energy(parts, y0, g)
     kinetic, stored = _energy(parts, y, g)
     # a closed-form flight keeps its energy exactly: the balance is taken where it began
     # (far on, kinetic and potential energy are large and cancel in float64)
     balanced = sum(_energy(parts, flown, g)) if flown is not None else kinetic + stored
-    energy = {"initial": kinetic0 + stored0, "kinetic": kinetic, "stored": stored,
-              "contact_work": float(y[-1]),
-              "balance_error": balanced - (kinetic0 + stored0) - float(y[-1])}
-    _check_balance(energy, plan.settings["tolerance"], integrator["method"])
-    details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
-    track = Trajectory(np.array(times), np.array(states), tuple(parts), origin)
-    return Outcome(plan, final, events, time.perf_counter() - start, steps, details, track)
+    return {"initial": kinetic0 + stored0, "kinetic": kinetic, "stored": stored,
+            "contact_work": float(y[-1]),
+            "balance_error": balanced - (kinetic0 + stored0) - float(y[-1])}
 
 
 def _check_balance(energy: Mapping[str, float], tolerance: float, method: str) -> None:
