@@ -29,6 +29,8 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
     from rigidimpact.laws.law import Equation as Equation
     from rigidimpact.model.bodies import Body as Body
+    from rigidimpact.outputs.code import to_code as to_code
+    from rigidimpact.outputs.live import live_page as live_page
     from rigidimpact.model.bodies import join as join
     from rigidimpact.model.space import Body3 as Body3
     from rigidimpact.paper.problems import PROBLEMS as PROBLEMS
@@ -98,6 +100,8 @@ _PUBLIC = {
     "distributions": "analyses.distributions", "draw_distributions": "figures",
     "monte_carlo": "symbolic.distributions", "histogram": "symbolic.distributions",
     "pushforward": "symbolic.distributions",
+    # the derivation as code (C, JavaScript, ...) and as a live page
+    "to_code": "outputs.code", "live_page": "outputs.live",
 }
 
 __all__ = list(_PUBLIC)
