@@ -29,10 +29,10 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.laws.law import RESTITUTION_LAWS as RESTITUTION_LAWS
     from rigidimpact.laws.law import Equation as Equation
     from rigidimpact.model.bodies import Body as Body
-    from rigidimpact.outputs.code import to_code as to_code
-    from rigidimpact.outputs.live import live_page as live_page
     from rigidimpact.model.bodies import join as join
     from rigidimpact.model.space import Body3 as Body3
+    from rigidimpact.outputs.code import to_code as to_code
+    from rigidimpact.outputs.live import live_page as live_page
     from rigidimpact.paper.problems import PROBLEMS as PROBLEMS
     from rigidimpact.paper.problems import derive as derive
     from rigidimpact.scenes.scene import Scene as Scene

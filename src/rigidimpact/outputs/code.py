@@ -23,8 +23,8 @@ numbers at the scene's ``[values]``.
 Examples
 --------
 >>> text = to_code("discs", "c")
->>> print(text[text.index("void discs("):][:62])
-void discs(double V_1ix, double V_1iy, double V_2ix, double V_2iy,
+>>> print(text[text.index("int discs("):][:65])
+int discs(double V_1ix, double V_1iy, double V_2ix, double V_2iy,
 >>> "1.0/2.0" in text
 True
 """
@@ -76,7 +76,8 @@ BUILD: dict[str, dict[str, Any]] = {
 # values for the built-in problems, which state none (a scene's come from its [values]);
 # the live page's sliders start here
 BUILTIN_VALUES: dict[str, dict[str, float]] = {
-    "barbell": {"m": 1.0, "M": 2.0, "L": 0.5, "theta": math.pi / 6, "e": 0.5, "v_ix": 1.0},
+    # the paper's re-strike at the start: e = 0, theta = 15 degrees, below the critical angle
+    "barbell": {"m": 1.0, "M": 1.0, "L": 0.5, "theta": math.pi / 12, "e": 0.0, "v_ix": 1.0},
     "sticking": {"m": 1.0, "M": 2.0, "L": 0.5, "theta": math.pi / 6, "v_ix": 1.0},
     "discs": {"V_1ix": 1.0, "V_1iy": 0.0, "V_2ix": 0.0, "V_2iy": 0.0, "e": 0.5},
     "two-body": {"m_1": 1.0, "m_2": 2.0, "I_1": 0.1, "I_2": 0.3, "R_1y": 0.2, "R_2y": -0.1,
@@ -202,7 +203,7 @@ def _role_checks(derivation: Derivation, used: set[sp.Symbol]) -> list[tuple[str
     no condition to SymPy, but it is one to the exported code)."""
     plain = {s: sp.Symbol(s.name) for s in used}
     checks: list[tuple[str, sp.Basic]] = []
-    covered = set()
+    covered: set[sp.Basic] = set()
     for role in derivation.roles:
         expr = sp.sympify(role.expr)
         if role.zero or not expr.free_symbols or not expr.free_symbols <= used:
@@ -245,7 +246,7 @@ def program_of(target: Any) -> Program:
     --------
     >>> p = program_of("sticking")
     >>> p.names, list(p.outputs)
-    (('L', 'M', 'm', 'theta', 'v_ix'), ['V_x', 'h', 'omega_z'])
+    (('L', 'M', 'm', 'theta', 'v_ix'), ['u_x', 'omega_z', 'h'])
     """
     derivation, where, defaults, scene = resolve_target(target)
     results = {k: sp.sympify(v) for k, v in derivation.results.items()}

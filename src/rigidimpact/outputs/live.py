@@ -48,10 +48,14 @@ def slider_ranges(program: Program) -> dict[str, tuple[float, float]]:
                     bounds[rel.lhs.name][0] = max(low, float(rel.rhs))
                 else:
                     bounds[rel.lhs.name][1] = min(high, float(rel.rhs))
+    angles = {s.name for x in program.formulas.values()
+              for f in x.atoms(sp.sin, sp.cos, sp.tan) for s in f.free_symbols}
     ranges = {}
     for name in program.names:
         v = program.defaults.get(name, 1.0)
         low, high = (v / 10, 2 * v) if v > 0 else (2 * v, v / 10) if v < 0 else (-1.0, 1.0)
+        if name in angles and 0 < v < math.pi / 2:  # an angle: the whole quarter turn
+            low, high = math.pi / 360, math.pi / 2
         lo_bound, hi_bound = bounds.get(name, [-math.inf, math.inf])
         if lo_bound == 0 and hi_bound == 1:  # a coefficient in [0, 1]: the whole of it
             low, high = 0.0, 1.0
@@ -127,7 +131,7 @@ def _formula(key: str, expr: sp.Expr) -> str:
     if len(text) > _MAX_MATHML:
         return ("<span class='long'>a formula too long to typeset here "
                 f"({sp.count_ops(expr)} operations); the export holds it whole</span>")
-    name = mathml(sp.Symbol(key.replace(".", "_")), printer="presentation")
+    name = f"<mtext>{html.escape(key)}</mtext>"
     return (f'<math display="block"><mrow>{name}<mo>=</mo>{text}</mrow></math>')
 
 
@@ -223,8 +227,9 @@ function restrike(ball, bar) {
   return null;
 }
 
-// the critical angle: the largest theta below which the barbell strikes the ball
-// again, found by bisection on the exported function's answers (null: none below 90 deg)
+// the critical angle: the upper end of the lowest window of initial angles (below 90
+// degrees) in which the barbell strikes the ball again, found by a scan and bisection
+// on the exported function's answers (null: no window ends below 90 degrees)
 function criticalAngle(v) {
   const at = symbols.indexOf(BARBELL.angle);
   const hits = (theta) => {
@@ -232,13 +237,21 @@ function criticalAngle(v) {
     const bs = bodiesAt(w);
     return restrike(bs[BARBELL.ball], bs[BARBELL.bar]) !== null;
   };
-  let lo = 1e-3, hi = Math.PI / 2 - 1e-3;
-  if (!hits(lo) || hits(hi)) { return null; }
-  for (let k = 0; k < 60; k++) {
-    const mid = (lo + hi) / 2;
-    if (hits(mid)) { lo = mid; } else { hi = mid; }
+  const n = 90, top = Math.PI / 2;
+  let first = -1;
+  for (let i = 1; i < n; i++) {
+    const hit = hits(top * i / n);
+    if (hit && first < 0) { first = i; }
+    if (!hit && first >= 0) {
+      let lo = top * (i - 1) / n, hi = top * i / n;
+      for (let k = 0; k < 50; k++) {
+        const mid = (lo + hi) / 2;
+        if (hits(mid)) { lo = mid; } else { hi = mid; }
+      }
+      return (lo + hi) / 2;
+    }
   }
-  return (lo + hi) / 2;
+  return null;
 }
 
 function svgEl(tag, attrs) {
@@ -259,10 +272,11 @@ function picture(svg, bodies, which, t, paths, mark) {
   const xs = pts.map((p) => p[0]).filter(Number.isFinite);
   const ys = pts.map((p) => p[1]).filter(Number.isFinite);
   let x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
-  const size = Math.max(x1 - x0, y1 - y0, 1e-9) * 1.3;
+  const size = Math.max(x1 - x0, (y1 - y0) * 4 / 3, 1e-9) * 1.3;
   const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-  const W = 360, k = W / size;
-  const X = (x) => W / 2 + (x - cx) * k, Y = (y) => W / 2 - (y - cy) * k;
+  const W = Number(svg.getAttribute("width")), k = W / size;
+  const H = Number(svg.getAttribute("height"));
+  const X = (x) => W / 2 + (x - cx) * k, Y = (y) => H / 2 - (y - cy) * k;
   const speeds = bodies.flatMap((b) => [Math.hypot(b.vx, b.vy), Math.hypot(b.vx2, b.vy2)]);
   const vs = 0.25 * size / Math.max(...speeds.filter(Number.isFinite), 1e-12);
   for (const s of SURFACES) {
@@ -271,11 +285,12 @@ function picture(svg, bodies, which, t, paths, mark) {
       x2: X(px + tx * h), y2: Y(py + ty * h), stroke: "#888", "stroke-width": 3 }));
   }
   if (mark) {
-    svg.appendChild(svgEl("line", { x1: X(0), y1: Y(0), x2: X(mark.r * Math.cos(mark.angle)),
-      y2: Y(mark.r * Math.sin(mark.angle)), stroke: "#c60", "stroke-dasharray": "6 4",
+    const r = Math.max(mark.r, size / 3);
+    svg.appendChild(svgEl("line", { x1: X(0), y1: Y(0), x2: X(r * Math.cos(mark.angle)),
+      y2: Y(r * Math.sin(mark.angle)), stroke: "#c60", "stroke-dasharray": "6 4",
       "stroke-width": 1.5 }));
-    const label = svgEl("text", { x: X(mark.r * Math.cos(mark.angle)) + 4,
-      y: Y(mark.r * Math.sin(mark.angle)), fill: "#c60", "font-size": 12 });
+    const label = svgEl("text", { x: X(r * Math.cos(mark.angle)) + 4,
+      y: Y(r * Math.sin(mark.angle)), fill: "#c60", "font-size": 12 });
     label.textContent = mark.text; svg.appendChild(label);
   }
   const colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#17becf"];
@@ -473,12 +488,12 @@ fetches nothing.</p>
 <table class="outputs">{rows}</table>
 </div><div id="figures">
 <h2>Before and after the impact</h2>
-<svg id="before" width="360" height="360" role="img" aria-label="the bodies before"></svg>
-<svg id="after" width="360" height="360" role="img" aria-label="the bodies after"></svg>
+<svg id="before" width="280" height="280" role="img" aria-label="the bodies before"></svg>
+<svg id="after" width="280" height="280" role="img" aria-label="the bodies after"></svg>
 <p class="note">Left: the bodies at the impact with their velocities before; right: with
 their velocities after (arrows to one scale).</p>
 <h2>After the impact</h2>
-<svg id="motion" width="360" height="360" role="img" aria-label="the motion"></svg>
+<svg id="motion" width="560" height="420" role="img" aria-label="the motion"></svg>
 <p class="note">{motion_words}</p>
 <p id="restrike"></p>
 </div></div>
