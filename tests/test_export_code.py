@@ -138,3 +138,20 @@ def test_export_writes_the_file_and_python_gives_the_same(tmp_path, capsys):
     assert main(["export", "barbell", "--to", "c", "--out", str(out)]) == 0
     assert out.read_text() == ri.to_code("barbell", "c") == ri.to_code(ri.derive("barbell"), "c")
     assert capsys.readouterr().out.strip() == str(out)
+
+
+def test_the_guide_shows_what_the_c_program_prints(tmp_path):
+    # the C program of the guide's first example, built and run as the guide shows
+    import re
+
+    page = (ROOT / "docs" / "guide" / "export-code.md").read_text()
+    shown = re.search(r"\./barbell e=0\.5 theta=0\.5\n```\n\n```text\n(.*?)```", page, re.S)
+    assert shown is not None
+    _tool("c")
+    [row] = run_export("c", to_code("barbell", "c"), [{"e": 0.5, "theta": 0.5}], tmp_path)
+    assert "".join(f"{k} = {v!r}\n" for k, v in row.items()) != ""  # parsed
+    import subprocess
+
+    done = subprocess.run([str(tmp_path / "program"), "e=0.5", "theta=0.5"],
+                          capture_output=True, text=True)
+    assert done.stdout == shown.group(1)

@@ -204,7 +204,11 @@ def _role_checks(derivation: Derivation, used: set[sp.Symbol]) -> list[tuple[str
     plain = {s: sp.Symbol(s.name) for s in used}
     checks: list[tuple[str, sp.Basic]] = []
     covered: set[sp.Basic] = set()
-    for role in derivation.roles:
+    solution = derivation.solution
+    # a 3-D scene's evaluate checks no roles (its values are read without them)
+    spatial = solution is not None and (any(len(b.position) == 3 for b in solution.before)
+                                        or any(len(c.point) == 3 for c in solution.contacts))
+    for role in () if spatial else derivation.roles:
         expr = sp.sympify(role.expr)
         if role.zero or not expr.free_symbols or not expr.free_symbols <= used:
             continue
@@ -230,7 +234,6 @@ def _role_checks(derivation: Derivation, used: set[sp.Symbol]) -> list[tuple[str
             checks.insert(0, (f"{s.name} must not be negative", sp.GreaterThan(x, 0)))
         elif s.is_negative:
             checks.insert(0, (f"{s.name} must be negative", sp.StrictLessThan(x, 0)))
-    solution = derivation.solution
     if solution is not None and solution.approach_speed is not None:
         speed = sp.sympify(solution.approach_speed)
         if speed.free_symbols and speed.free_symbols <= used:
