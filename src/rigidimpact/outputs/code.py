@@ -41,6 +41,7 @@ from typing import Any
 
 import sympy as sp
 from sympy.printing.c import C99CodePrinter
+from sympy.printing.codeprinter import CodePrinter
 from sympy.printing.fortran import FCodePrinter
 from sympy.printing.jscode import JavascriptCodePrinter
 from sympy.printing.octave import OctaveCodePrinter
@@ -340,6 +341,15 @@ class _Rust(RustCodePrinter):
     def _print_Integer(self, expr: Any, _type: bool = False) -> str:
         return f"{int(expr)}_f64"  # every number a float: Rust does not mix the two
 
+    # SymPy's Rust printer casts a product's factors to floats, and a cast factor loses
+    # its parentheses (-(x + y)/5 printed as -1_f64/5.0*x + y); every number here is a
+    # float already, so the generic printing, with its parentheses, is the right one
+    def _print_Mul(self, expr: Any) -> str:
+        return CodePrinter._print_Mul(self, expr)
+
+    def _print_Add(self, expr: Any, order: Any = None) -> str:
+        return CodePrinter._print_Add(self, expr, order)
+
     def _print_Pow(self, expr: Any) -> str:
         if expr.exp.is_Integer and expr.exp not in (-1, 1):
             return f"{self.parenthesize(expr.base, 1000)}.powi({int(expr.exp)})"
@@ -378,6 +388,7 @@ class _Body:
     """The printed statements of the function: shared subexpressions, then each value."""
 
     temps: list[tuple[str, str]]
+    logical: set[str]  # the shared subexpressions that are conditions, not numbers
     outputs: list[str]
     regime: str | None
     checks: list[str]
@@ -412,6 +423,7 @@ def _prepared(program: Program, lang: str) -> _Body:
     n = len(program.outputs)
     shown = [show(x) for x in reduced]
     return _Body(temps=[(str(t), show(x)) for t, x in temps], outputs=shown[:n],
+                 logical={str(t) for t, x in temps if isinstance(x, sp.logic.boolalg.Boolean)},
                  regime=shown[n] if program.regime is not None else None,
                  checks=shown[n + (program.regime is not None):],
                  arguments=[words[s.name].name for s in program.symbols])
@@ -486,7 +498,8 @@ def _c(program: Program) -> str:
               + ". Returns 0, or k > 0 when the values are refused for the reason "
               + f"{p}_refusals[k - 1] (the outputs are then NaN). */",
               f"int {p}({args.format(size=len(keys))}) {{"]
-    lines += [f"    const double {t} = {x};" for t, x in body.temps]
+    lines += [f"    const {'int' if t in body.logical else 'double'} {t} = {x};"
+              for t, x in body.temps]
     for k, check in enumerate(body.checks, 1):
         lines += [f"    if (!({check})) {{",
                   f"        for (int i = 0; i < {len(keys)}; i++) out[i] = NAN;",
@@ -665,7 +678,8 @@ def _fortran(program: Program) -> str:
     lines += [f"    real(kind(1.0d0)), intent(out) :: out({len(keys)})",
               "    integer, intent(out) :: status"]
     for t, _ in body.temps:
-        lines.append(f"    real(kind(1.0d0)) :: {t}")
+        kind = "logical" if t in body.logical else "real(kind(1.0d0))"
+        lines.append(f"    {kind} :: {t}")
     def assign(target: str, text: str) -> list[str]:
         out = printer._wrap_fortran([f"{target} = {text}"]) if hasattr(printer, "_wrap_fortran") \
             else [f"{target} = {text}"]
@@ -768,7 +782,8 @@ def _rust(program: Program) -> str:
               + "; Err names the reason when the values are refused.",
               f"pub fn {p}({', '.join(f'{a}: f64' for a in body.arguments)}) "
               f"-> Result<[f64; {len(keys)}], &'static str> {{"]
-    lines += [f"    let {t}: f64 = {x};" for t, x in body.temps]
+    lines += [f"    let {t}: {'bool' if t in body.logical else 'f64'} = {x};"
+              for t, x in body.temps]
     for (message, _), check in zip(program.checks, body.checks, strict=True):
         lines.append(f"    if !(({check}) == 1.0) {{ return Err({_quoted(message)}); }}")
     values = [*body.outputs, *([body.regime] if body.regime else [])]
