@@ -71,6 +71,7 @@ html_theme = "furo"
 html_title = f"rigidimpact {release}"
 html_static_path = ["_static"]
 html_extra_path = ["_live"]  # the live pages, written by docs/_ext/live_pages.py
+(HERE / "_live").mkdir(exist_ok=True)  # filled at builder-inited, checked before it
 html_js_files = ["search-math.js"]  # the search's snippets typeset, not raw TeX
 html_css_files = ["wide.css"]  # wide formulas and outputs scroll, never cut off
 # notebook 02's slider is shown as its stored picture: no widget script from the network

@@ -139,7 +139,7 @@ _STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.2em auto; max-width: 1200px;
        padding: 0 1em; color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.15em; margin-top: 1.4em; }
-.grid { display: grid; grid-template-columns: minmax(300px, 1fr) minmax(300px, 1fr);
+.grid { display: grid; grid-template-columns: repeat(auto-fit, minmax(380px, 1fr));
         gap: 1.5em; }
 .slider { display: grid; grid-template-columns: 6em 1fr 8em; gap: .5em;
           align-items: center; margin: .3em 0; }
@@ -493,7 +493,7 @@ fetches nothing.</p>
 <p class="note">Left: the bodies at the impact with their velocities before; right: with
 their velocities after (arrows to one scale).</p>
 <h2>After the impact</h2>
-<svg id="motion" width="560" height="420" role="img" aria-label="the motion"></svg>
+<svg id="motion" width="440" height="330" role="img" aria-label="the motion"></svg>
 <p class="note">{motion_words}</p>
 <p id="restrike"></p>
 </div></div>
