@@ -11,16 +11,23 @@ costs in each.
 
 Run: ``python derivations/beside_pinocchio.py [--links N] [--json]`` (needs `make peers`);
 with ``--kernel 100000``, the compiled maps (``SystemImpact.kernel``) over 10^5 states
-at once against Pinocchio called once a state.
+at once against Pinocchio called once a state, and the same map exported as C
+(:func:`rigidimpact.outputs.mapcode.impact_map_code`), compiled with gcc -O2 and called
+in a loop over the states (a shared library loaded with ctypes; the column is left
+out, and said, where gcc is missing).
 The tests in tests/test_pinocchio.py hold the two to 1e-10 at seeded random states.
 """
 
 from __future__ import annotations
 
 import argparse
+import ctypes
 import json
 import random
+import shutil
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -29,6 +36,7 @@ import sympy as sp
 import sympy.physics.mechanics as me
 
 import rigidimpact as ri
+from rigidimpact.outputs.mapcode import impact_map_code
 
 try:
     import pinocchio as pin
@@ -225,6 +233,31 @@ def costs(links: int = 5, repeat: int = 20) -> list[dict]:
     return rows
 
 
+def compiled_map(system, values=None):
+    """The impact map as C, compiled with gcc -O2 into a shared library and loaded with
+    ctypes: a function of q (N, len q) and u (N, len u) giving the speeds after (NaN
+    where the map is not the impact), the loop over the states in C; None without gcc."""
+    if shutil.which("gcc") is None:
+        return None
+    folder = Path(tempfile.mkdtemp(prefix="impact-map-"))
+    source, library = folder / "impact_map.c", folder / "impact_map.so"
+    source.write_text(impact_map_code(system, values))
+    subprocess.run(["gcc", "-O2", "-shared", "-fPIC", "-o", str(library), str(source), "-lm"],
+                   check=True)
+    many = ctypes.CDLL(str(library)).impact_map_many
+    shutil.rmtree(folder)  # loaded: the library stays mapped after its file is gone
+    array = ctypes.POINTER(ctypes.c_double)
+    many.restype, many.argtypes = ctypes.c_long, [ctypes.c_long, array, array, array]
+
+    def run(q, u):
+        q, u = np.ascontiguousarray(q, float), np.ascontiguousarray(u, float)
+        after = np.empty_like(u)
+        many(len(q), q.ctypes.data_as(array), u.ctypes.data_as(array),
+             after.ctypes.data_as(array))
+        return after
+    return run
+
+
 def kernel_costs(count: int = 10**5, links: int = 5, repeat: int = 3) -> list[dict]:
     """Seconds per state of rigidimpact's kernel of each impact map over `count` states
     at once (:meth:`SystemImpact.kernel`; compiling it excluded, the best of `repeat`
@@ -240,7 +273,7 @@ def kernel_costs(count: int = 10**5, links: int = 5, repeat: int = 3) -> list[di
         return absolute(pinocchio_after(model, tip, relative(q[k]), relative(u[k]), [0], 0.5))
 
     rows.append(_kernel_row(f"chain of {links}, tip on a wall", kernel, q, u, theirs_chain,
-                            repeat))
+                            repeat, compiled_map(system)))
     kane, strike, values = gait_strike()
     kernel = strike.kernel(values)
     model, heel = gait_in_pinocchio()
@@ -253,11 +286,12 @@ def kernel_costs(count: int = 10**5, links: int = 5, repeat: int = 3) -> list[di
         after[3] += after[2]
         return after
 
-    rows.append(_kernel_row("compass gait, heel strike", kernel, q, u, theirs_gait, repeat))
+    rows.append(_kernel_row("compass gait, heel strike", kernel, q, u, theirs_gait, repeat,
+                            compiled_map(strike, values)))
     return rows
 
 
-def _kernel_row(name, kernel, q, u, theirs, repeat) -> dict:
+def _kernel_row(name, kernel, q, u, theirs, repeat, in_c=None) -> dict:
     best = min(_per_call(lambda: kernel(q, u), 1) for _ in range(repeat))
     found = kernel(q, u)
     if found.warnings:
@@ -266,8 +300,16 @@ def _kernel_row(name, kernel, q, u, theirs, repeat) -> dict:
     gap = max(float(np.max(np.abs(found.speeds_after[k] - theirs(k)))) for k in range(checked))
     calls = min(2000, len(q))
     per_call = _per_call(lambda: [theirs(k) for k in range(calls)], 1) / calls
-    return {"system": name, "states": len(q), "kernel per state": best / len(q),
-            "pinocchio per state": per_call, "largest difference": gap}
+    row = {"system": name, "states": len(q), "kernel per state": best / len(q),
+           "pinocchio per state": per_call, "largest difference": gap}
+    if in_c is not None:  # the same map in C, compiled: the loop over the states in C
+        row["C per state"] = min(_per_call(lambda: in_c(q, u), 1) for _ in range(repeat)) \
+            / len(q)
+        after = in_c(q, u)
+        row["C against the kernel"] = float(np.max(np.abs(after - found.speeds_after)))
+        row["C against pinocchio"] = max(float(np.max(np.abs(after[k] - theirs(k))))
+                                         for k in range(checked))
+    return row
 
 
 def main(argv=None) -> int:
@@ -283,6 +325,8 @@ def main(argv=None) -> int:
               file=sys.stderr)
         return 2
     rows = kernel_costs(args.kernel, args.links) if args.kernel > 0 else costs(args.links)
+    if args.kernel > 0 and shutil.which("gcc") is None:
+        print("beside_pinocchio: no gcc here: the map in C is left out", file=sys.stderr)
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
@@ -290,7 +334,7 @@ def main(argv=None) -> int:
         print(row["system"])
         for key, value in row.items():
             if key != "system" and value is not None:
-                unit = "" if "differ" in key or key == "states" else \
+                unit = "" if "differ" in key or "against" in key or key == "states" else \
                     " s" if "per state" in key else " s per impact"
                 print(f"  {key}: {value:.3g}{unit}")
     return 0

@@ -33,7 +33,7 @@ PAGES = ["index.html", "getting-started.html", "guide/tutorial-paper.html",
          "guide/random.html", "guide/three-dimensions.html",
          "notebooks/01-ball-meets-barbell.html", "gallery/index.html",
          "gallery/paper/restrike.html", "gallery/several-contacts/newtons-cradle.html",
-         "performance.html"]
+         "performance.html", "paper-live.html", "guide/export-code.html"]
 # every host but this machine resolves to nothing: a page that needs the network breaks
 ISOLATED = "--host-resolver-rules=MAP * ~NOTFOUND , EXCLUDE 127.0.0.1"
 

@@ -31,6 +31,7 @@ extensions = [
     "gallery",  # writes the gallery's examples, before sphinx-gallery reads them
     "sphinx_gallery.gen_gallery",
     "pictures",
+    "live_pages",  # the live pages (rigidimpact export --to html), copied to live/
 ]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb", ".rst": "restructuredtext"}
 # the gallery's notebooks are downloads, not pages
@@ -69,6 +70,8 @@ sphinx_gallery_conf = {
 html_theme = "furo"
 html_title = f"rigidimpact {release}"
 html_static_path = ["_static"]
+html_extra_path = ["_live"]  # the live pages, written by docs/_ext/live_pages.py
+(HERE / "_live").mkdir(exist_ok=True)  # filled at builder-inited, checked before it
 html_js_files = ["search-math.js"]  # the search's snippets typeset, not raw TeX
 html_css_files = ["wide.css"]  # wide formulas and outputs scroll, never cut off
 # notebook 02's slider is shown as its stored picture: no widget script from the network

@@ -91,7 +91,8 @@ TUTORIAL = GUIDE / "tutorial-scene.md"
 COMMAND_PAGES = [GUIDE / "tutorial-scene.md", GUIDE / "tutorial-random.md",
                  GUIDE / "several-contacts.md",
                  GUIDE / "tutorial-3d.md", GUIDE / "random.md", GUIDE / "friction.md",
-                 GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md"]
+                 GUIDE / "three-dimensions.md", DOCS.parent / "three-d.md",
+                 GUIDE / "export-code.md"]
 SECONDS = re.compile(r"\b\d+\.\d+ s\b")  # what a run took: differs from run to run
 
 

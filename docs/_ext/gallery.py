@@ -115,6 +115,10 @@ def example(stem: str, source_key: str) -> tuple[str, dict[str, str]]:
         "", f"The scene is ``derivations/{stem}.toml``, shown in full at the foot of the "
         "page. The same from the command line: ``rigidimpact derive`` prints the "
         "derivation, ``rigidimpact simulate --plot`` (and ``--animate``) draw the run.", ""]
+    if derivation.symbols:  # a closed form over its symbols: a live page (live_pages.py)
+        head += [f"`The live page <../../live/scene-{stem}.html>`_: a slider for each "
+                 "symbol, every output computed in the browser (``rigidimpact export "
+                 "--to html``).", ""]
     # the key, a reST comment (not shown), makes new code run the example again
     code = ['"""', *head, f".. made by the package source {source_key[:16]}", '"""', "",
             *_comment(["Load the scene, run it as its ``[simulate]`` table asks, and draw "

@@ -34,6 +34,8 @@ if TYPE_CHECKING:  # the real names, for type checkers; at run time they load on
     from rigidimpact.model.bodies import Body as Body
     from rigidimpact.model.bodies import join as join
     from rigidimpact.model.space import Body3 as Body3
+    from rigidimpact.outputs.code import to_code as to_code
+    from rigidimpact.outputs.live import live_page as live_page
     from rigidimpact.paper.problems import PROBLEMS as PROBLEMS
     from rigidimpact.paper.problems import derive as derive
     from rigidimpact.scenes.scene import Scene as Scene
@@ -102,6 +104,8 @@ _PUBLIC = {
     "distributions": "analyses.distributions", "draw_distributions": "figures",
     "monte_carlo": "symbolic.distributions", "histogram": "symbolic.distributions",
     "pushforward": "symbolic.distributions",
+    # the derivation as code (C, JavaScript, ...) and as a live page
+    "to_code": "outputs.code", "live_page": "outputs.live",
 }
 
 __all__ = list(_PUBLIC)

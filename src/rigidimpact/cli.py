@@ -292,7 +292,38 @@ def _cmd_verify(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+def _cmd_export_code(args: argparse.Namespace) -> int:
+    """``export SCENE --to LANG --out FILE``: the derivation as code, or as a live page."""
+    from rigidimpact.outputs.code import LANGUAGES, write_code
+
+    if args.to not in (*LANGUAGES, "html"):
+        raise InputError("--to", f"unknown language {args.to!r}; use one of "
+                         f"{', '.join(LANGUAGES)} or html")
+    if len(args.targets) != 1:
+        raise InputError("--to", f"exports one problem or scene, got {len(args.targets)}")
+    if args.pdf:
+        raise InputError("--pdf", "goes with the LaTeX export (no --to)")
+    out = Path(args.out)
+    if out.is_dir():
+        raise InputError("--out", f"{str(out)!r} is a folder; with --to give a file name")
+    if not out.parent.is_dir():
+        raise InputError("--out", f"no such folder: {str(out.parent)!r}")
+    if args.to == "html":
+        from rigidimpact.outputs.live import write_live
+
+        written = write_live(args.targets[0], out)
+    else:
+        written = write_code(args.targets[0], args.to, out)
+    if args.json:
+        _print_json([str(written)])
+    else:
+        print(written)
+    return 0
+
+
 def _cmd_export(args: argparse.Namespace) -> int:
+    if args.to is not None:
+        return _cmd_export_code(args)
     from rigidimpact.outputs.latex import PDFLATEX_PACKAGE, write_export
     from rigidimpact.paper.problems import PROBLEMS
     from rigidimpact.verify import run_checks
@@ -924,10 +955,16 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(run=_cmd_verify)
 
-    p = sub.add_parser("export", help="write LaTeX fragments and a whole document")
+    p = sub.add_parser("export", help="write LaTeX fragments and a whole document; with "
+                                      "--to, one derivation as code or as a live page")
     p.add_argument("targets", nargs="*", metavar="NAME-OR-SCENE",
                    help="what to export (default: every built-in problem)")
-    p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--out", required=True, metavar="DIR-OR-FILE",
+                   help="the folder of the LaTeX export; with --to, the file written")
+    p.add_argument("--to", metavar="LANG",
+                   help="c, js, fortran, rust, octave: one function returning every "
+                        "output of evaluate, and a main; html: a live page with a slider "
+                        "per symbol (one self-contained file)")
     p.add_argument("--pdf", action="store_true",
                    help="also compile with pdflatex where it is installed (Debian: "
                         "texlive-latex-base); without it the .tex is written and a note "
