@@ -131,22 +131,17 @@ class Contact:
         if not isinstance(self.law, str) or self.law not in RESTITUTION_LAWS:
             raise InputError("contact.law", f"must be one of {', '.join(RESTITUTION_LAWS)}, "
                              f"got {self.law!r}")
-        if self.law != "newton" and self.tangential == "stick":
-            raise InputError("contact.law", f"a sticking contact is an algebraic law with "
-                             f"Newton's e; for the {self.law} law use tangential = "
-                             f"\"coulomb\" with a friction coefficient")
-        if self.law != "newton" and self.tangential == "rough":
-            # Walton's law sets the velocities after with Newton's e; under another law
-            # its e would be read as Newton's without a word (the plane did so once)
-            raise InputError("contact.law", f"Walton's rough law takes Newton's "
-                             f"restitution; for the {self.law} law use tangential = "
-                             "\"coulomb\" with a friction coefficient")
-        self._coefficient("friction", "Coulomb's friction coefficient", 0, None,
-                          needed=self.tangential == "coulomb",
-                          allowed=self.tangential in ("coulomb", "rough"))
-        self._coefficient("tangential_restitution", "the tangential restitution coefficient",
-                          -1, 1, needed=self.tangential == "rough",
-                          allowed=self.tangential == "rough")
+        tangential = TANGENTIAL_LAWS[self.tangential]  # each law says what it takes
+        if tangential.newtons_only and RESTITUTION_LAWS[self.law](e).newtons_e() is None:
+            raise InputError("contact.law", f"{tangential.newtons_only}; for the "
+                             f"{self.law} law use tangential = \"coulomb\" with a "
+                             "friction coefficient")
+        for key, what, low, high in (
+                ("friction", "Coulomb's friction coefficient", 0, None),
+                ("tangential_restitution", "the tangential restitution coefficient", -1, 1)):
+            self._coefficient(key, what, low, high,
+                              needed=tangential.coefficients.get(key, False),
+                              allowed=key in tangential.coefficients)
 
     def _coefficient(self, key: str, what: str, low: Any, high: Any, needed: bool,
                      allowed: bool) -> None:

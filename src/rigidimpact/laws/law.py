@@ -345,6 +345,18 @@ class ContactLaw:
     # True: the law's printed condition is on the velocities after (no slip), so where
     # no momentum law holds its tangential impulse is an unknown of its own
     unknown_tangential: ClassVar[bool] = False
+    # the contact's coefficients the law takes, each with whether it must be given
+    coefficients: ClassVar[dict[str, bool]] = {}
+    # why the law takes Newton's restitution only (empty: it takes every law)
+    newtons_only: ClassVar[str] = ""
+    # the law as a word in messages ("Newton's restitution with a sticking contact");
+    # empty: its name. Not inherited: a new law is not called by its parent's word
+    called: ClassVar[str] = ""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "called" not in cls.__dict__:
+            cls.called = ""
 
     def energy_warning(self, restitution: NewtonRestitution) -> str | None:
         """What this law, with `restitution`, cannot honour in general (kinetic energy
@@ -477,6 +489,7 @@ class NewtonRestitution(ContactLaw):
 
     e: sp.Expr
     name = "newton"
+    called = "Newton's"
     splits_on_compression = False  # on a bent impulse path: the end is set by velocity
     # on a bent impulse path (friction): never creates kinetic energy (Poisson's and the
     # energetic law); Newton's kinematic law can (Kane and Levinson's paradox)
@@ -654,6 +667,8 @@ class Stick(ContactLaw):
     name = "stick"
     velocity_states = ("stick",)
     unknown_tangential = True
+    newtons_only = "a sticking contact is an algebraic law with Newton's e"
+    called = "sticking"
 
     def words(self, spatial: bool = False) -> Given:
         return Given("sticking (no slip after)" if spatial else "sticking")
@@ -690,6 +705,7 @@ class PoissonRestitution(NewtonRestitution):
     """
 
     name = "poisson"
+    called = "Poisson's"
     splits_on_compression = True
     dissipative_on_bent_path = True
     together = "impulse"
@@ -767,6 +783,7 @@ class EnergeticRestitution(NewtonRestitution):
     """
 
     name = "energetic"
+    called = "the energetic"
     splits_on_compression = True
     dissipative_on_bent_path = True
     together = None  # the work split of one contact: no form for contacts acting together
@@ -830,6 +847,8 @@ class Coulomb(ContactLaw):
 
     mu: Any = None
     name = "coulomb"
+    coefficients: ClassVar[dict[str, bool]] = {"friction": True}
+    called = "Coulomb-friction"
 
     def energy_warning(self, restitution: NewtonRestitution) -> str | None:
         if restitution.dissipative_on_bent_path or sp.sympify(restitution.e).is_zero:
@@ -912,6 +931,12 @@ class Rough(Coulomb):
 
     beta: Any = None
     name = "rough"
+    coefficients: ClassVar[dict[str, bool]] = {"friction": False,
+                                                "tangential_restitution": True}
+    # Walton's law sets the velocities after with Newton's e; under another law its e
+    # would be read as Newton's without a word (the plane did so once)
+    newtons_only = "Walton's rough law takes Newton's restitution"
+    called = "rough"
     # Walton's tangential restitution has no velocity-level form
     velocity_states: ClassVar[tuple[str, ...]] = ()
 

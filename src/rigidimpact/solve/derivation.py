@@ -303,11 +303,9 @@ def model_name(contact: Contact) -> str:
     >>> model_name(Contact(tangential="stick"))
     "Newton's restitution with a sticking contact"
     """
-    tangential = {"stick": "sticking", "coulomb": "Coulomb-friction"}.get(
-        contact.tangential, contact.tangential)
-    law = {"newton": "Newton's", "poisson": "Poisson's", "energetic": "the energetic"}.get(
-        contact.law, f"the {contact.law}")  # a law added to the registry: its name
-    return f"{law} restitution with a {tangential} contact"
+    restitution, tangential = contact.laws  # each law's own word (a new law: its name)
+    return (f"{restitution.called or 'the ' + restitution.name} restitution with a "
+            f"{tangential.called or tangential.name} contact")
 
 
 def model_warnings(contact: Contact) -> tuple[str, ...]:
