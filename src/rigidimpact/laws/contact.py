@@ -200,9 +200,10 @@ class Contact:
                        friction=put(self.friction), point=put(self.point),
                        tangential_restitution=put(self.tangential_restitution))
 
-    @property
+    @cached_property
     def laws(self) -> tuple[NewtonRestitution, ContactLaw]:
-        """The restitution law and the tangential law, as objects.
+        """The restitution law and the tangential law, as objects (made once, from the
+        one registry of laws).
 
         Examples
         --------
