@@ -260,7 +260,14 @@ function svgEl(tag, attrs) {
   return el;
 }
 
-function picture(svg, bodies, which, t, paths, mark) {
+// the motion is drawn in a frame moving at `drift` (for the barbell: with its centre, as
+// the paper reads the re-strike); the two frames agree at the impact
+function shifted(f, t, drift) {
+  const dx = drift[0] * t, dy = drift[1] * t;
+  return { x: f.x - dx, y: f.y - dy, parts: f.parts.map(([px, py]) => [px - dx, py - dy]) };
+}
+
+function picture(svg, bodies, which, t, paths, mark, drift = [0, 0]) {
   while (svg.firstChild) { svg.removeChild(svg.firstChild); }
   const pts = [];
   for (const b of bodies) {
@@ -299,7 +306,7 @@ function picture(svg, bodies, which, t, paths, mark) {
       .join(" "), fill: "none", stroke: colours[i % colours.length], "stroke-opacity": 0.5 }));
   });
   bodies.forEach((b, i) => {
-    const f = t === null ? { x: b.x, y: b.y, parts: b.parts } : flown(b, t);
+    const f = t === null ? { x: b.x, y: b.y, parts: b.parts } : shifted(flown(b, t), t, drift);
     const colour = colours[i % colours.length];
     for (const p of f.parts) {
       svg.appendChild(svgEl("line", { x1: X(f.x), y1: Y(f.y), x2: X(p[0]), y2: Y(p[1]),
@@ -369,10 +376,13 @@ function update() {
     return turning.length ? Math.PI / Math.max(...turning) : 1;
   })();
   status.textContent = note;
+  // the barbell's motion in the frame of its centre: it turns in place and the ball
+  // drifts past it, so the re-strike is seen where it happens
+  const drift = BARBELL ? [bodies[BARBELL.bar].vx2, bodies[BARBELL.bar].vy2] : [0, 0];
   const paths = bodies.flatMap((b) => {
     const list = [];
     for (let i = 0; i <= 200; i++) {
-      const f = flown(b, span * i / 200);
+      const f = shifted(flown(b, span * i / 200), span * i / 200, drift);
       list.push([f.x, f.y]); f.parts.forEach((p, j) => { (list.parts = list.parts || [])
         [j] = (list.parts[j] || []).concat([p]); });
     }
@@ -382,7 +392,7 @@ function update() {
   let frame = 0;
   if (motion !== null) { clearInterval(motion); }
   const tick = () => {
-    picture(svg, bodies, "after", span * frame / 120, paths, mark);
+    picture(svg, bodies, "after", span * frame / 120, paths, mark, drift);
     frame = (frame + 1) % 121;
   };
   tick();
@@ -460,8 +470,9 @@ def live_page(target: Any) -> str:
                if program.symbols else
                "<p class='note'>This scene is solved with numbers at its values: there is "
                "no slider.</p>")
-    motion_words = ("The flight after the impact to the re-strike; the dashed ray marks the "
-                    "critical angle." if barbell else
+    motion_words = ("The flight after the impact to the re-strike, seen from the barbell's "
+                    "centre as it moves on (the frame the paper reads the re-strike in); the "
+                    "dashed ray marks the critical angle." if barbell else
                     "Each free body's flight after the impact (no forces, no further "
                     "contact).")
     policy = ("default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
