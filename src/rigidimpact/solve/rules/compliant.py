@@ -112,7 +112,7 @@ def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, he
                              "spring-dashpot form: use the simultaneous or sequential "
                              "rule")
     k = len(problem.contacts)
-    moved, J, JT, accelerate, frequency, force = _springs(problem, stiffness, hertz)
+    moved, J, JT, accelerate, compliance, force = _springs(problem, stiffness, hertz)
     n = len(moved)
 
     def rhs(_, y):
@@ -124,11 +124,11 @@ def compliant(problem: ImpulseRows, stiffness: Sequence[float] | float = 1e6, he
     u_all = np.array(problem.u_before.evalf(), dtype=float).ravel()
     y = np.concatenate([u_all[moved], np.zeros(k), np.zeros(k)])
     speed = float(max(abs(v) for v in problem.scaled_velocity_before))
-    # each contact's effective mass over its stiffness, 1 / (k W_ii)
+    # `compliance`: each contact's effective mass 1 / W_ii over its stiffness k
     if hertz:  # a Hertz contact lasts about 3 (m^2 / (k^2 v))^(1/5)
-        period = 3 * float(((1 / frequency) ** 2 / speed).max() ** 0.2)
+        period = 3 * float((compliance ** 2 / speed).max() ** 0.2)
     else:
-        period = math.pi * float(np.sqrt(1 / frequency).max())
+        period = math.pi * float(np.sqrt(compliance).max())
     # LSODA (compiled, switching between Adams and BDF as the problem asks) with the
     # Jacobian's sparsity given as a band: u couples to the depths and impulses only
     # through the sparse J, and the state, ordered by reverse Cuthill-McKee, has a
@@ -241,7 +241,8 @@ def _springs(problem: ImpulseRows, stiffness: Sequence[float] | float, hertz: bo
              ) -> tuple[list[int], Any, Any, Any, np.ndarray, Any]:
     """The springs' model on the coordinates some contact moves: those coordinates, J
     and J^T there (sparse, along the unit normals), M^-1 J^T f as a function, each
-    contact's stiffness, and its force as a function of its depth and rate."""
+    contact's effective mass over its stiffness, and its force as a function of its
+    depth and rate."""
     import scipy.sparse as sps
 
     k = len(problem.contacts)
@@ -284,4 +285,5 @@ def _springs(problem: ImpulseRows, stiffness: Sequence[float] | float, hertz: bo
             push = stiff * depth + damping * rate
         return np.where(pressed, np.maximum(push, 0.0), 0.0)
 
-    return moved, J, JT, accelerate, stiff / w_diag, force
+    mass = 1 / w_diag  # each contact's effective mass
+    return moved, J, JT, accelerate, mass / stiff, force
