@@ -26,7 +26,8 @@ from pathlib import Path
 from typing import Any
 
 import sympy as sp
-from sympy.printing.mathml import mathml
+from sympy.functions.elementary.trigonometric import TrigonometricFunction
+from sympy.printing.mathml import MathMLPresentationPrinter
 
 from rigidimpact.outputs.atomic import write_file
 from rigidimpact.outputs.code import Program, program_of, resolve_target, to_code
@@ -126,8 +127,58 @@ def _surfaces(target: Any, program: Program) -> list[list[float]]:
     return found
 
 
+class _Presentation(MathMLPresentationPrinter):
+    """SymPy's MathML, with a trigonometric function's whole power written on its name,
+    as a textbook writes it (sin^2 theta, not sin(theta)^2)."""
+
+    def _print_Pow(self, e: sp.Pow) -> Any:
+        base, power = e.base, e.exp
+        if isinstance(base, TrigonometricFunction) and power.is_Integer and power > 1:
+            row = self.dom.createElement("mrow")
+            named = self.dom.createElement("msup")
+            name = self.dom.createElement("mi")
+            name.appendChild(self.dom.createTextNode(type(base).__name__))
+            named.appendChild(name)
+            named.appendChild(self._print(power))
+            row.appendChild(named)
+            applied = self.dom.createElement("mo")
+            applied.appendChild(self.dom.createTextNode("\u2061"))  # function application
+            row.appendChild(applied)
+            row.appendChild(self._print(base.args[0]) if base.args[0].is_Atom else
+                            self._paren(base.args[0]))
+            return row
+        return super()._print_Pow(e)
+
+    def _print_TrigonometricFunction(self, e: Any) -> Any:
+        if not e.args[0].is_Atom:
+            return super()._print_Function(e)
+        row = self.dom.createElement("mrow")  # sin theta: no brackets round a symbol
+        name = self.dom.createElement("mi")
+        name.appendChild(self.dom.createTextNode(type(e).__name__))
+        applied = self.dom.createElement("mo")
+        applied.appendChild(self.dom.createTextNode("\u2061"))
+        for part in (name, applied, self._print(e.args[0])):
+            row.appendChild(part)
+        return row
+
+    # SymPy's printer looks a function's method up by the function's own name
+    _print_sin = _print_cos = _print_tan = _print_cot = _print_sec = _print_csc = \
+        _print_TrigonometricFunction
+
+    def _paren(self, x: sp.Expr) -> Any:
+        fenced = self.dom.createElement("mrow")
+        for text, part in (("(", None), (None, x), (")", None)):
+            if part is None:
+                bracket = self.dom.createElement("mo")
+                bracket.appendChild(self.dom.createTextNode(text))
+                fenced.appendChild(bracket)
+            else:
+                fenced.appendChild(self._print(part))
+        return fenced
+
+
 def _formula(key: str, expr: sp.Expr) -> str:
-    text = mathml(expr, printer="presentation")
+    text = _Presentation().doprint(expr)
     if len(text) > _MAX_MATHML:
         return ("<span class='long'>a formula too long to typeset here "
                 f"({sp.count_ops(expr)} operations); the export holds it whole</span>")
