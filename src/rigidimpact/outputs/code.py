@@ -290,8 +290,8 @@ def program_of(target: Any) -> Program:
             and regime is None:
         notes.append("the course the impact takes (evaluate's regime line) is not "
                      "exported: its outputs' cases are")
-    notes.append("evaluate's lines in words (warnings, rule, checks) are not exported; "
-                 "its numbers are")
+    notes.append("evaluate's lines in words (warnings, rule, checks) are not exported, "
+                 "only its numbers")
     return Program(
         name=_identifier(Path(where).stem if where.endswith(".toml") else where),
         title=derivation.title, target=where, symbols=symbols,
