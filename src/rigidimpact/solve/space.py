@@ -321,16 +321,10 @@ class SpaceCollision:
         checks = self._certificate((c,), {c.name: P}, u_after, pinned, "simultaneous",
                                    (c.name,), None if out.exact and self.tolerance is None
                                    else self.tolerance or 1e-10)
-        solution = Solution(
-            before=(), after=(), impulses={c.name: P[0]},
-            tangential={c.name: sp.simplify(tangential)}, contacts=(c,),
-            acted=(c.name,), regime=regime,
-            courses=(Given(f"{c.name}: ") + course,) if regime else (),
-            energies=(before, lost, sp.simplify(lost / before)), notes=tuple(notes),
-            speeds_before=self.speeds, speeds_after=sp.ImmutableMatrix(u_after),
-            tangent_impulses={c.name: (P[1], P[2])}, given_checks=checks,
-            joint_impulses=pinned)
-        return solution if checks is None else certified(solution)
+        return self._solution((c,), (c.name,), {c.name: list(P)}, sp.ImmutableMatrix(u_after),
+                              (Given(f"{c.name}: ") + course,) if regime else (), notes,
+                              (before, lost, sp.simplify(lost / before)), checks, pinned,
+                              {c.name: sp.simplify(tangential)}, regime=regime)
 
     def _certificate(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
                      u_after: Any, pinned: Mapping[str, Sequence[Any]], rule: str,
@@ -427,17 +421,30 @@ class SpaceCollision:
                                                sp.Float(x, 17) for x in u_after])
             pinned = {name: tuple(sp.Float(x, 17) for x in parts)
                       for name, parts in pinned.items()}
-        return certified(Solution(
-            joint_impulses=pinned,
+        return self._solution(
+            acting, acted, P, speeds_after, courses, notes,
+            (before, lost, sp.radsimp(lost / before) if exact else lost / before), checks,
+            pinned, {c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2) for c in acting},
+            **rule)  # assessed under its own rule
+
+    def _solution(self, acting: Sequence[Contact], acted: tuple[str, ...],
+                  P: Mapping[str, Sequence[Any]], speeds_after: sp.ImmutableMatrix,
+                  courses: tuple[str, ...], notes: Sequence[str], energies: tuple,
+                  checks: Mapping[str, Any] | None, pinned: Mapping[str, tuple[Any, ...]],
+                  sizes: Mapping[str, Any], regime: str | None = None,
+                  **rule: Any) -> Solution:
+        """The one 3-D Solution: each acting contact's impulse in its frame (n, t1, t2)
+        and the size of its tangential part, the speeds after, the energies, certified
+        by its own residuals (none where no point of a closed form is an impact)."""
+        solution = Solution(
             before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
-            tangential={c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)
-                        for c in acting},
-            contacts=tuple(acting), acted=acted, regime="; ".join(courses),
-            courses=courses, energies=(before, lost, sp.radsimp(lost / before) if exact
-                                        else lost / before), notes=tuple(notes),
-            speeds_before=self.speeds, speeds_after=speeds_after,
+            tangential=dict(sizes), contacts=tuple(acting), acted=acted,
+            regime="; ".join(courses) if regime is None else regime, courses=courses,
+            energies=energies, notes=tuple(notes), speeds_before=self.speeds,
+            speeds_after=speeds_after,
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            given_checks=checks, **rule))  # assessed under its own rule
+            given_checks=checks, joint_impulses=pinned, **rule)
+        return solution if checks is None else certified(solution)
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols (Python or SymPy numbers,
