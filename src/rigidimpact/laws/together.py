@@ -130,51 +130,10 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     references: list[np.ndarray] = [np.zeros(2)] * k
     resumed: dict[int, np.ndarray] = {}
 
+    path = _Path(J, A, list(mu), n, k, floor, resumed)
+
     def rates(y: np.ndarray, modes: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
-        """(du/dp, each contact's impulse rate (k x 3)) for these modes."""
-        uu = y[:n]
-        known = np.zeros(n)
-        columns: list[tuple[int, str, np.ndarray]] = []  # unknown rates and their du
-        conditions: list[np.ndarray] = []
-        slips = []
-        for i in range(k):
-            v = J[i] @ uu
-            t = v[1:]
-            # the slip's own direction; where it starts from rest (below the
-            # integration's error), the direction the equations give it
-            size = np.linalg.norm(t)
-            s: np.ndarray = resumed[i] if i in resumed and size <= 10 * floor else \
-                t / size if size > 0 else np.zeros(2)
-            slips.append(s)
-            if modes[i] == "free":
-                continue
-            slipping = modes[i] in ("slip", "smooth")
-            if i == 0:
-                known += A[0] @ (np.array([1.0, *(-mu[0] * s)]) if slipping
-                                 else np.array([1.0, 0, 0]))
-            else:
-                columns.append((i, "n", A[i] @ (np.array([1.0, *(-mu[i] * s)])
-                                               if slipping else np.array([1.0, 0, 0]))))
-                conditions.append(J[i][0])
-            if not slipping:
-                columns += [(i, "t1", A[i][:, 1]), (i, "t2", A[i][:, 2])]
-                conditions += [J[i][1], J[i][2]]
-        x = np.zeros(len(columns))
-        if columns:
-            B = np.column_stack([c for _, _, c in columns])
-            C = np.vstack(conditions)
-            x = np.linalg.lstsq(C @ B, -(C @ known), rcond=None)[0]
-            du = known + B @ x
-        else:
-            du = known
-        f = np.zeros((k, 3))
-        f[0, 0] = 0.0 if modes[0] == "free" else 1.0
-        for (i, part, _), value in zip(columns, x, strict=True):
-            f[i, {"n": 0, "t1": 1, "t2": 2}[part]] = value
-        for i in range(k):
-            if modes[i] == "slip":
-                f[i, 1:] = -mu[i] * f[i, 0] * slips[i]
-        return du, f
+        return _rates(path, y, modes)
 
     def rhs_for(modes: Sequence[str]) -> Any:
         def rhs(_p: float, y: np.ndarray) -> np.ndarray:
@@ -197,66 +156,10 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
                     mode[i] = "stick"
                 else:
                     mode[i] = "slip"
-                    resumed[i] = _direction(i, y)
+                    resumed[i] = _direction_of(path, i, y, p, mode)
                 changed = True
             if not changed:
                 return
-
-    def _direction(i: int, y: np.ndarray) -> np.ndarray:
-        """The slip direction s of contact i starting from rest: the slip's rate under
-        friction -mu s points along +s. Scanned around the circle, then refined where
-        the rate's part across s changes sign."""
-        modes = [("stick" if m == "test" else m) for m in mode]
-        modes[i] = "slip"
-
-        def rate(angle: float) -> tuple[np.ndarray, np.ndarray]:
-            s = np.array([math.cos(angle), math.sin(angle)])
-            resumed[i] = s
-            du, _ = rates(y, modes)
-            return s, (J[i] @ du)[1:]
-
-        def along(angle: float) -> float:
-            s, a = rate(angle)
-            return float(a @ s - abs(a[0] * s[1] - a[1] * s[0]))
-
-        def across(angle: float) -> float:
-            s, a = rate(angle)
-            return float(a[0] * s[1] - a[1] * s[0])
-
-        angles = np.linspace(0, 2 * np.pi, 720, endpoint=False)
-        values = np.array([along(a) for a in angles])
-        tiny = 1e-9 * float(np.linalg.norm(J[i] @ A[i]))
-        # the consistent directions: where the rate turns to lie along s and grows (the
-        # peaks of `along` above the integration's noise)
-        found = []
-        for j in np.flatnonzero((values > tiny) & (values >= np.roll(values, 1))
-                                & (values >= np.roll(values, -1))):
-            lo, hi = angles[j] - np.pi / 360, angles[j] + np.pi / 360
-            a_lo, a_hi = across(lo), across(hi)
-            if a_lo * a_hi < 0:
-                from scipy.optimize import brentq  # scipy on first use
-
-                found.append(brentq(across, lo, hi, xtol=1e-15))
-            elif min(abs(a_lo), abs(a_hi)) <= tiny:
-                found.append(float(angles[j]))
-        if not found:
-            # wedged: no way of slipping grows while the cone cannot hold it (the closed
-            # contacts hold the bodies while the striking one pushes)
-            raise InputError("contacts", f"at p = {p:.6g} contact {i} can neither stick "
-                             "nor start to slip in any direction: the rigid model does "
-                             "not determine the impulses here (a limit of the model, as "
-                             "in Painleve's paradox)")
-        # neighbouring samples of one peak are one direction: distinct directions lie
-        # more than the scan's two steps apart
-        distinct = [a for j, a in enumerate(found) if all(
-            abs(math.remainder(a - b, 2 * np.pi)) > np.pi / 180 for b in found[:j])]
-        if len(distinct) > 1:
-            raise InputError("contacts", f"at p = {p:.6g} contact {i} could start to "
-                             f"slip in {len(distinct)} directions: the rigid model does "
-                             "not determine which (a limit of the model, as in Painleve's "
-                             "paradox)")
-        best = distinct[0]
-        return np.array([math.cos(best), math.sin(best)])
 
     y = np.concatenate([u0, np.zeros(3 * k + 1)])
     p = 0.0
@@ -296,55 +199,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
         phases.append((p, tuple(mode)))
         modes = tuple(mode)
         rhs = rhs_for(modes)
-        events: list[Any] = []
-        kinds: list[tuple[str, int]] = []
-
-        def finish(pp: float, yy: np.ndarray, p_c: float | None = p_c,
-                   work_c: float | None = work_c) -> float:
-            return end(pp, float(J[0][0] @ yy[:n]), p_c, work_c, float(yy[-1]))
-        events.append(finish)
-        kinds.append(("finish", 0))
-        if p_c is None:
-            def compression(_p: float, yy: np.ndarray) -> float:
-                return float(J[0][0] @ yy[:n])
-            events.append(compression)
-            kinds.append(("compression", 0))
-        for i in range(k):
-            if mode[i] == "slip":
-                ref = references[i]
-
-                def stops(_p: float, yy: np.ndarray, i: int = i, ref: np.ndarray = ref
-                          ) -> float:
-                    return float((J[i] @ yy[:n])[1:] @ ref)
-
-                def turns(_p: float, yy: np.ndarray, i: int = i, ref: np.ndarray = ref
-                          ) -> float:
-                    t = (J[i] @ yy[:n])[1:]
-                    return float(t @ ref - 0.5 * np.linalg.norm(t))
-                events += [stops, turns]
-                kinds += [("stops", i), ("turns", i)]
-            if mode[i] == "stick":
-                def holds(_p: float, yy: np.ndarray, i: int = i,
-                          modes: tuple[str, ...] = modes) -> float:
-                    _, f = rates(yy, modes)
-                    return float(mu[i] * f[i, 0] - np.linalg.norm(f[i, 1:]))
-                events.append(holds)
-                kinds.append(("slips", i))
-            if i and mode[i] != "free":
-                def pushes(_p: float, yy: np.ndarray, i: int = i,
-                           modes: tuple[str, ...] = modes) -> float:
-                    _, f = rates(yy, modes)  # an impulse rate of 1e-9 of the
-                    return float(f[i, 0]) + 1e-9  # striking one's: zero, not a pull
-                events.append(pushes)
-                kinds.append(("lets-go", i))
-            if i and mode[i] == "free":
-                def closes(_p: float, yy: np.ndarray, i: int = i) -> float:
-                    return float(J[i][0] @ yy[:n]) + 1e-3 * floor  # the step's error
-                events.append(closes)
-                kinds.append(("closes", i))
-        for ev, (kind, _) in zip(events, kinds, strict=True):
-            ev.terminal = True  # type: ignore[attr-defined]
-            ev.direction = 1.0 if kind in ("finish", "compression") else -1.0  # type: ignore[attr-defined]
+        events, kinds, finish = _phase_events(path, modes, references, end, p_c, work_c)
         from scipy.integrate import solve_ivp  # scipy on first use
 
         run = solve_ivp(rhs, (p, p + horizon), y, method="DOP853", rtol=tolerance,
@@ -371,7 +226,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
             resumed.pop(i, None)
         elif kind == "slips":
             mode[i] = "slip"
-            resumed[i] = _direction(i, y)
+            resumed[i] = _direction_of(path, i, y, p, mode)
         elif kind == "lets-go":
             mode[i] = "free"
         elif kind == "closes":  # its gap is still zero (an impact takes no time): it
@@ -388,3 +243,185 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
     u_after = u0 + sum((A[i] @ impulses[i] for i in range(k)), np.zeros(n))
     return DrivenImpact(impulses, u_after, tuple(
         ", then ".join(c) for c in courses), tuple(phases), tolerance, steps)
+
+
+@dataclass
+class _Path:
+    """What the driven impact's rates read: each contact's rows J and its impulse's
+    effect on the speeds A, the friction coefficients, the sizes, the slip below which
+    a contact is at rest, and each slip's direction where it starts from rest."""
+
+    J: list[np.ndarray]
+    A: list[np.ndarray]
+    mu: list[float]
+    n: int
+    k: int
+    floor: float
+    resumed: dict[int, np.ndarray]
+
+
+def _rates(path: _Path, y: np.ndarray, modes: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
+    """(du/dp, each contact's impulse rate (k x 3)) for these modes."""
+    J, A, mu, n, k, floor, resumed = (path.J, path.A, path.mu, path.n, path.k, path.floor,
+                                      path.resumed)
+    uu = y[:n]
+    known = np.zeros(n)
+    columns: list[tuple[int, str, np.ndarray]] = []  # unknown rates and their du
+    conditions: list[np.ndarray] = []
+    slips = []
+    for i in range(k):
+        v = J[i] @ uu
+        t = v[1:]
+        # the slip's own direction; where it starts from rest (below the
+        # integration's error), the direction the equations give it
+        size = np.linalg.norm(t)
+        s: np.ndarray = resumed[i] if i in resumed and size <= 10 * floor else \
+            t / size if size > 0 else np.zeros(2)
+        slips.append(s)
+        if modes[i] == "free":
+            continue
+        slipping = modes[i] in ("slip", "smooth")
+        if i == 0:
+            known += A[0] @ (np.array([1.0, *(-mu[0] * s)]) if slipping
+                             else np.array([1.0, 0, 0]))
+        else:
+            columns.append((i, "n", A[i] @ (np.array([1.0, *(-mu[i] * s)])
+                                           if slipping else np.array([1.0, 0, 0]))))
+            conditions.append(J[i][0])
+        if not slipping:
+            columns += [(i, "t1", A[i][:, 1]), (i, "t2", A[i][:, 2])]
+            conditions += [J[i][1], J[i][2]]
+    x = np.zeros(len(columns))
+    if columns:
+        B = np.column_stack([c for _, _, c in columns])
+        C = np.vstack(conditions)
+        x = np.linalg.lstsq(C @ B, -(C @ known), rcond=None)[0]
+        du = known + B @ x
+    else:
+        du = known
+    f = np.zeros((k, 3))
+    f[0, 0] = 0.0 if modes[0] == "free" else 1.0
+    for (i, part, _), value in zip(columns, x, strict=True):
+        f[i, {"n": 0, "t1": 1, "t2": 2}[part]] = value
+    for i in range(k):
+        if modes[i] == "slip":
+            f[i, 1:] = -mu[i] * f[i, 0] * slips[i]
+    return du, f
+
+
+def _direction_of(path: _Path, i: int, y: np.ndarray, p: float, mode: Sequence[str]
+               ) -> np.ndarray:
+    """The slip direction s of contact i starting from rest: the slip's rate under
+    friction -mu s points along +s. Scanned around the circle, then refined where
+    the rate's part across s changes sign."""
+    J, A, resumed = path.J, path.A, path.resumed
+    modes = [("stick" if m == "test" else m) for m in mode]
+    modes[i] = "slip"
+
+    def rate(angle: float) -> tuple[np.ndarray, np.ndarray]:
+        s = np.array([math.cos(angle), math.sin(angle)])
+        resumed[i] = s
+        du, _ = _rates(path, y, modes)
+        return s, (J[i] @ du)[1:]
+
+    def along(angle: float) -> float:
+        s, a = rate(angle)
+        return float(a @ s - abs(a[0] * s[1] - a[1] * s[0]))
+
+    def across(angle: float) -> float:
+        s, a = rate(angle)
+        return float(a[0] * s[1] - a[1] * s[0])
+
+    angles = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+    values = np.array([along(a) for a in angles])
+    tiny = 1e-9 * float(np.linalg.norm(J[i] @ A[i]))
+    # the consistent directions: where the rate turns to lie along s and grows (the
+    # peaks of `along` above the integration's noise)
+    found = []
+    for j in np.flatnonzero((values > tiny) & (values >= np.roll(values, 1))
+                            & (values >= np.roll(values, -1))):
+        lo, hi = angles[j] - np.pi / 360, angles[j] + np.pi / 360
+        a_lo, a_hi = across(lo), across(hi)
+        if a_lo * a_hi < 0:
+            from scipy.optimize import brentq  # scipy on first use
+
+            found.append(brentq(across, lo, hi, xtol=1e-15))
+        elif min(abs(a_lo), abs(a_hi)) <= tiny:
+            found.append(float(angles[j]))
+    if not found:
+        # wedged: no way of slipping grows while the cone cannot hold it (the closed
+        # contacts hold the bodies while the striking one pushes)
+        raise InputError("contacts", f"at p = {p:.6g} contact {i} can neither stick "
+                         "nor start to slip in any direction: the rigid model does "
+                         "not determine the impulses here (a limit of the model, as "
+                         "in Painleve's paradox)")
+    # neighbouring samples of one peak are one direction: distinct directions lie
+    # more than the scan's two steps apart
+    distinct = [a for j, a in enumerate(found) if all(
+        abs(math.remainder(a - b, 2 * np.pi)) > np.pi / 180 for b in found[:j])]
+    if len(distinct) > 1:
+        raise InputError("contacts", f"at p = {p:.6g} contact {i} could start to "
+                         f"slip in {len(distinct)} directions: the rigid model does "
+                         "not determine which (a limit of the model, as in Painleve's "
+                         "paradox)")
+    best = distinct[0]
+    return np.array([math.cos(best), math.sin(best)])
+
+
+def _phase_events(path: _Path, modes: tuple[str, ...], references: Sequence[np.ndarray],
+                  end: Any, p_c: float | None, work_c: float | None
+                  ) -> tuple[list[Any], list[tuple[str, int]], Any]:
+    """The events that end a phase of the driven impact (in these modes), with what each
+    is (its kind and contact), and the striking contact's end as a function."""
+    J, mu, n, k, floor = path.J, path.mu, path.n, path.k, path.floor
+    mode = modes
+    events: list[Any] = []
+    kinds: list[tuple[str, int]] = []
+
+    def finish(pp: float, yy: np.ndarray, p_c: float | None = p_c,
+               work_c: float | None = work_c) -> float:
+        return end(pp, float(J[0][0] @ yy[:n]), p_c, work_c, float(yy[-1]))
+    events.append(finish)
+    kinds.append(("finish", 0))
+    if p_c is None:
+        def compression(_p: float, yy: np.ndarray) -> float:
+            return float(J[0][0] @ yy[:n])
+        events.append(compression)
+        kinds.append(("compression", 0))
+    for i in range(k):
+        if mode[i] == "slip":
+            ref = references[i]
+
+            def stops(_p: float, yy: np.ndarray, i: int = i, ref: np.ndarray = ref
+                      ) -> float:
+                return float((J[i] @ yy[:n])[1:] @ ref)
+
+            def turns(_p: float, yy: np.ndarray, i: int = i, ref: np.ndarray = ref
+                      ) -> float:
+                t = (J[i] @ yy[:n])[1:]
+                return float(t @ ref - 0.5 * np.linalg.norm(t))
+            events += [stops, turns]
+            kinds += [("stops", i), ("turns", i)]
+        if mode[i] == "stick":
+            def holds(_p: float, yy: np.ndarray, i: int = i,
+                      modes: tuple[str, ...] = modes) -> float:
+                _, f = _rates(path, yy, modes)
+                return float(mu[i] * f[i, 0] - np.linalg.norm(f[i, 1:]))
+            events.append(holds)
+            kinds.append(("slips", i))
+        if i and mode[i] != "free":
+            def pushes(_p: float, yy: np.ndarray, i: int = i,
+                       modes: tuple[str, ...] = modes) -> float:
+                _, f = _rates(path, yy, modes)  # an impulse rate of 1e-9 of the
+                return float(f[i, 0]) + 1e-9  # striking one's: zero, not a pull
+            events.append(pushes)
+            kinds.append(("lets-go", i))
+        if i and mode[i] == "free":
+            def closes(_p: float, yy: np.ndarray, i: int = i) -> float:
+                return float(J[i][0] @ yy[:n]) + 1e-3 * floor  # the step's error
+            events.append(closes)
+            kinds.append(("closes", i))
+    for ev, (kind, _) in zip(events, kinds, strict=True):
+        ev.terminal = True  # type: ignore[attr-defined]
+        ev.direction = 1.0 if kind in ("finish", "compression") else -1.0  # type: ignore[attr-defined]
+    return events, kinds, finish
