@@ -141,25 +141,6 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
             return np.concatenate([du, f.ravel(), [J[0][0] @ y[:n]]])
         return rhs
 
-    def settle(y: np.ndarray) -> None:
-        """Each contact whose slip is (about) zero: stick if its cone holds it, else slip
-        again in the direction the equations give."""
-        for _ in range(4 * k):
-            changed = False
-            for i in range(k):
-                if mode[i] != "test":
-                    continue
-                trial = [m if j != i else "stick" for j, m in enumerate(mode)]
-                trial = [("stick" if m == "test" else m) for m in trial]
-                _, f = rates(y, trial)
-                if np.linalg.norm(f[i, 1:]) <= mu[i] * max(f[i, 0], 0.0) * (1 + 1e-9):
-                    mode[i] = "stick"
-                else:
-                    mode[i] = "slip"
-                    resumed[i] = _direction_of(path, i, y, p, mode)
-                changed = True
-            if not changed:
-                return
 
     y = np.concatenate([u0, np.zeros(3 * k + 1)])
     p = 0.0
@@ -177,7 +158,7 @@ def driven_impact(M_inverse: np.ndarray, rows: Sequence[np.ndarray], u: np.ndarr
 
     reclosed: tuple[int, float] | None = None  # the contact that touched again, where
     for _ in range(MAX_PHASES):
-        settle(y)
+        _settle(path, y, mode, p)
         for _ in range(k):  # a resting contact that would pull from here lets go now
             _, f = rates(y, mode)
             pulling = [i for i in range(1, k) if mode[i] != "free" and f[i, 0] < -1e-9]
@@ -425,3 +406,25 @@ def _phase_events(path: _Path, modes: tuple[str, ...], references: Sequence[np.n
         ev.terminal = True  # type: ignore[attr-defined]
         ev.direction = 1.0 if kind in ("finish", "compression") else -1.0  # type: ignore[attr-defined]
     return events, kinds, finish
+
+
+def _settle(path: _Path, y: np.ndarray, mode: list[str], p: float) -> None:
+    """Each contact whose slip is (about) zero: stick if its cone holds it, else slip
+    again in the direction the equations give (`mode` is changed in place)."""
+    k, mu = path.k, path.mu
+    for _ in range(4 * k):
+        changed = False
+        for i in range(k):
+            if mode[i] != "test":
+                continue
+            trial = [m if j != i else "stick" for j, m in enumerate(mode)]
+            trial = [("stick" if m == "test" else m) for m in trial]
+            _, f = _rates(path, y, trial)
+            if np.linalg.norm(f[i, 1:]) <= mu[i] * max(f[i, 0], 0.0) * (1 + 1e-9):
+                mode[i] = "stick"
+            else:
+                mode[i] = "slip"
+                path.resumed[i] = _direction_of(path, i, y, p, mode)
+            changed = True
+        if not changed:
+            return

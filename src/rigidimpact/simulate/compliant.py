@@ -507,18 +507,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
                 dy[-1] = -push * rate
         return dy
 
-    def touches(_t: float, y: np.ndarray) -> float:
-        return penetration(y)[0]
-
-    def lets_go(_t: float, y: np.ndarray) -> float:
-        d, rate = penetration(y)
-        return k_c * d + c_c * rate if d > 0 else -1.0
-
-    # solve_ivp reads these attributes of an event function
-    touches.terminal = True  # type: ignore[attr-defined]
-    lets_go.terminal = True  # type: ignore[attr-defined]
-    touches.direction = 1.0  # type: ignore[attr-defined]
-    lets_go.direction = -1.0  # type: ignore[attr-defined]
+    touches, lets_go = _contact_events(penetration, k_c, c_c)
 
     law = scene.contact.laws[0]
 
@@ -548,17 +537,7 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     for _ in range(MAX_SEGMENTS):
         if apart is not None and t >= apart and not touching:
             # no force acts and the touching points stay apart: closed form to the end
-            flown, y = y, _fly(parts, y, horizon - t, g)
-            try:  # its state and energies must stay within float64
-                with np.errstate(over="raise", invalid="raise"):
-                    fits = bool(np.all(np.isfinite(y))) and \
-                        bool(np.isfinite(sum(_energy(parts, y, g))))
-            except FloatingPointError:
-                fits = False
-            if not fits:
-                raise InputError("simulate.until", f"until = {horizon:g} s: the free "
-                                 "flight after the contact leaves float64's range by then; "
-                                 "ask for a shorter time")
+            flown, y = y, _flown_to(parts, y, horizon, t, g)
             times.append(horizon)
             states.append(y.copy())
             why = (f"reached until = {horizon:g} s (free flight from t = {t:.6g} s in "
@@ -643,6 +622,42 @@ def run_compliant(scene: Scene, plan: Plan, values: Mapping, start: float):
     details = {"integrator": dict(integrator), "contact": contact_info, "energy": energy}
     track = Trajectory(np.array(times), np.array(states), tuple(parts), origin)
     return Outcome(plan, final, events, time.perf_counter() - start, steps, details, track)
+
+
+def _contact_events(penetration: Any, k_c: float, c_c: float) -> tuple[Any, Any]:
+    """The integrator's two events: the touching points meet (the depth turns positive),
+    and the compliant contact lets go (its push falls to zero)."""
+    def touches(_t: float, y: np.ndarray) -> float:
+        return penetration(y)[0]
+
+    def lets_go(_t: float, y: np.ndarray) -> float:
+        d, rate = penetration(y)
+        return k_c * d + c_c * rate if d > 0 else -1.0
+
+    # solve_ivp reads these attributes of an event function
+    touches.terminal = True  # type: ignore[attr-defined]
+    lets_go.terminal = True  # type: ignore[attr-defined]
+    touches.direction = 1.0  # type: ignore[attr-defined]
+    lets_go.direction = -1.0  # type: ignore[attr-defined]
+    return touches, lets_go
+
+
+def _flown_to(parts: list[_Part], y: np.ndarray, horizon: float, t: float,
+              g: float) -> np.ndarray:
+    """The state at `horizon` of a free flight from `t` in closed form, refused in one
+    line where it leaves float64's range."""
+    y = _fly(parts, y, horizon - t, g)
+    try:  # its state and energies must stay within float64
+        with np.errstate(over="raise", invalid="raise"):
+            fits = bool(np.all(np.isfinite(y))) and \
+                bool(np.isfinite(sum(_energy(parts, y, g))))
+    except FloatingPointError:
+        fits = False
+    if not fits:
+        raise InputError("simulate.until", f"until = {horizon:g} s: the free flight after "
+                         "the contact leaves float64's range by then; ask for a shorter "
+                         "time")
+    return y
 
 
 def _rigid_impulse(parts: list[_Part], normal: np.ndarray, law: Any, values: Mapping,
