@@ -801,14 +801,20 @@ def _rust(program: Program) -> str:
               "    for (k, set) in sets.iter().enumerate() {",
               "        let mut v = start;",
               "        for a in set {",
-              "            let Some((name, text)) = a.split_once('=') else {",
-              f"                eprintln!(\"{p}: error: expected name=value, got '{{}}'\", a);",
-              "                std::process::exit(2);", "            };",
-              f"            let Some(i) = {p.upper()}_SYMBOLS.iter()"
-              ".position(|s| *s == name) else {",
-              f"                eprintln!(\"{p}: error: unknown symbol '{{}}'; the symbols are "
-              f"{', '.join(program.names) or 'none'}\", name);",
-              "                std::process::exit(2);", "            };",
+              # match, not let-else: Debian's rustc (1.63) predates let-else
+              "            let (name, text) = match a.split_once('=') {",
+              "                Some(pair) => pair,",
+              "                None => {",
+              f"                    eprintln!(\"{p}: error: expected name=value, got '{{}}'\", "
+              "a);",
+              "                    std::process::exit(2);", "                }", "            };",
+              f"            let i = match {p.upper()}_SYMBOLS.iter()"
+              ".position(|s| *s == name) {",
+              "                Some(i) => i,",
+              "                None => {",
+              f"                    eprintln!(\"{p}: error: unknown symbol '{{}}'; the symbols "
+              f"are {', '.join(program.names) or 'none'}\", name);",
+              "                    std::process::exit(2);", "                }", "            };",
               "            match text.trim().parse::<f64>() {",
               "                Ok(x) if x.is_finite() => v[i] = x,",
               "                _ => {",
