@@ -183,8 +183,6 @@ class SpaceScene:
                           exact_numbers(solution.results()) if exact else None)
 
 
-
-
 def _described(b: Body3) -> Given:
     if b.support == "fixed":
         return Given(f"{b.name}: fixed")

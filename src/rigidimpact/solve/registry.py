@@ -46,6 +46,18 @@ class Conduct:
     summary: ClassVar[str] = ""
     # the rule as a 3-D scene's evaluate names it (empty: its label)
     spoken: ClassVar[str] = ""
+    # the laws the rule imposes, in words, and with friction where it says more
+    said: ClassVar[str] = ""
+    said_with_friction: ClassVar[str] = ""
+    name: ClassVar[str] = ""
+
+    @classmethod
+    def in_words(cls, frictional: bool = False) -> str:
+        """What the rule imposes, in words (with friction where any contact has it): its
+        own ``said``, or its docstring's first paragraph."""
+        if frictional and cls.said_with_friction:
+            return cls.said_with_friction
+        return cls.said or (cls.__doc__ or f"the {cls.name} rule").strip().split("\n\n")[0]
 
 
 RULES: dict[str, Any] = {}  # name to Rule class, filled by rigidimpact.solve.rules

@@ -16,8 +16,6 @@ from __future__ import annotations
 from rigidimpact.errors import InputError
 from rigidimpact.solve.registry import RULES as REGISTRY
 from rigidimpact.solve.rules.base import (
-    RULE_LAWS,
-    RULES,
     Rule,
     RuleSettings,
     rule_laws,
@@ -42,6 +40,8 @@ RULE_CLASSES.update({
     Driven.name: Driven,
 })
 RULE_TYPES: tuple[type[Rule], ...] = tuple(RULE_CLASSES.values())  # the built-in ones
+RULES = tuple(RULE_CLASSES)  # their names
+RULE_LAWS = {name: rule.said for name, rule in RULE_CLASSES.items()}  # in words
 DEFAULT_RULE = Simultaneous.name
 
 

@@ -9,47 +9,19 @@ from typing import Any, ClassVar
 
 from rigidimpact.errors import InputError
 from rigidimpact.solve.problem import ImpulseRows
-from rigidimpact.solve.registry import Conduct
+from rigidimpact.solve.registry import Conduct, conduct
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.given import shown
 
-RULES = ("simultaneous", "sequential", "compliant", "driven")
-
-
-RULE_LAWS = {
-    "simultaneous": "every contact smooth; the impulses P >= 0 act together, with the "
-                    "restitution law at each contact that acts and no contact pulling "
-                    "(v+ = v- + W P, a complementarity problem)",
-    "sequential": "every contact smooth; one contact at a time in the order given, each a "
-                  "two-body impact with Newton's e, repeated until no contact approaches",
-    "compliant": "every contact a push-only spring-dashpot (linear, damping from e) or an "
-                 "elastic Hertz spring, integrated until all let go (floating point)",
-    "driven": "one contact strikes under its restitution law and every contact touching "
-              "at rest stays closed while it pushes, followed in the striking contact's "
-              "normal impulse (floating point)",
-}
-
-
-FRICTION_LAWS = {
-    "simultaneous": "Coulomb friction at the velocity level: the impulses act together; "
-                    "each contact is released, sticks (Newton's e across, no slip after, "
-                    "|P_t| <= mu P_n) or slides (|P_t| = mu P_n against its slip after); "
-                    "every combination solved exactly",
-    "sequential": "one contact at a time in the order given, each that contact's own "
-                  "impact under its own laws (Routh's method for Coulomb friction, "
-                  "Walton's for a rough contact); repeated until no contact approaches",
-    "driven": "one contact strikes under its restitution law; each resting contact sticks "
-              "while its cone holds it and otherwise slips with |P_t| = mu P_n against "
-              "its slip, as the striking contact's normal impulse grows",
-}
-
 
 def rule_laws(rule: str, frictional: bool = False) -> str:
-    """The laws a rule imposes, in words (with friction when any contact has it); a rule
-    not built in is named, never a KeyError."""
-    if frictional and rule in FRICTION_LAWS:
-        return FRICTION_LAWS[rule]
-    return RULE_LAWS.get(rule, f"the {rule} rule (not built in: see its class)")
+    """The laws a rule imposes, in words (with friction when any contact has it), by the
+    name an answer carries: the registered rule's own words; a rule not registered is
+    named, never a KeyError."""
+    found = conduct(rule)
+    if found is Conduct:
+        return f"the {rule} rule (not built in: see its class)"
+    return found.in_words(frictional)
 
 
 def whole_number(name: str, value: Any, least: int, most: int | None = None,
@@ -162,6 +134,4 @@ class Rule(Conduct):
 
     def laws(self, frictional: bool = False) -> str:
         """What the rule imposes, in words."""
-        if self.name in RULE_LAWS:
-            return rule_laws(self.name, frictional)
-        return (type(self).__doc__ or f"the {self.name} rule").strip().split("\n\n")[0]
+        return self.in_words(frictional)

@@ -52,6 +52,9 @@ class Compliant(Rule):
     name: ClassVar[str] = "compliant"
     stated_tolerance: ClassVar[float | None] = 1e-6
     may_stay_closing: ClassVar[bool] = True
+    said: ClassVar[str] = (
+        "every contact a push-only spring-dashpot (linear, damping from e) or an elastic "
+        "Hertz spring, integrated until all let go (floating point)")
     impulse_words: ClassVar[str] = "{name}'s spring impulse, integrated"
     summary: ClassVar[str] = ("every contact a push-only spring-dashpot, integrated (LSODA, "
                               "rtol 1e-10) until all let go")

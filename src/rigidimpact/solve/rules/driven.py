@@ -63,6 +63,14 @@ class Driven(Rule):
     tolerance: float | None = None
     name: ClassVar[str] = "driven"
     spoken: ClassVar[str] = "one strikes, the others rest"  # as 3-D evaluate long said
+    said: ClassVar[str] = (
+        "one contact strikes under its restitution law and every contact touching at rest "
+        "stays closed while it pushes, followed in the striking contact's normal impulse "
+        "(floating point)")
+    said_with_friction: ClassVar[str] = (
+        "one contact strikes under its restitution law; each resting contact sticks while "
+        "its cone holds it and otherwise slips with |P_t| = mu P_n against its slip, as "
+        "the striking contact's normal impulse grows")
     stated_tolerance: ClassVar[float | None] = 1e-7  # integrated to 1e-10, stated 1000x
     impulse_words: ClassVar[str] = ("{name}'s impulse, integrated in the striking contact's "
                                     "normal impulse")

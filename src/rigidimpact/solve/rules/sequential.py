@@ -77,6 +77,13 @@ class Sequential(Rule):
     seed: int = 0
     name: ClassVar[str] = "sequential"
     in_turn: ClassVar[bool] = True
+    said: ClassVar[str] = (
+        "every contact smooth; one contact at a time in the order given, each a two-body "
+        "impact with Newton's e, repeated until no contact approaches")
+    said_with_friction: ClassVar[str] = (
+        "one contact at a time in the order given, each that contact's own impact under "
+        "its own laws (Routh's method for Coulomb friction, Walton's for a rough "
+        "contact); repeated until no contact approaches")
     settles: ClassVar[float] = CERTIFICATE_SETTLED  # passes end below this closing speed
     impulse_words: ClassVar[str] = ("the sum of {name}'s impulses in turn (each its own "
                                     "impact)")

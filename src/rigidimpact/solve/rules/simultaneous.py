@@ -135,6 +135,14 @@ class Simultaneous(Rule):
 
     name: ClassVar[str] = "simultaneous"
     whole_impact: ClassVar[bool] = True
+    said: ClassVar[str] = (
+        "every contact smooth; the impulses P >= 0 act together, with the restitution law "
+        "at each contact that acts and no contact pulling (v+ = v- + W P, a "
+        "complementarity problem)")
+    said_with_friction: ClassVar[str] = (
+        "Coulomb friction at the velocity level: the impulses act together; each contact "
+        "is released, sticks (Newton's e across, no slip after, |P_t| <= mu P_n) or "
+        "slides (|P_t| = mu P_n against its slip after); every combination solved exactly")
 
     def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         if problem.symbols:
