@@ -505,7 +505,8 @@ class NewtonRestitution(ContactLaw):
         return self.e
 
     def words(self, spatial: bool = False) -> Given:
-        return Given("Newton's restitution" if type(self) is NewtonRestitution
+        # from the law's own word (not inherited: a new law is named by its name)
+        return Given(f"{self.called} restitution" if self.called
                      else f"the {self.name} restitution law,")
 
     def equations(self, before, after):
@@ -712,9 +713,6 @@ class PoissonRestitution(NewtonRestitution):
 
     def newtons_e(self) -> Any:
         return None  # a kinetic or energetic law, Newton's only on a straight path
-
-    def words(self, spatial: bool = False) -> Given:
-        return Given("Poisson's restitution")
 
     def end_of_bent_path(self, first, second, v_n: sp.Expr,
                          stop_in_restitution: bool) -> sp.Expr:
