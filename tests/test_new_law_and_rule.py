@@ -127,6 +127,13 @@ def test_several_contacts_in_the_plane_and_in_space_take_the_new_law(registered,
             assert float(other) == pytest.approx(float(value), rel=1e-9, abs=1e-12), key
 
 
+def test_a_model_built_on_newtons_e_does_not_take_the_new_law_for_it():
+    # the simulators' compliant bounce and the sticking contact's checks ask for
+    # Newton's e: a law with another target must not pass for it
+    assert SquaredNewton(sp.Rational(1, 2)).newtons_e() is None
+    assert laws.NewtonRestitution(sp.Rational(1, 2)).newtons_e() == sp.Rational(1, 2)
+
+
 def test_one_contact_in_space_takes_the_new_law(registered):
     new = parse_space_scene(SPACE.format(e="1/2", law="squared")).derivation().results
     old = parse_space_scene(SPACE.format(e="1/4", law="newton")).derivation().results

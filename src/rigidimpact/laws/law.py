@@ -501,8 +501,9 @@ class NewtonRestitution(ContactLaw):
 
     def newtons_e(self) -> Any:
         """Newton's kinematic coefficient, where this is Newton's law (a simulator whose
-        model is built on it asks), else None."""
-        return self.e
+        model is built on it asks), else None: a law that asks another target
+        (:meth:`leaving`) is not Newton's, whatever its class."""
+        return self.e if type(self).leaving is NewtonRestitution.leaving else None
 
     def words(self, spatial: bool = False) -> Given:
         # from the law's own word (not inherited: a new law is named by its name)
