@@ -272,30 +272,6 @@ class SystemImpact:
             rows = rows * self.fold[1]
         return [[_no_tan(pythagorean(x)) for x in rows.row(i)] for i in range(3)]
 
-    def _spatial(self) -> Solution:
-        """One contact with a tangent plane: its tangential law's one face in contact
-        space with two tangents (:meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
-        stick, Coulomb's circular cone, Walton's law), through the system's M:
-        ``u+ = u- + M^-1 J^T P`` with J the contact's rows (n, t1, t2). Several such
-        contacts are the rules' (:meth:`outcomes`), at numbers."""
-        (c,) = self.contacts
-        restitution, tangential = c.laws.laws
-        J = sp.Matrix(self.J_plane)
-        numbers = self._numbers and all(sp.sympify(x).is_number for x in self.u_before)
-        solved = self.M.LUsolve(J.T) if numbers else \
-            sp.Matrix(self.M).LUsolve(J.T).applyfunc(sp.simplify)
-        W = J * solved if numbers else (J * solved).applyfunc(sp.simplify)
-        v = J * self.u_before
-        if tangential.unknown_tangential and restitution.newtons_e() is None:
-            raise InputError(f"{c.name}.law", "a sticking contact takes Newton's law")
-        # the tangential law's one face, with two tangents (laws/law.py): stick, the
-        # circular cone (or Routh's courses on the line a slip keeps), Walton's courses
-        out = tangential.impulse(W, v, restitution)
-        P, course = out.impulse, "sticks" if tangential.unknown_tangential else out.course
-        after = (self.u_before + solved * P).applyfunc(lambda x: _small(sp.radsimp(x)))
-        return self._in_plane(after, P, {c.name: course}, exact=out.exact and all(
-            x.is_Rational or not x.is_Float for x in P), notes=tuple(out.notes))
-
     def _in_plane(self, after: sp.Matrix, P: sp.Matrix, courses: dict[str, str],
                   rule: str = "simultaneous", exact: bool = True,
                   notes: tuple[str, ...] = ()) -> Solution:
@@ -396,13 +372,9 @@ class SystemImpact:
                              f"{', '.join(f'{float(x):.6g}' for x in normals)} >= 0): "
                              "there is no impact")
         laws = [c.laws.laws for c in self.contacts]
-        if self.J_plane is not None and len(self.contacts) == 1:
-            return self._spatial()
-        if len(self.contacts) == 1:
-            if laws[0][1].solved_by_regimes:
-                return self._by_regimes()
-            return self._linear()
         rule = Simultaneous() if rule is None else rule
+        if len(self.contacts) == 1:  # the one door: the contact's own answer
+            return rule.answer(SystemRows.of(self))[0]
         if self._numbers and all(x.is_number for x in self.u_before):
             found = self.outcomes(rule)
             if len(found) > 1:
@@ -467,7 +439,7 @@ class SystemImpact:
         if len(self.contacts) > MAX_ENUMERATED:
             raise InputError("contacts", f"a mechanics system is solved with at most "
                              f"{MAX_ENUMERATED} contacts so far")
-        return rule.checked_outcomes(SystemRows.of(self))
+        return rule.answer(SystemRows.of(self))
 
     def _linear_system(self) -> tuple[sp.Matrix, sp.Matrix, list[sp.Symbol]]:
         """``A x = b`` in the speeds after and the impulses, ``M u+ - J^T P = M u-`` with
@@ -590,14 +562,13 @@ class SystemImpact:
                       "but the impulses are not; shown: the least-norm impulses",)
         return replace(self._map(u_after, impulse, courses, twice / 2), notes=notes)
 
-    def _by_regimes(self) -> Solution:
+    def _course_needs_numbers(self) -> None:
         """One contact whose law picks its course from the numbers (Coulomb by Routh's
-        method, rough by Walton's): W, the velocities before and the law's coefficients
-        must be numbers. It is the rules' one-contact case (each rule's answer for one
-        contact is that contact's own impact, :func:`rigidimpact.solve.rules.sequential.
-        _own_step`, through its law's one face), run on this system's rows."""
+        method, rough by Walton's) is solved where W, the velocities before and the
+        law's coefficients are numbers: otherwise one line saying which is missing (a
+        course that holds for some values only is never printed as if it held for all)."""
         c = self.contacts[0]
-        restitution, tangential = c.laws.laws
+        tangential = c.laws.laws[1]
         W, v = self.W, (self.J * self.u_before)
         if not (all(x.is_number for x in W) and all(x.is_number for x in v)):
             raise InputError(f"{c.name}.tangential", f"the {tangential.name} law's course "
@@ -612,8 +583,6 @@ class SystemImpact:
                              f"depends on {name}: give it a number in SystemImpact.at (a "
                              "course that holds for some values only is not printed as "
                              "if it held for all)")
-        (found,) = self.outcomes(Simultaneous())
-        return found
 
     def _map(self, after: sp.Matrix, impulse: sp.Matrix, courses: dict[str, str],
              energy: sp.Expr, summed: bool = False, how: str | None = None,

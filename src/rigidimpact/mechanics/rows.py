@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Any
 
 import sympy as sp
@@ -41,9 +42,39 @@ class SystemRows(RowsProblem):
         return cls(tuple(c.laws for c in system.contacts), system=system,
                    speeds=tuple(str(u) for u in system.u),
                    velocities=sp.ImmutableMatrix(system.u_before),
-                   inverse_mass=sp.ImmutableMatrix(sp.Matrix(system.M).inv()),
+                   inverse_mass=None,  # M^-1 when a rule asks for it (below)
                    **(rows or dict(normal_rows=sp.ImmutableMatrix(system.J[::2, :]),
                                    tangent_rows=sp.ImmutableMatrix(system.J[1::2, :]))))
+
+    @cached_property
+    def M_inverse(self) -> sp.Matrix:
+        """The system's M^-1, formed when a rule asks for it (a one-contact closed form
+        solves with M itself, fraction-free)."""
+        return sp.Matrix(self.system.M).inv()
+
+    @cached_property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        return frozenset(sp.Matrix(self.velocities).free_symbols
+                         | sp.Matrix(self.system.M).free_symbols
+                         | sp.Matrix(self.normal_rows).free_symbols)
+
+    def own_answer(self, rule: Any) -> Solution | None:
+        """One contact in the plane of its normal and tangent under a law of linear
+        conditions (smooth, stick): the system's own closed form, ``M u+ - J^T P = M u-``
+        with the law's two conditions solved fraction-free (an arithmetic choice of
+        the linear case, the system's equations printed), under `rule`. A law by
+        regimes (Coulomb, rough) or a tangent plane: the rules' one-contact step, once
+        the numbers its course turns on are given."""
+        system = self.system
+        tangential = self.contacts[0].laws[1]
+        if system.J_plane is None and not tangential.solved_by_regimes:
+            solved = system._linear()
+            return solved if solved.rule == rule.name else replace(
+                solved, rule=rule.name, order=(self.contacts[0].name,) if rule.in_turn
+                else ())
+        if tangential.solved_by_regimes:
+            system._course_needs_numbers()
+        return None
 
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                  impulses: dict[str, sp.Expr], acted: Sequence[str], passes: int = 1,

@@ -368,60 +368,93 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         raise InputError("bodies", "a bounce run follows free spheres")
     if len({b.name for b in balls}) != len(balls):
         raise InputError("bodies", "two spheres share a name")
-    end, a, resistance, pivot, compliance = _run_settings(
-        impacts, horizon, gravity, rolling_resistance, pivot_friction, compliance)
-    flats = _planes(balls, planes)
-    laws = _pairs(balls, pairs)
-    ones = [_Sphere(b) for b in balls]
-    couples = [(p, q) for i, p in enumerate(ones) for q in ones[i + 1:]]
-    for p, q in couples:
-        d = q.c - p.c
-        if d.dot(d) < (p.R + q.R) ** 2:
-            raise InputError("bodies", f"{p.name} and {q.name} overlap at the start")
-    t = sp.Integer(0)
-    exact = all(x.is_Rational for s in ones for x in (*s.c, *s.v, *s.w, s.R)) and \
-        all(x.is_Rational for x in a)
-    _not_through(ones, flats, exact)
-    events: list[Event] = []
-    snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
-    count = summed = 0
-    piles: list[tuple[str, sp.Expr, sp.Expr]] = []
-    # a sphere that starts lying on a plane gravity presses it into slides or rolls there
-    for s in ones:
-        s.lying = next((f for f in flats if _gap(f, s.c, s.R) == 0 and f[2].dot(s.v) == 0
-                        and f[2].dot(a) < 0), None)
-    tolerance: list[float] = []  # the accuracy of each integrated impact
-    due: tuple | None = None  # the impact the last step was taken to, whatever its rounding
+    return _Run(balls, planes, pairs, impacts,
+                _run_settings(impacts, horizon, gravity, rolling_resistance, pivot_friction,
+                              compliance)).run()
 
-    def snap() -> None:
-        snapshots.append((t, {s.name: (s.c, s.v, s.w) for s in ones}))
 
-    def finish(stopped: str, when: sp.Expr) -> Bounces:
-        first = ones[0]
-        return Bounces(tuple(events), when, first.c, first.v, first.w, stopped, exact,
-                       max(tolerance) if tolerance else None,
-                       {s.name: (s.c, s.v, s.w) for s in ones}, tuple(snapshots),
-                       tuple((_label(f), f[1], f[2]) for f in flats), summed,
-                       tuple(piles))
+class _Run:
+    """One run of :func:`spheres`: the spheres, planes and pairs' laws, the time, the
+    arithmetic (exact, or :data:`DIGITS`-digit floats from the first irrational time
+    on), the events and snapshots so far and the impacts counted. :meth:`run`
+    alternates the impacts due now (:meth:`_plane_impact`, :meth:`_pair_impact`) and
+    the phase up to the next event (:meth:`_advance`)."""
 
+    def __init__(self, balls: Sequence[Body3], planes: Sequence[Contact],
+                 pairs: Sequence[Contact], impacts: int | None, settings: tuple) -> None:
+        self.end, self.a, self.resistance, self.pivot, self.compliance = settings
+        self.impacts = impacts
+        self.flats = _planes(balls, planes)
+        self.laws = _pairs(balls, pairs)
+        self.ones = [_Sphere(b) for b in balls]
+        self.couples = [(p, q) for i, p in enumerate(self.ones) for q in self.ones[i + 1:]]
+        for p, q in self.couples:
+            d = q.c - p.c
+            if d.dot(d) < (p.R + q.R) ** 2:
+                raise InputError("bodies", f"{p.name} and {q.name} overlap at the start")
+        self.t: sp.Expr = sp.Integer(0)
+        self.exact = all(x.is_Rational for s in self.ones
+                         for x in (*s.c, *s.v, *s.w, s.R)) and \
+            all(x.is_Rational for x in self.a)
+        _not_through(self.ones, self.flats, self.exact)
+        self.events: list[Event] = []
+        self.snapshots: list[tuple[sp.Expr, dict[str, tuple[sp.Matrix, ...]]]] = []
+        self.count = self.summed = 0
+        self.piles: list[tuple[str, sp.Expr, sp.Expr]] = []
+        # a sphere that starts lying on a plane gravity presses it into slides or rolls
+        for s in self.ones:
+            s.lying = next((f for f in self.flats if _gap(f, s.c, s.R) == 0
+                            and f[2].dot(s.v) == 0 and f[2].dot(self.a) < 0), None)
+        self.tolerance: list[float] = []  # the accuracy of each integrated impact
+        self.due: tuple | None = None  # the impact the last step was taken to
+
+    def run(self) -> Bounces:
+        """Impacts now, else the phase to the next event, until the run stops."""
+        self.snap()
+        while True:
+            now = self._impacts_now()
+            self.due = None
+            if not now:
+                stopped = self._advance()
+                if stopped is not None:
+                    return stopped
+                continue
+            if self.count >= MAX_IMPACTS:
+                raise InputError("simulate.until", f"more than {MAX_IMPACTS} impacts before "
+                                 "the run ends: give a number of impacts or an earlier time")
+            _, what = min(now, key=lambda x: x[0])
+            if what[0] == "plane":
+                self._plane_impact(what[1], what[2])
+            else:
+                self._pair_impact(what[1], what[2])
+            self.snap()
+            if self.impacts is not None and self.count >= self.impacts:
+                return self.finish("impacts", self.t)
+
+    def snap(self) -> None:
+        self.snapshots.append((self.t, {s.name: (s.c, s.v, s.w) for s in self.ones}))
+
+    def finish(self, stopped: str, when: sp.Expr) -> Bounces:
+        first = self.ones[0]
+        return Bounces(tuple(self.events), when, first.c, first.v, first.w, stopped,
+                       self.exact, max(self.tolerance) if self.tolerance else None,
+                       {s.name: (s.c, s.v, s.w) for s in self.ones}, tuple(self.snapshots),
+                       tuple((_label(f), f[1], f[2]) for f in self.flats), self.summed,
+                       tuple(self.piles))
+
+    @staticmethod
     def floats(*xs: sp.Matrix) -> tuple[sp.Matrix, ...]:
         return tuple(x.applyfunc(lambda y: sp.N(y, DIGITS)) for x in xs)
 
-    def settled(s: _Sphere) -> None:
+    def settled(self, s: _Sphere) -> None:
         """The state in the run's arithmetic: exact, or 40-digit floats from an impact
         given in floats on."""
-        nonlocal exact
-        if exact and any(x.has(sp.Float) for x in (*s.v, *s.w)):
-            exact = False
-        if not exact:
-            s.v, s.w = floats(s.v, s.w)
+        if self.exact and any(x.has(sp.Float) for x in (*s.v, *s.w)):
+            self.exact = False
+        if not self.exact:
+            s.v, s.w = self.floats(s.v, s.w)
 
-    def budget() -> None:
-        if count >= MAX_IMPACTS:
-            raise InputError("simulate.until", f"more than {MAX_IMPACTS} impacts before "
-                             "the run ends: give a number of impacts or an earlier time")
-
-    def struck(who: Sequence[_Sphere], contacts: Sequence[Contact],
+    def struck(self, who: Sequence[_Sphere], contacts: Sequence[Contact],
                rule: str | None) -> str:
         """Each of `who` after the impact at `contacts` (the first strikes; the planes
         the spheres lie on rest, by the driven rule): its course."""
@@ -430,27 +463,28 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
         except InputError as error:
             if "none approaches" not in str(error):
                 raise
-            raise InputError("simulate", f"at t = {float(t):.6g} s {who[0].name} meets "
+            raise InputError("simulate", f"at t = {float(self.t):.6g} s {who[0].name} meets "
                              f"{contacts[0].name} moving toward it too slowly to tell from "
                              "rounding, next to the speeds in play: the run's speeds span "
                              "more than its arithmetic can follow") from None
-        tolerance.extend([accuracy] if accuracy else [])
+        self.tolerance.extend([accuracy] if accuracy else [])
         for s in who:
             s.v, s.w = after[s.name]
-            settled(s)
+            self.settled(s)
             s.said = False
         return course
 
-    def touching(gap: sp.Expr, scale: sp.Expr) -> bool:
+    def touching(self, gap: sp.Expr, scale: sp.Expr) -> bool:
         """Whether a gap (a plane's, or two centres' squared distance less its least)
         is none: exactly, or once the run is in floating point, within its rounding (a
         gap the rounding closed a little too far must not let two bodies pass through
         each other)."""
-        gap = sp.simplify(gap) if exact else gap
+        gap = sp.simplify(gap) if self.exact else gap
         if gap == 0:
             return True
-        return not exact and abs(gap) <= sp.Float(10) ** (5 - DIGITS) * scale
+        return not self.exact and abs(gap) <= sp.Float(10) ** (5 - DIGITS) * scale
 
+    @staticmethod
     def leave_or_lie(s: _Sphere) -> None:
         """After an impact struck while lying, the sphere lies on or leaves its plane."""
         if s.lying is not None:
@@ -460,163 +494,179 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
             else:
                 s.v = s.v - n.dot(s.v) * n
 
-    snap()
-    while True:
-        # an impact now: the one that closes fastest, if several
+    def _impacts_now(self) -> list[tuple[sp.Expr, tuple]]:
+        """The impacts due now, each with its closing speed (the fastest goes first)."""
         now: list[tuple[sp.Expr, tuple]] = []
-        for s in ones:
-            for f in flats:
+        for s in self.ones:
+            for f in self.flats:
                 if f is s.lying or f[2].dot(s.v) >= 0:
                     continue
-                if due == ("plane", s.name, f[0].name) or \
-                        touching(_gap(f, s.c, s.R), 1 + max(abs(x) for x in s.c)):
+                if self.due == ("plane", s.name, f[0].name) or \
+                        self.touching(_gap(f, s.c, s.R), 1 + max(abs(x) for x in s.c)):
                     now.append((f[2].dot(s.v), ("plane", s, f)))
-        for p, q in couples:
+        for p, q in self.couples:
             d = q.c - p.c
             closing = d.dot(q.v - p.v) / (p.R + q.R)
-            if closing < 0 and (due == ("pair", p.name, q.name)
-                                or touching(d.dot(d) - (p.R + q.R) ** 2,
-                                            (1 + max(abs(x) for x in (*p.c, *q.c))) ** 2)):
+            if closing < 0 and (self.due == ("pair", p.name, q.name) or self.touching(
+                    d.dot(d) - (p.R + q.R) ** 2,
+                    (1 + max(abs(x) for x in (*p.c, *q.c))) ** 2)):
                 now.append((closing, ("pair", p, q)))
-        due = None
-        if now:
-            budget()
-            _, what = min(now, key=lambda x: x[0])
-            if what[0] == "plane":
-                _, s, f = what
-                if s.lying is not None:  # struck while lying: the driven rule
-                    course = struck((s,), (_at_plane(f, s), _at_plane(s.lying, s)),
-                                    "driven")
-                    leave_or_lie(s)
-                else:
-                    n = f[2]
-                    landed = (s.v, s.w)
-                    s.fastest = max(s.fastest, -n.dot(s.v))
-                    if compliance is None:
-                        course = struck((s,), (_at_plane(f, s),), None)
-                    else:
-                        course = _compliant(s, f[0], n, compliance)
-                        exact = False
-                    # a rebound within rounding, or within 1000 times an integrated
-                    # impact's tolerance, of none is none
-                    settle = max(SETTLE, sp.Float(1000 * max(tolerance))) if tolerance \
-                        else SETTLE
-                    if n.dot(a) < 0 and n.dot(s.v) < 0 and \
-                            -n.dot(s.v) <= settle * s.fastest:  # rounding's closing
-                        s.v = s.v - n.dot(s.v) * n
-                    if n.dot(a) < 0 and 0 < n.dot(s.v) <= settle * s.fastest:
-                        s.v = s.v - n.dot(s.v) * n
-                        course += (f"; the rebound is below {float(settle):g} of the "
-                                   "fastest landing: the sphere comes to lie on the plane")
-                    if n.dot(s.v) == 0 and n.dot(a) < 0:  # it lies there, pressed in
-                        s.lying = f
-                count += 1
-                events.append(Event(t, "impact", _named(f, s.name), s.c, s.v, s.w, course,
-                                    s.name))
-                tail, s.regime = None, s.regime if s.lying is None else ()
-                if s.lying is None and compliance is None and len(ones) == 1:
-                    tail = _summed(f, s, landed, a, flats, exact,
-                                   None if end is None else end - t)
-                if tail is not None:  # the bounces to come, summed (to the horizon)
-                    snap()
-                    piles.append((s.name, t, t + tail.t))
-                    t = t + tail.t
-                    s.c = s.c + tail.displacement
-                    s.v, s.w = tail.velocity, tail.spin
-                    if not exact:
-                        s.c, s.v, s.w = floats(s.c, s.v, s.w)
-                    if n.dot(s.v) == 0:
-                        s.lying, s.said = f, False
-                        events.append(Event(t, "settles", _named(f, s.name), s.c, s.v, s.w,
-                                            "infinitely many bounces summed "
-                                            f"({tail.said}): it lies on the plane", s.name))
-                    else:
-                        summed += tail.bounces or 0
+        return now
+
+    def _plane_impact(self, s: _Sphere, f: tuple) -> None:
+        """Sphere s strikes plane f: struck while lying (the driven rule), or a bounce
+        from flight (rigid or compliant), a rebound within rounding of none made none,
+        and where it lands for good the bounces to come summed in closed form."""
+        a = self.a
+        landed = None  # the state it landed in from flight
+        if s.lying is not None:  # struck while lying: the driven rule
+            course = self.struck((s,), (_at_plane(f, s), _at_plane(s.lying, s)), "driven")
+            self.leave_or_lie(s)
+        else:
+            n = f[2]
+            landed = (s.v, s.w)
+            s.fastest = max(s.fastest, -n.dot(s.v))
+            if self.compliance is None:
+                course = self.struck((s,), (_at_plane(f, s),), None)
             else:
-                _, p, q = what
-                law = laws.get(frozenset((p.name, q.name)))
-                if law is None:
-                    raise InputError("pairs", f"{p.name} and {q.name} meet at t = "
-                                     f"{float(t):.6g}: give the laws of their meeting (a "
-                                     "[[pairs]] entry naming the two)")
-                one, two = (p, q) if law.first == p.name else (q, p)
-                n = (two.c - one.c) / (one.R + two.R)
-                meeting = replace(law, normal=sp.ImmutableMatrix(n),
-                                  point=sp.ImmutableMatrix(one.c + one.R * n))
-                resting = tuple(_at_plane(s.lying, s, own=True) for s in (one, two)
-                                if s.lying)
-                course = struck((one, two), (meeting, *resting),
-                                "driven" if resting else None)
-                leave_or_lie(one)
-                leave_or_lie(two)
-                count += 1
-                events.append(Event(t, "impact", law.name, one.c, one.v, one.w, course,
-                                    one.name, two.name))
-            snap()
-            if impacts is not None and count >= impacts:
-                return finish("impacts", t)
-            continue
-        # each sphere's phase: flight, or lying (sliding until it rolls, then rolling)
+                course = _compliant(s, f[0], n, self.compliance)
+                self.exact = False
+            # a rebound within rounding, or within 1000 times an integrated impact's
+            # tolerance, of none is none
+            settle = max(SETTLE, sp.Float(1000 * max(self.tolerance))) if self.tolerance \
+                else SETTLE
+            if n.dot(a) < 0 and n.dot(s.v) < 0 and \
+                    -n.dot(s.v) <= settle * s.fastest:  # rounding's closing
+                s.v = s.v - n.dot(s.v) * n
+            if n.dot(a) < 0 and 0 < n.dot(s.v) <= settle * s.fastest:
+                s.v = s.v - n.dot(s.v) * n
+                course += (f"; the rebound is below {float(settle):g} of the fastest "
+                           "landing: the sphere comes to lie on the plane")
+            if n.dot(s.v) == 0 and n.dot(a) < 0:  # it lies there, pressed in
+                s.lying = f
+        self.count += 1
+        self.events.append(Event(self.t, "impact", _named(f, s.name), s.c, s.v, s.w,
+                                 course, s.name))
+        s.regime = s.regime if s.lying is None else ()
+        if landed is not None and s.lying is None and self.compliance is None and \
+                len(self.ones) == 1:
+            self._sum_the_rest(s, f, landed)
+
+    def _sum_the_rest(self, s: _Sphere, f: tuple, landed: tuple) -> None:
+        """A single sphere's bounces to come on plane f, summed where they pile up
+        (:func:`_summed`, to the horizon)."""
+        tail = _summed(f, s, landed, self.a, self.flats, self.exact,
+                       None if self.end is None else self.end - self.t)
+        if tail is None:
+            return
+        n = f[2]
+        self.snap()
+        self.piles.append((s.name, self.t, self.t + tail.t))
+        self.t = self.t + tail.t
+        s.c = s.c + tail.displacement
+        s.v, s.w = tail.velocity, tail.spin
+        if not self.exact:
+            s.c, s.v, s.w = self.floats(s.c, s.v, s.w)
+        if n.dot(s.v) == 0:
+            s.lying, s.said = f, False
+            self.events.append(Event(self.t, "settles", _named(f, s.name), s.c, s.v, s.w,
+                                     f"infinitely many bounces summed ({tail.said}): it "
+                                     "lies on the plane", s.name))
+        else:
+            self.summed += tail.bounces or 0
+
+    def _pair_impact(self, p: _Sphere, q: _Sphere) -> None:
+        """Spheres p and q meet by their pair's laws, the planes they lie on resting."""
+        law = self.laws.get(frozenset((p.name, q.name)))
+        if law is None:
+            raise InputError("pairs", f"{p.name} and {q.name} meet at t = "
+                             f"{float(self.t):.6g}: give the laws of their meeting (a "
+                             "[[pairs]] entry naming the two)")
+        one, two = (p, q) if law.first == p.name else (q, p)
+        n = (two.c - one.c) / (one.R + two.R)
+        meeting = replace(law, normal=sp.ImmutableMatrix(n),
+                          point=sp.ImmutableMatrix(one.c + one.R * n))
+        resting = tuple(_at_plane(s.lying, s, own=True) for s in (one, two) if s.lying)
+        course = self.struck((one, two), (meeting, *resting), "driven" if resting else None)
+        self.leave_or_lie(one)
+        self.leave_or_lie(two)
+        self.count += 1
+        self.events.append(Event(self.t, "impact", law.name, one.c, one.v, one.w, course,
+                                 one.name, two.name))
+
+    def _phases(self) -> tuple[dict[str, Any], list[tuple[sp.Expr, tuple]]]:
+        """Each lying sphere's phase on its plane (sliding until it rolls, rolling, at
+        rest), a rolling that starts said once, and the events ahead: each phase's end,
+        each sphere's next plane, each pair's meeting, the horizon."""
         phases: dict[str, Any] = {}
         ahead: list[tuple[sp.Expr, tuple]] = []
-        for s in ones:
+        for s in self.ones:
             if s.lying is None:
                 continue
-            phase = _on_plane(s.lying[0], s.lying[2], s.v, s.w, a, s.R, s.k,
-                              max(tolerance) if tolerance else None, resistance, pivot)
+            phase = _on_plane(s.lying[0], s.lying[2], s.v, s.w, self.a, s.R, s.k,
+                              max(self.tolerance) if self.tolerance else None,
+                              self.resistance, self.pivot)
             phases[s.name] = phase
             if phase.rolling and not s.said:
                 # it comes to lie already rolling: said once, as a rolling that starts
                 # (a sphere at rest rests, said of nothing)
                 if s.v != sp.zeros(3, 1):
-                    events.append(Event(t, "rolls", _named(s.lying, s.name), s.c, s.v, s.w,
-                                        "rolls", s.name))
+                    self.events.append(Event(self.t, "rolls", _named(s.lying, s.name), s.c,
+                                             s.v, s.w, "rolls", s.name))
                 s.said = True
             if phase.t > 0:
                 ahead.append((phase.t, ("changes", s, phase.ends)))
-
-        rate = {s.name: phases[s.name].rates[0] if s.name in phases else a for s in ones}
-        for s in ones:
-            for f in flats:
+        rate = {s.name: phases[s.name].rates[0] if s.name in phases else self.a
+                for s in self.ones}
+        for s in self.ones:
+            for f in self.flats:
                 if f is s.lying:
                     continue
-                when = _first_root(f[2].dot(rate[s.name]) / 2, f[2].dot(s.v), _gap(f, s.c, s.R),
-                                   sp.Integer(0))
+                when = _first_root(f[2].dot(rate[s.name]) / 2, f[2].dot(s.v),
+                                   _gap(f, s.c, s.R), sp.Integer(0))
                 if when is not None:
                     ahead.append((when, ("plane", s, f)))
-        for p, q in couples:
-            when = _meeting(q.c - p.c, q.v - p.v, rate[q.name] - rate[p.name], p.R + q.R, exact)
+        for p, q in self.couples:
+            when = _meeting(q.c - p.c, q.v - p.v, rate[q.name] - rate[p.name], p.R + q.R,
+                            self.exact)
             if when is not None:
                 ahead.append((when, ("pair", p, q)))
-        if end is not None:
-            ahead.append((end - t, ("horizon",)))
+        if self.end is not None:
+            ahead.append((self.end - self.t, ("horizon",)))
+        return phases, ahead
+
+    def _advance(self) -> Bounces | None:
+        """Every sphere moved on to the next event (a phase's end, a plane, a meeting,
+        the horizon); the run's answer where it ends there, else None."""
+        phases, ahead = self._phases()
         if not ahead:  # every sphere rolls (or flies) on for ever
             if all(s.lying and s.v == sp.zeros(3, 1) and s.w == sp.zeros(3, 1)
-                   for s in ones):
-                return finish("rest", t)
-            return finish("rolling" if all(s.lying for s in ones) else "flying", t)
+                   for s in self.ones):
+                return self.finish("rest", self.t)
+            return self.finish("rolling" if all(s.lying for s in self.ones) else "flying",
+                               self.t)
         step = min(x[0] for x in ahead)
         first = next(x[1] for x in ahead if x[0] == step)  # decided before rounding
-        if exact and not step.is_Rational:  # from here on in floating point
-            exact = False
-        if not exact:
+        if self.exact and not step.is_Rational:  # from here on in floating point
+            self.exact = False
+        if not self.exact:
             step = sp.N(step, DIGITS)
-        for s in ones:
+        for s in self.ones:
             if s.name in phases:
                 moved, s.v, s.w = phases[s.name].at(step)
                 s.c = s.c + moved
             else:
-                s.c, s.v, s.w = flight(s.c, s.v, s.w, a, step)
-            if not exact:
-                s.c, s.v, s.w = floats(s.c, s.v, s.w)
+                s.c, s.v, s.w = flight(s.c, s.v, s.w, self.a, step)
+            if not self.exact:
+                s.c, s.v, s.w = self.floats(s.c, s.v, s.w)
             if s.lying is not None:  # on the plane, its rounding left aside
                 n = s.lying[2]
                 s.c = s.c - _gap(s.lying, s.c, s.R) * n
                 s.v = s.v - n.dot(s.v) * n
-        t = t + step
-        if first[0] == "horizon" or (end is not None and t >= end):
-            snap()
-            return finish("horizon", end)
+        self.t = self.t + step
+        if first[0] == "horizon" or (self.end is not None and self.t >= self.end):
+            self.snap()
+            return self.finish("horizon", self.end)
         if first[0] == "changes":
             _, s, kind = first
             assert s.lying is not None
@@ -625,16 +675,17 @@ def spheres(balls: Sequence[Body3], planes: Sequence[Contact], pairs: Sequence[C
                 s.w = s.lying[2].dot(s.w) * s.lying[2]
             elif kind == "stops spinning":
                 s.w = s.w - s.lying[2].dot(s.w) * s.lying[2]
-            events.append(Event(t, kind, _named(s.lying, s.name), s.c, s.v, s.w, kind,
-                                s.name))
+            self.events.append(Event(self.t, kind, _named(s.lying, s.name), s.c, s.v, s.w,
+                                     kind, s.name))
             s.said = s.said or kind == "rolls"
-            snap()
+            self.snap()
         elif first[0] == "plane":
             _, s, f = first
             s.c = s.c - _gap(f, s.c, s.R) * f[2]  # on the plane the root found
-            due = ("plane", s.name, f[0].name)
+            self.due = ("plane", s.name, f[0].name)
         else:
-            due = ("pair", first[1].name, first[2].name)
+            self.due = ("pair", first[1].name, first[2].name)
+        return None
 
 
 def _summed(f: tuple, s: _Sphere, landed: tuple[sp.Matrix, sp.Matrix], a: sp.Matrix,

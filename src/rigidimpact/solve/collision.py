@@ -145,15 +145,20 @@ class Collision(ImpactProblem):
             raise InputError("rule", "must be a rule object (Simultaneous(), "
                              "Sequential(order) or Compliant()), not "
                              f"{type(rule).__name__} {rule!r}")
-        if len(self.contacts) == 1 and not self.joints:  # every rule: its own answer,
-            solved = self.alone()  # reported under the rule that was asked
-            if solved.rule != rule.name:
-                solved = replace(solved, rule=rule.name, order=(
-                    (self.contacts[0].name,) if rule.in_turn else ()))
-            return (solved,)
         return tuple(replace(o, pivot_reactions=reactions)
                      if (reactions := self._pivot_reactions(o)) else o
-                     for o in rule.checked_outcomes(self))
+                     for o in rule.answer(self))
+
+    def own_answer(self, rule: Rule) -> Solution | None:
+        """One contact without joints: the two-body core's answer (:meth:`alone`), with
+        the paper's printed laws, reported under `rule` (the answer of every rule)."""
+        if self.joints:
+            return None
+        solved = self.alone()
+        if solved.rule == rule.name:
+            return solved
+        return replace(solved, rule=rule.name, order=(
+            (self.contacts[0].name,) if rule.in_turn else ()))
 
     def alone(self) -> Solution:
         """The one contact's impact, exactly, by the two-body core

@@ -65,6 +65,7 @@ class ImpulseRows:
     contacts: tuple[Contact, ...]
     joints: tuple[Joint, ...] = ()  # bilateral rows the source keeps itself
     facets: int | None = None  # Coulomb's cone as a pyramid of this many edges
+    tolerance: float | None = None  # a source's stated tolerance for an integrated cone
 
     # what a source supplies
     u_before: sp.Matrix
@@ -101,6 +102,12 @@ class ImpulseRows:
         the bodies after, its checks from its own kinematics)."""
         raise NotImplementedError(f"{type(self).__name__} reads a rule's answer back into "
                                   "its source's Solution")
+
+    def own_answer(self, rule: Any) -> Solution | None:
+        """A source's own closed form for its one contact, in its own notation, as
+        `rule`'s answer (the paper's two bodies: the two-body core and its printed
+        laws); None where the rules' one-contact step is the answer."""
+        return None
 
     def smooth_only(self, where: str) -> None:
         rough = [t.name for t in self.contacts if t.laws[1].grips]
@@ -851,6 +858,8 @@ class RowsProblem(ImpulseRows):
     tangent_rows : J_t, one row a contact, or None where every contact is smooth.
     second_tangent_rows : in space, each contact's second tangent row (t2 = n x t1).
     facets : Coulomb's cone as a pyramid of this many edges (None: the cone).
+    tolerance : the relative tolerance a cone followed numerically is held to (None:
+        the face's own).
     """
 
     contacts: tuple[Contact, ...]
@@ -861,6 +870,7 @@ class RowsProblem(ImpulseRows):
     tangent_rows: sp.ImmutableMatrix | None = None
     second_tangent_rows: sp.ImmutableMatrix | None = None  # in space: t2 = n x t1
     facets: int | None = None
+    tolerance: float | None = None
 
     @property
     def tangents(self) -> int:

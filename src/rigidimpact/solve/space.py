@@ -284,47 +284,22 @@ class SpaceCollision:
         return self.outcomes()[0]
 
     def outcomes(self) -> tuple[Solution, ...]:
-        """What the collision's rule makes of it: one outcome, or one per order. One
-        contact: its own answer under every rule."""
+        """What the collision's rule makes of it through the one door
+        (:meth:`~rigidimpact.solve.rules.base.Rule.answer`): one outcome, or one per
+        order; one contact, its own answer under every rule."""
         if len(self.contacts) == 1:
-            return (self._one(),)
-        _, _, approaching, _ = self._numbers()
-        if not approaching:
+            (c,) = self.contacts
+            v = (self.rows(c) * self.u_before)[0]
+            if sp.sympify(v).is_number and not v < 0:
+                raise InputError("bodies", f"the touching points at {c.name} are not "
+                                 f"approaching (their normal velocity is {_simplified(v)}, "
+                                 f"along the normal from {c.first} into {c.second})")
+        elif not self._numbers()[2]:
             raise InputError("contacts", "several 3-D contacts are solved where one or more "
                              "of them approach; here none approaches")
         assert isinstance(self.rule, Rule)  # made one in __post_init__
-        found = self.rule.checked_outcomes(_SpaceProblem.of(self))
+        found = self.rule.answer(_SpaceProblem.of(self))
         return tuple(self._every_contact(o) for o in found)
-
-    def _one(self) -> Solution:
-        """The one contact's impact under its laws (the law's face in contact space)."""
-        (c,) = self.contacts
-        J = self.rows(c)
-        W = (J * self.M_inverse * J.T).applyfunc(_simplified)
-        v = (J * self.u_before).applyfunc(_simplified)
-        if v[0].is_number and not v[0] < 0:
-            raise InputError("bodies", f"the touching points at {c.name} are not "
-                             "approaching (their normal velocity is "
-                             f"{v[0]}, along the normal from {c.first} into {c.second})")
-        # each tangential law's one face, with two tangents as with one (laws/law.py)
-        out = c.laws[1].impulse(W, v, c.laws[0], self.tolerance)
-        P, course, notes = out.impulse, out.course, list(out.notes)
-        P = P.applyfunc(sp.radsimp)
-        u_after = (self.u_before + self.M_inverse * J.T * P).applyfunc(
-            lambda x: sp.piecewise_fold(sp.radsimp(sp.expand(x))))
-        moved = [b.moved(u_after[6 * k:6 * k + 6, 0]) for k, b in enumerate(self.free)]
-        before = sum((b.kinetic_energy for b in self.free), sp.Integer(0))
-        lost = sp.simplify(before - sum((b.kinetic_energy for b in moved), sp.Integer(0)))
-        tangential = sp.sqrt(P[1] ** 2 + P[2] ** 2)
-        regime = course
-        pinned = self.joint_impulses(J.T * P)
-        checks = self._certificate((c,), {c.name: P}, u_after, pinned, "simultaneous",
-                                   (c.name,), None if out.exact and self.tolerance is None
-                                   else self.tolerance or 1e-10)
-        return self._solution((c,), (c.name,), {c.name: list(P)}, sp.ImmutableMatrix(u_after),
-                              (Given(f"{c.name}: ") + course,) if regime else (), notes,
-                              (before, lost, sp.simplify(lost / before)), checks, pinned,
-                              {c.name: sp.simplify(tangential)}, regime=regime)
 
     def _certificate(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
                      u_after: Any, pinned: Mapping[str, Sequence[Any]], rule: str,
@@ -405,7 +380,7 @@ class SpaceCollision:
                  P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
                  notes: Sequence[str], energy: tuple[Any, Any],
                  checks: Mapping[str, Any], pinned: Mapping[str, tuple[Any, ...]],
-                 **rule: Any) -> Solution:
+                 regime: str | None = None, **rule: Any) -> Solution:
         """The one Solution of several 3-D contacts solved together (exactly, or in
         floating point), certified by its own residuals; `pinned`: the joints'
         impulses the certificate checked, given as they are (in floating point, to
@@ -413,9 +388,10 @@ class SpaceCollision:
         before, lost = energy
         exact = not any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
                         for x in (*u_after, *(x for p in P.values() for x in p)))
+        tidied = sp.simplify if exact and len(acting) == 1 else sp.radsimp
         if exact:
             speeds_after = sp.ImmutableMatrix(list(u_after))
-            lost = sp.radsimp(lost)
+            lost = tidied(lost)
         else:
             speeds_after = sp.ImmutableMatrix([x if isinstance(x, sp.Float) else
                                                sp.Float(x, 17) for x in u_after])
@@ -423,9 +399,10 @@ class SpaceCollision:
                       for name, parts in pinned.items()}
         return self._solution(
             acting, acted, P, speeds_after, courses, notes,
-            (before, lost, sp.radsimp(lost / before) if exact else lost / before), checks,
-            pinned, {c.name: sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2) for c in acting},
-            **rule)  # assessed under its own rule
+            (before, lost, tidied(lost / before) if exact else lost / before), checks,
+            pinned, {c.name: (sp.simplify if exact and len(acting) == 1 else sp.sympify)(
+                sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)) for c in acting},
+            regime, **rule)  # assessed under its own rule
 
     def _solution(self, acting: Sequence[Contact], acted: tuple[str, ...],
                   P: Mapping[str, Sequence[Any]], speeds_after: sp.ImmutableMatrix,
@@ -476,7 +453,7 @@ class _SpaceProblem(RowsProblem):
                    normal_rows=sp.ImmutableMatrix([list(J[0, :]) for J in rows]),
                    tangent_rows=sp.ImmutableMatrix([list(J[1, :]) for J in rows]),
                    second_tangent_rows=sp.ImmutableMatrix([list(J[2, :]) for J in rows]),
-                   facets=space.facets, space=space)
+                   facets=space.facets, tolerance=space.tolerance, space=space)
 
     def numbers_only(self, rule: str) -> None:
         """Checked already: several 3-D contacts are solved at numbers."""
@@ -493,12 +470,16 @@ class _SpaceProblem(RowsProblem):
                 **more: Any) -> Solution:
         space = self.space
         exact = not any(sp.sympify(x).has(sp.Float) for x in u)
+        one = exact and len(self.contacts) == 1  # a closed form: tidied as a formula
         # floats as the rule gave them (a sequential run rounded to 60 digits keeps them)
-        u_after = sp.Matrix([sp.sympify(x) for x in u])
+        u_after = sp.Matrix([sp.piecewise_fold(sp.radsimp(sp.expand(x))) if one else
+                             sp.sympify(x) for x in u])
         zero = sp.Integer(0)
         sideways = more.get("tangent_impulses") or {}
         P = {c.name: [impulses[c.name], *sideways.get(c.name, (zero, zero))]
              for c in self.contacts}
+        if one:
+            P = {name: [sp.radsimp(x) for x in parts] for name, parts in P.items()}
         moved = [b.moved(u_after[6 * j:6 * j + 6, 0]) for j, b in enumerate(space.free)]
         before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
         lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
@@ -506,19 +487,30 @@ class _SpaceProblem(RowsProblem):
             (space.rows(c).T * sp.Matrix(P[c.name]) for c in self.contacts),
             sp.zeros(6 * len(space.free), 1))) if space.joints else {}
         checks = space._certificate(list(self.contacts), P, u_after, pinned, rule, acted,
-                                    None if exact else 1e-10)
+                                    None if exact else space.tolerance or 1e-10)
         courses = tuple(more.get("courses") or (
             f"{c.name}: {'acts' if c.name in acted else 'released'}" for c in self.contacts))
         notes = list(more.get("notes", ()))
         if conduct(rule).summary:
             notes.append(conduct(rule).summary)
-        elif exact and conduct(rule).whole_impact:
+        elif exact and conduct(rule).whole_impact and len(self.contacts) > 1:
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
         return space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
                               notes, (before, lost), checks, pinned, rule=rule,
                               order=tuple(order),
-                              passes=passes, method=more.get("method", ""))
+                              passes=passes, method=more.get("method", ""),
+                              regime=_course_of(courses[0], self.contacts[0].name)
+                              if len(self.contacts) == 1 else None)
+
+
+def _course_of(line: str, name: str) -> str:
+    """A contact's course without its name in front (a course with values in it stays
+    a :class:`Given`, so the document sets them as mathematics)."""
+    prefix = f"{name}: "
+    if isinstance(line, Given) and line.template.startswith(prefix):
+        return Given(line.template[len(prefix):], *line.values)
+    return line.split(": ", 1)[1]
 
 
 def _touches_its_surface(body: Body3, contact: Contact) -> None:

@@ -5,13 +5,18 @@ check of a whole-number argument.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, NamedTuple
+
+import sympy as sp
 
 from rigidimpact.errors import InputError
+from rigidimpact.solve.conditions import tidied
 from rigidimpact.solve.problem import ImpulseRows
 from rigidimpact.solve.registry import Conduct, conduct
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.given import shown
+from rigidimpact.symbolic.notation import Given
+from rigidimpact.symbolic.rewrite import tidy
 
 
 def rule_laws(rule: str, frictional: bool = False) -> str:
@@ -110,6 +115,26 @@ class Rule(Conduct):
     def outcomes(self, problem: ImpulseRows) -> tuple[Solution, ...]:
         raise NotImplementedError
 
+    def answer(self, problem: ImpulseRows) -> tuple[Solution, ...]:
+        """The one door every answer goes through, whatever its source: one contact
+        is the contact's own impact under its own laws, whatever the rule (the source's
+        own closed form where it has one, :meth:`ImpulseRows.own_answer`, else the
+        rules' one-contact step, :meth:`one_contact`), reported under this rule; two
+        or more are :meth:`outcomes`, checked (:meth:`checked_outcomes`)."""
+        if len(problem.contacts) == 1:
+            own = problem.own_answer(self)
+            return (self.one_contact(problem) if own is None else own,)
+        return self.checked_outcomes(problem)
+
+    def one_contact(self, problem: ImpulseRows) -> Solution:
+        """A problem of one contact: its own impact (:func:`own_step`), read back by the
+        source (``problem.outcome``) under this rule's name, certified there."""
+        step = own_step(problem, 0, problem.u_before)
+        (contact,) = problem.contacts
+        return alone_outcome(problem, 0, self.name, step.impulse, step.course, step.after,
+                             order=(contact.name,) if self.in_turn else (),
+                             notes=step.notes)
+
     def checked_outcomes(self, problem: Any) -> tuple[Solution, ...]:
         """:meth:`outcomes`, with what it returned checked: a non-empty tuple (or list)
         of :class:`Solution`, or InputError naming the rule (a rule written outside the
@@ -135,3 +160,65 @@ class Rule(Conduct):
     def laws(self, frictional: bool = False) -> str:
         """What the rule imposes, in words."""
         return self.in_words(frictional)
+
+
+class Step(NamedTuple):
+    """One contact's own impact: its impulse (n, t1[, t2]), course, the generalized
+    velocities after, the tolerance where it was followed in floating point (None:
+    exact), and the law's notes."""
+
+    impulse: sp.Matrix
+    course: str
+    after: sp.Matrix
+    tolerance: float | None
+    notes: tuple[str, ...]
+
+
+def own_step(problem: ImpulseRows, k: int, u: sp.Matrix) -> Step:
+    """Contact k's impact alone under its own laws, from speeds u, in its frame with
+    one tangent or two: the rules' one-contact step, written once (the tangential law's
+    one face, :meth:`~rigidimpact.laws.law.ContactLaw.impulse`: Routh's method or the
+    cone for Coulomb, Walton's for rough). Returns the impulse, its course, the
+    generalized velocities after, the tolerance where it was followed in floating
+    point, and the law's notes (a source's stated tolerance, a 3-D collision's, is the
+    face's)."""
+    restitution, tangential = problem.contacts[k].laws
+    rows = problem.contact_rows(k)
+    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
+    if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
+        raise InputError(f"{problem.contacts[k].name}.tangential",
+                         f"{tangential.name}: the touching points have one degree of "
+                         "freedom here (their 2x2 W is singular), so they cannot both "
+                         "stop slipping and leave by the restitution law; tangential = "
+                         "\"coulomb\" follows them (Routh's method), or make it smooth")
+    out = tangential.impulse(W, (rows * u).applyfunc(tidy), restitution, problem.tolerance)
+    P = out.impulse.applyfunc(tidy)
+    u_after = (u + problem.M_inverse * (rows.T * P)).applyfunc(tidy)
+    return Step(P, out.course, u_after, None if out.exact else out.tolerance,
+                tuple(out.notes))
+
+
+def alone_outcome(problem: ImpulseRows, k: int, rule: str, P: sp.Matrix, course: str,
+                  u: sp.Matrix, courses: tuple[str, ...] | None = None,
+                  **more: Any) -> Solution:
+    """The outcome in which contact k alone carried the impulse P (n, t1[, t2]) on its
+    course, every other contact nothing, read back by the source under `rule`;
+    `courses` (default: k's course, the others released) and the rest as
+    ``problem.outcome`` takes them."""
+    n = len(problem.contacts)
+    normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
+    normal[k], along[k] = P[0], P[1]
+    if len(P) == 3:
+        across[k] = P[2]
+    name = problem.contacts[k].name
+    if problem.tangents == 2:  # in space: its second tangent too
+        more["tangent_impulses"] = {c.name: (along[i], across[i])
+                                    for i, c in enumerate(problem.contacts)}
+    if problem.frictional:
+        more["tangential"] = problem.named(along)
+    order = more.pop("order", ())
+    return problem.outcome(rule, order, u, problem.named(normal),
+                           (name,) if P[0] != 0 else (), courses=courses or tuple(
+                               Given(f"{c.name}: ") + course if i == k else
+                               f"{c.name}: released" for i, c in enumerate(problem.contacts)),
+                           **more)

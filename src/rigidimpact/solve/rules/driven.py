@@ -43,8 +43,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.together import driven_impact
 from rigidimpact.lazy import deferred
 from rigidimpact.solve.problem import ImpulseRows
-from rigidimpact.solve.rules.base import Rule, RuleSettings
-from rigidimpact.solve.rules.sequential import _own_step
+from rigidimpact.solve.rules.base import Rule, RuleSettings, alone_outcome, own_step
 from rigidimpact.solve.solution import Solution
 
 if TYPE_CHECKING:
@@ -147,29 +146,19 @@ def _alone(problem: ImpulseRows, k: int, resting: list[int]) -> Solution | None:
     if not all(sp.sympify(x).is_number for x in (*problem.u_before, *problem.M_inverse)):
         return None
     try:
-        P, course, after, tolerance = _own_step(problem, k, problem.u_before)
+        P, course, after, tolerance, _ = own_step(problem, k, problem.u_before)
     except InputError:
         return None
     opening = [problem.closing(i, list(after)) for i in resting]
     if tolerance is not None or any(x < 0 for x in opening):
         return None
-    n = len(problem.contacts)
-    normal, along, across = sp.zeros(n, 1), sp.zeros(n, 1), sp.zeros(n, 1)
-    normal[k], along[k] = P[0], P[1]
-    if len(P) == 3:
-        across[k] = P[2]
     name = problem.contacts[k].name
     rest = ", ".join(problem.contacts[i].name for i in resting)
-    more: dict[str, Any] = {"tangent_impulses": {
-        c.name: (along[i], across[i]) for i, c in enumerate(problem.contacts)}} \
-        if problem.tangents == 2 else {}
     notes = (f"{name} strikes" + (f"; its own impact leaves {rest} not closing, so "
                                   f"{'they carry' if len(resting) > 1 else 'it carries'} "
                                   "nothing" if rest else ""),)
-    return problem.outcome("driven", (), after, problem.named(normal),
-                           (name,) if P[0] > 0 else (), tangential=problem.named(along),
-                           courses=(f"{name}: {course}", *(
-                               f"{problem.contacts[i].name}: "
+    return alone_outcome(problem, k, "driven", P, course, after, courses=(
+        f"{name}: {course}", *(f"{problem.contacts[i].name}: "
                                + ("lets go" if x > 0 else "stays closed, carrying nothing")
                                for i, x in zip(resting, opening, strict=True))),
-                           notes=notes, **more)
+        notes=notes)

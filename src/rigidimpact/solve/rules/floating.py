@@ -19,7 +19,7 @@ from rigidimpact.lazy import deferred
 from rigidimpact.solve.coulomb import coulomb_newton, coulomb_residual, least_norm_rough
 from rigidimpact.solve.lcp import NoSolution, lemke_float
 from rigidimpact.solve.problem import ImpulseRows
-from rigidimpact.solve.rules.sequential import _own_step
+from rigidimpact.solve.rules.base import alone_outcome, own_step
 from rigidimpact.solve.solution import Solution
 
 if TYPE_CHECKING:
@@ -226,8 +226,7 @@ def one_acting(problem: ImpulseRows, k: int, target: list[sp.Expr]) -> Solution:
     """Only contact k acts: its frictional impact alone by Routh's method (the answer
     for one contact under every rule), if that leaves every other contact opening
     at least as fast as its law asks; otherwise one line saying so."""
-    P, course, u, _ = _own_step(problem, k, problem.u_before)
-    normal, along = P[0], P[1]
+    P, course, u, _, _ = own_step(problem, k, problem.u_before)
     after = problem.closings(u)
     blocked = [t.name for i, t in enumerate(problem.contacts)
                if i != k and after[i] < target[i]]
@@ -237,16 +236,6 @@ def one_acting(problem: ImpulseRows, k: int, target: list[sp.Expr]) -> Solution:
                          f"its exact (Routh) impulse leaves {', '.join(blocked)} "
                          "closing: the simultaneous rule has no consistent answer here; "
                          "try the sequential rule")
-    zeros = sp.zeros(len(problem.contacts), 1)
-    normals, tangentials = zeros.copy(), zeros.copy()
-    normals[k], tangentials[k] = normal, along
-    zero = sp.Integer(0)
-    more: dict[str, Any] = {"tangent_impulses": {  # in space: its second tangent too
-        t.name: (along, P[2]) if i == k else (zero, zero)
-        for i, t in enumerate(problem.contacts)}} if problem.tangents == 2 else {}
-    return problem.outcome("simultaneous", (), u,
-                   problem.named(normals), (name,),
-                   tangential=problem.named(tangentials) if problem.frictional else {},
-                   courses=tuple(f"{t.name}: {course}" if i == k else
-                                 f"{t.name}: {STATE['off']}"
-                                 for i, t in enumerate(problem.contacts)), **more)
+    return alone_outcome(problem, k, "simultaneous", P, course, u, courses=tuple(
+        f"{t.name}: {course}" if i == k else f"{t.name}: {STATE['off']}"
+        for i, t in enumerate(problem.contacts)))

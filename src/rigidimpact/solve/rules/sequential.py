@@ -22,7 +22,7 @@ from rigidimpact.solve.conditions import (
     tidied,
 )
 from rigidimpact.solve.problem import ImpulseRows
-from rigidimpact.solve.rules.base import Rule, RuleSettings, whole_number
+from rigidimpact.solve.rules.base import Rule, RuleSettings, own_step, whole_number
 from rigidimpact.solve.solution import Solution
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -158,7 +158,7 @@ def sequential(problem: ImpulseRows, order: Sequence[str]) -> Solution:
         if floating:
             u[:] = [_rounded(x) for x in u]
         if grips:  # its own impact (Routh's for Coulomb; the cone in space)
-            P, course, after, tolerance = _own_step(problem, k, sp.Matrix(u))
+            P, course, after, tolerance, _ = own_step(problem, k, sp.Matrix(u))
             if floating:
                 P, after = P.applyfunc(_rounded), after.applyfunc(_rounded)
             if tolerance is not None:
@@ -253,28 +253,6 @@ def _check_step(problem: ImpulseRows, k: int, before: Sequence[sp.Expr],
         raise InputError("impact", f"the sequential rule's step {number} ({contact.name}) "
                          f"fails its own check ({'; '.join(failures[:3])}): it is not "
                          "given; please report the scene")
-
-
-def _own_step(problem: ImpulseRows, k: int, u: sp.Matrix
-              ) -> tuple[sp.Matrix, str, sp.Matrix, float | None]:
-    """Contact k's impact alone under its own laws, in its frame with one tangent or two
-    (the tangential law's one face, :meth:`~rigidimpact.laws.law.ContactLaw.impulse`:
-    Routh's method or the cone for Coulomb, Walton's for rough): the impulse, its
-    course, the generalized velocities after, and the tolerance where it was followed
-    in floating point."""
-    restitution, tangential = problem.contacts[k].laws
-    rows = problem.contact_rows(k)
-    W = (rows * problem.M_inverse * rows.T).applyfunc(tidied)
-    if W.det() == 0 and tangential.grips and not tangential.solved_by_regimes:
-        raise InputError(f"{problem.contacts[k].name}.tangential",
-                         f"{tangential.name}: the touching points have one degree of "
-                         "freedom here (their 2x2 W is singular), so they cannot both "
-                         "stop slipping and leave by the restitution law; tangential = "
-                         "\"coulomb\" follows them (Routh's method), or make it smooth")
-    out = tangential.impulse(W, (rows * u).applyfunc(tidy), restitution)
-    P = out.impulse.applyfunc(tidy)
-    u_after = (u + problem.M_inverse * (rows.T * P)).applyfunc(tidy)
-    return P, out.course, u_after, None if out.exact else out.tolerance
 
 
 def sequential_pass(problem: ImpulseRows, order: Sequence[str]) -> Solution:
