@@ -16,6 +16,7 @@ import sympy as sp
 import sympy.physics.mechanics as me
 
 from rigidimpact.errors import InputError
+from rigidimpact.model.impulse import kinetic_energy
 from rigidimpact.solve.certificate import (
     SYMBOLIC_POINTS,
     coefficient_ranges,
@@ -148,7 +149,7 @@ def _by_M_and_J(system: Any, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tupl
     after = mpmath.matrix([num(x) for x in u_after])
     before = mpmath.matrix([num(x) for x in system.u_before])
     balance = M * (after - before) - J.T * mpmath.matrix([num(x) for x in P])
-    kinetic = [(x.T * M * x)[0] / 2 for x in (before, after)]
+    kinetic = [kinetic_energy(M, x) for x in (before, after)]
     return balance, J * after, J * before, kinetic
 
 def _own(system: Any, u_after: sp.Matrix, P: sp.Matrix, num: Any) -> tuple | None:

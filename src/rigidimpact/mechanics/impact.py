@@ -65,16 +65,16 @@ from rigidimpact.mechanics.certify import checks as certify_checks
 from rigidimpact.mechanics.certify import wide as _wide
 from rigidimpact.mechanics.kernel import MapKernel
 from rigidimpact.mechanics.rows import SystemRows
+from rigidimpact.model.impulse import kinetic_energy
 from rigidimpact.solve.collision import (
     MAX_ENUMERATED,
     Rule,
     Simultaneous,
-    certified,
 )
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.rules.simultaneous import simultaneous_cases
-from rigidimpact.solve.solution import Solution
+from rigidimpact.solve.solution import Solution, rows_solution
 from rigidimpact.symbolic.notation import labelled
 from rigidimpact.symbolic.rewrite import pythagorean
 
@@ -279,27 +279,25 @@ class SystemImpact:
         contact's impulse (n, t1, t2 in turn, its tangential part's size reported),
         checked from the system's own bodies and points."""
         M = sp.Matrix(self.M)
-        before = (self.u_before.T * M * self.u_before)[0] / 2
-        lost = _small(before - (after.T * M * after)[0] / 2)
+        before = kinetic_energy(M, self.u_before)
+        lost = _small(before - kinetic_energy(M, after))
         checks = certify_checks(self, after, P, rule)
         if checks is not None and not exact:
             checks["_tolerance"] = 1e-8
         names = [c.name for c in self.contacts]
-        one = len(self.contacts) == 1
-        solution = Solution(
-            before=(), after=(), impulses={n: P[3 * i] for i, n in enumerate(names)},
-            tangential={n: _small(sp.sqrt(P[3 * i + 1] ** 2 + P[3 * i + 2] ** 2))
-                        for i, n in enumerate(names)},
+        return rows_solution(
+            (c.laws for c in self.contacts), {n: P[3 * i] for i, n in enumerate(names)},
+            {n: _small(sp.sqrt(P[3 * i + 1] ** 2 + P[3 * i + 2] ** 2))
+             for i, n in enumerate(names)}, self._speeds, self._all(after),
+            (before, lost, lost / before), (f"{n}: {courses[n]}" for n in names),
+            courses[names[0]] if len(names) == 1 else None, checks,
             tangent_impulses={n: (P[3 * i + 1], P[3 * i + 2]) for i, n in enumerate(names)},
-            contacts=tuple(c.laws for c in self.contacts),
-            acted=tuple(n for i, n in enumerate(names) if P[3 * i] != 0),
-            regime=courses[names[0]] if one else None,
-            courses=tuple(f"{n}: {courses[n]}" for n in names),
-            energies=(before, lost, lost / before), notes=notes,
-            speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
-            speeds_after=sp.ImmutableMatrix(self._all(after)), given_checks=checks,
-            rule=rule)
-        return solution if checks is None else certified(solution)
+            notes=notes, rule=rule)
+
+    @property
+    def _speeds(self) -> tuple[Any, ...]:
+        """The speeds the answer reports: every speed (independent and dependent)."""
+        return tuple(self.u) if self.fold is None else tuple(self.fold[0])
 
     @cached_property
     def _stand_ins(self) -> dict[sp.Basic, sp.Dummy]:
@@ -515,7 +513,7 @@ class SystemImpact:
                                  "impulses (more conditions than the system has freedoms)"
                                  + ("" if gens else " and contradict one another"))
             solved = found  # the motion is fixed (W's null vectors are J^T's)
-            twice = (u.T * M * u - solved[:n, :].T * M * solved[:n, :])[0]
+            twice = 2 * (kinetic_energy(M, u) - kinetic_energy(M, solved[:n, :]))
             notes = ("more contact conditions than freedoms: the motion after is unique but "
                      "the impulses are not; shown: the least-norm impulses",)
         u_after, impulse = solved[:n, :], solved[n:, :]
@@ -552,7 +550,7 @@ class SystemImpact:
                              f"{float(error):.1e})")
         solved = sp.Matrix([sp.Float(x[i], digits) for i in range(A_.cols)])
         u_after, impulse = solved[:n, :], solved[n:, :]
-        twice = (u.T * M * u - u_after.T * M * u_after)[0]
+        twice = 2 * (kinetic_energy(M, u) - kinetic_energy(M, u_after))
         courses = {c.name: c.laws.laws[1].name for c in self.contacts}
         notes: tuple[str, ...] = (
             f"solved in {digits}-digit floating point (the numbers are out of the "
@@ -597,7 +595,7 @@ class SystemImpact:
         equations, unknowns = self._equations(v, courses, normal, along, summed, how)
         lost = _small(back(sp.Matrix([energy]))[0])
         warnings = self._warnings(normal)
-        before = (self.u_before.T * self.M * self.u_before)[0] / 2
+        before = kinetic_energy(self.M, self.u_before)
         if lost.is_number and before.is_number and lost < -sp.Float(1e-12) * before:
             laws = ", ".join(f"{c.laws.law} with {c.laws.tangential}" for c in self.contacts)
             warnings += (f"the impact created kinetic energy ({float(-lost):.6g}, "
@@ -611,20 +609,15 @@ class SystemImpact:
             sp.sympify(x).has(sp.Float) for x in (*after, *P))
         if checks is not None and integrated:  # followed in floating point: the rule's
             checks.pop("_tolerance")  # own tolerance (its integrator's), not the exact paths'
-        solution = Solution(
-            before=(), after=(), impulses=normal, tangential=along,
-            contacts=tuple(c.laws for c in self.contacts),
-            acted=tuple(n for n, p in normal.items() if p != 0), equations=equations,
-            unknowns=unknowns, regime=next(iter(courses.values())) if one else None,
-            courses=tuple(f"{n}: {c}" for n, c in courses.items()),
-            energies=(before, lost, lost / before), warnings=warnings, notes=(
-                f"solved in {self.digits}-digit floating point (the numbers are out of the "
-                "rationals)",) if self.digits else (),
-            speeds_before=tuple(self.u) if self.fold is None else tuple(self.fold[0]),
-            speeds_after=sp.ImmutableMatrix(self._all(back(after)).applyfunc(_small)),
-            given_checks=checks, rule=rule)
         # its energy warning is its own (above): only a broken condition is acted on
-        return solution if checks is None else certified(solution, limits=False)
+        return rows_solution(
+            (c.laws for c in self.contacts), normal, along, self._speeds,
+            self._all(back(after)).applyfunc(_small), (before, lost, lost / before),
+            (f"{n}: {c}" for n, c in courses.items()),
+            next(iter(courses.values())) if one else None, checks, limits=False,
+            equations=equations, unknowns=unknowns, warnings=warnings, notes=(
+                f"solved in {self.digits}-digit floating point (the numbers are out of the "
+                "rationals)",) if self.digits else (), rule=rule)
 
     def _all(self, independent: sp.Matrix) -> sp.Matrix:
         """Every speed from the independent ones (the dependent ones by the velocity

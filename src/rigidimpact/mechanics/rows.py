@@ -12,6 +12,7 @@ from typing import Any
 
 import sympy as sp
 
+from rigidimpact.model.impulse import kinetic_energy
 from rigidimpact.solve.problem import RowsProblem
 from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.solution import Solution
@@ -103,7 +104,7 @@ class SystemRows(RowsProblem):
                                        else "in turn"))
                    for c in self.contacts}
         M, u0 = system.M, sp.Matrix(system.u_before)
-        energy = ((u0.T * M * u0)[0] - (u.T * M * u)[0]) / 2
+        energy = kinetic_energy(M, u0) - kinetic_energy(M, u)
         # the contact's own printed laws hold where the rule imposed them as they are
         # (Newton's law at each acting contact, smooth or sticking); otherwise the
         # rule's impulses are what is printed

@@ -32,13 +32,15 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import sympy as sp
 
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross, spin_cross
 
-__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "jacobian", "moving"]
+__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "jacobian", "moving",
+           "kinetic_energy"]
 
 
 @dataclass(frozen=True)
@@ -234,3 +236,18 @@ class ImpulseProblem:
         0
         """
         return sp.Matrix(impulse).dot(sp.Matrix(before) + sp.Matrix(after)) / 2
+
+
+def kinetic_energy(M: Any, u: Any) -> sp.Expr:
+    """``u^T M u / 2``: the kinetic energy at generalized speeds u of a system whose
+    mass matrix is M (the one formula a system's energies before, after and lost are
+    taken from).
+
+    Examples
+    --------
+    >>> kinetic_energy(sp.diag(2, 3), sp.Matrix([1, 2]))
+    7
+    """
+    u = sp.Matrix(u)
+    return (u.T * sp.Matrix(M) * u)[0] / 2
+

@@ -38,7 +38,7 @@ from rigidimpact.solve.certificate import as_sympy, assess, residuals
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Solution", "certified"]
+__all__ = ["Solution", "certified", "rows_solution"]
 
 EYE = sp.ImmutableMatrix.eye(2)
 
@@ -428,3 +428,26 @@ def certified(solution: Solution, limits: bool = True) -> Solution:
         return solution
     new = tuple(w for w in warnings if w not in solution.warnings)
     return replace(solution, warnings=solution.warnings + new) if new else solution
+
+
+def rows_solution(contacts: Any, impulses: Mapping[str, Any], tangential: Mapping[str, Any],
+                  speeds_before: Any, speeds_after: Any, energies: tuple, courses: Any,
+                  regime: Any, checks: Mapping[str, Any] | None, limits: bool = True,
+                  **more: Any) -> Solution:
+    """The one reading back of a source that keeps no planar bodies (a 3-D collision, a
+    sympy.physics.mechanics system): each contact's normal impulse and its tangential
+    part's size, the generalized speeds before and after, the energies, each contact's
+    course; the rest (a tangent plane's two components, printed equations, joints'
+    impulses, notes, the rule) as the Solution takes them. Certified by the source's
+    own residuals (`checks`; None where no point of a closed form is an impact),
+    `limits` as :func:`certified` takes it; `acted`, unless given, is every contact
+    that pushed."""
+    acted = more.pop("acted", None)
+    solution = Solution(
+        before=(), after=(), impulses=dict(impulses), tangential=dict(tangential),
+        contacts=tuple(contacts), acted=tuple(name for name, p in impulses.items()
+                                              if p != 0) if acted is None else tuple(acted),
+        regime=regime, courses=tuple(courses), energies=energies,
+        speeds_before=tuple(speeds_before), speeds_after=sp.ImmutableMatrix(speeds_after),
+        given_checks=checks, **more)
+    return solution if checks is None else certified(solution, limits=limits)

@@ -64,7 +64,7 @@ from rigidimpact.solve.rules import (
     Simultaneous,
     rule_named,
 )
-from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.solve.solution import Solution, rows_solution
 from rigidimpact.symbolic.given import given_values
 from rigidimpact.symbolic.notation import Given
 
@@ -413,15 +413,13 @@ class SpaceCollision:
         """The one 3-D Solution: each acting contact's impulse in its frame (n, t1, t2)
         and the size of its tangential part, the speeds after, the energies, certified
         by its own residuals (none where no point of a closed form is an impact)."""
-        solution = Solution(
-            before=(), after=(), impulses={c.name: P[c.name][0] for c in acting},
-            tangential=dict(sizes), contacts=tuple(acting), acted=acted,
-            regime="; ".join(courses) if regime is None else regime, courses=courses,
-            energies=energies, notes=tuple(notes), speeds_before=self.speeds,
-            speeds_after=speeds_after,
+        return rows_solution(
+            acting, {c.name: P[c.name][0] for c in acting}, sizes, self.speeds,
+            speeds_after, energies, courses,
+            "; ".join(courses) if regime is None else regime, checks, acted=acted,
+            notes=tuple(notes),
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            given_checks=checks, joint_impulses=pinned, **rule)
-        return solution if checks is None else certified(solution)
+            joint_impulses=pinned, **rule)
 
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols (Python or SymPy numbers,
