@@ -131,7 +131,7 @@ def browse(site: Path = SITE, pages: list[str] = PAGES) -> dict[str, dict]:
             if not (site / page.split("?")[0]).exists():
                 found[page] = {"missing": True}
                 continue
-            for _ in range(3):  # on a busy machine the probe may not have finished yet
+            for _ in range(6):  # on a busy machine the probe may not have finished yet
                 dom = _run(browser, "--virtual-time-budget=60000", "--dump-dom",
                            f"{base}/screens/probe.html#{base}/{page}")
                 match = re.search(r'<pre id="result">(.*?)</pre>', dom, re.S)

@@ -83,7 +83,7 @@ def test_every_source_answers_through_the_one_door(doors):
         [-sp.Rational(1, 3), sp.Rational(2, 3), sp.Rational(2, 3)]
     assert _sphere_on_floor(restitution=HALF).solve().results()["ball.vz"] == 1
     assert _pendulum({"restitution": HALF}).solve().speeds_after[0] == HALF
-    assert doors == [("Collision", 1), ("Collision", 2), ("_SpaceProblem", 1),
+    assert doors == [("Collision", 1), ("Collision", 2), ("SpaceRows", 1),
                      ("SystemRows", 1)]
 
 

@@ -74,7 +74,7 @@ from rigidimpact.solve.collision import (
 from rigidimpact.solve.lcp import least_norm
 from rigidimpact.solve.registry import conduct
 from rigidimpact.solve.rules.simultaneous import simultaneous_cases
-from rigidimpact.solve.solution import Solution, rows_solution
+from rigidimpact.solve.solution import Solution, read_back
 from rigidimpact.symbolic.notation import labelled
 from rigidimpact.symbolic.rewrite import pythagorean
 
@@ -285,12 +285,15 @@ class SystemImpact:
         if checks is not None and not exact:
             checks["_tolerance"] = 1e-8
         names = [c.name for c in self.contacts]
-        return rows_solution(
+        return read_back(
             (c.laws for c in self.contacts), {n: P[3 * i] for i, n in enumerate(names)},
-            {n: _small(sp.sqrt(P[3 * i + 1] ** 2 + P[3 * i + 2] ** 2))
-             for i, n in enumerate(names)}, self._speeds, self._all(after),
-            (before, lost, lost / before), (f"{n}: {courses[n]}" for n in names),
-            courses[names[0]] if len(names) == 1 else None, checks,
+            certify=checks is not None,
+            tangential={n: _small(sp.sqrt(P[3 * i + 1] ** 2 + P[3 * i + 2] ** 2))
+                        for i, n in enumerate(names)},
+            speeds_before=self._speeds, speeds_after=self._all(after),
+            energies=(before, lost, lost / before),
+            courses=(f"{n}: {courses[n]}" for n in names),
+            regime=courses[names[0]] if len(names) == 1 else None, given_checks=checks,
             tangent_impulses={n: (P[3 * i + 1], P[3 * i + 2]) for i, n in enumerate(names)},
             notes=notes, rule=rule)
 
@@ -610,11 +613,13 @@ class SystemImpact:
         if checks is not None and integrated:  # followed in floating point: the rule's
             checks.pop("_tolerance")  # own tolerance (its integrator's), not the exact paths'
         # its energy warning is its own (above): only a broken condition is acted on
-        return rows_solution(
-            (c.laws for c in self.contacts), normal, along, self._speeds,
-            self._all(back(after)).applyfunc(_small), (before, lost, lost / before),
-            (f"{n}: {c}" for n, c in courses.items()),
-            next(iter(courses.values())) if one else None, checks, limits=False,
+        return read_back(
+            (c.laws for c in self.contacts), normal, certify=checks is not None,
+            limits=False, tangential=along, speeds_before=self._speeds,
+            speeds_after=self._all(back(after)).applyfunc(_small),
+            energies=(before, lost, lost / before),
+            courses=(f"{n}: {c}" for n, c in courses.items()),
+            regime=next(iter(courses.values())) if one else None, given_checks=checks,
             equations=equations, unknowns=unknowns, warnings=warnings, notes=(
                 f"solved in {self.digits}-digit floating point (the numbers are out of the "
                 "rationals)",) if self.digits else (), rule=rule)

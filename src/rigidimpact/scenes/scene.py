@@ -96,10 +96,18 @@ def parse_expression(value: Any, where: str,
     return expressions.parse_expression(value, where, symbols)
 
 
-def _vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
-    if not isinstance(value, list) or len(value) != 2:
-        raise InputError(where, "expected a list of two components [x, y]")
+def vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol],
+           size: int = 2) -> tuple:
+    """A list of `size` components (2: [x, y], 3: [x, y, z]), each read as an
+    expression in the scene's symbols."""
+    if not isinstance(value, list) or len(value) != size:
+        raise InputError(where, f"expected a list of {'two' if size == 2 else 'three'} "
+                         f"components [{', '.join('xyz'[:size])}]")
     return tuple(parse_expression(c, f"{where}[{i}]", symbols) for i, c in enumerate(value))
+
+
+def _vector(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
+    return vector(value, where, symbols)
 
 
 @dataclass(frozen=True)
@@ -565,27 +573,47 @@ def _pair(table: Mapping[str, Any], place: str, default: list[str]) -> list[str]
     return order
 
 
-def _read_contact(table: Mapping[str, Any], place: str, symbols: Mapping[str, sp.Symbol],
-                  bodies: tuple[str, str]) -> Contact:
-    """A contact between `bodies`: its laws and its point (from O)."""
+def read_contact(table: Any, place: str, symbols: Mapping[str, sp.Symbol],
+                 bodies: tuple[str, str] | None = None, size: int = 2,
+                 named: bool = False) -> Contact:
+    """One contact's table, in the plane (`size` 2) or in space (3): its two bodies
+    (`bodies`, or the table's own: required in space), its laws, its normal and its
+    point (from O; in the plane the normal defaults to x and the point to O), its name
+    (required where `named`). A field the contact refuses is named at its place in
+    the file."""
+    if not isinstance(table, dict):
+        raise InputError(place, "must be a table")
     for key in table:
         if key not in CONTACT_FIELDS:
             raise InputError(f"{place}.{key}", f"unknown field; expected "
                              f"{', '.join(CONTACT_FIELDS)}")
-    normal = _vector(table.get("normal", [1, 0]), f"{place}.normal", symbols)
-    if "restitution" not in table:
-        raise InputError(f"{place}.restitution", "required: the coefficient e in [0, 1]")
-    restitution = parse_expression(table["restitution"], f"{place}.restitution", symbols)
+    needed = ("restitution", *(("bodies", "normal") if size == 3 else ()),
+              *(("name",) if named else ()))
+    for key in needed:
+        if key not in table:
+            raise InputError(f"{place}.{key}", "required" + (
+                ": the coefficient e in [0, 1]" if key == "restitution" else
+                " with several contacts" if key == "name" else " in a 3-D scene"))
+    if bodies is None:
+        first, second = _pair(table, place, [])
+        bodies = (first, second)
     contact_name = table.get("name", "contact")
     if not isinstance(contact_name, str) or not contact_name.isidentifier():
         raise InputError(f"{place}.name", "must be an identifier such as \"left\"")
     coefficients = {key: parse_expression(table[key], f"{place}.{key}", symbols)
                     for key in ("friction", "tangential_restitution") if key in table}
-    point = _vector(table["point"], f"{place}.point", symbols) if "point" in table \
-        else (sp.Integer(0), sp.Integer(0))
-    return Contact(normal, restitution, table.get("tangential", "smooth"),
-                   table.get("law", "newton"), contact_name, bodies=bodies, point=point,
-                   **coefficients)
+    try:
+        return Contact(vector(table.get("normal", [1, 0]), f"{place}.normal", symbols, size),
+                       parse_expression(table["restitution"], f"{place}.restitution",
+                                        symbols),
+                       table.get("tangential", "smooth"), table.get("law", "newton"),
+                       contact_name, bodies=bodies, point=vector(
+                           table.get("point", [0] * size), f"{place}.point", symbols, size),
+                       **coefficients)
+    except InputError as exc:  # the contact's own field, at its place in the file
+        if place == "contact":
+            raise
+        raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
 
 
 def _compliance(table: Mapping[str, Any], count: int) -> tuple[tuple[float, ...], bool]:
@@ -640,7 +668,7 @@ def _contacts(tables: list[tuple[dict[str, Any], str]], by_name: Mapping[str, An
         for body_name in (first, second):
             if body_name not in by_name:
                 raise InputError(f"{place}.bodies", f"no body named {body_name!r}")
-        contact = _read_contact(table, place, symbols, (first, second))
+        contact = read_contact(table, place, symbols, (first, second))
         if contact.name in names:
             raise InputError(f"{place}.name", f"two contacts are named {contact.name!r}")
         names.add(contact.name)

@@ -37,6 +37,7 @@ from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.scenes.scene import (
     Scene,
     _compliance,
+    _contact_tables,
     _impact_table,
     _joints,
     _sample,
@@ -46,8 +47,10 @@ from rigidimpact.scenes.scene import (
     is_spatial,
     orders_extra,
     parse_expression,
+    read_contact,
     read_toml,
     scene_from_data,
+    vector,
 )
 from rigidimpact.solve.derivation import Derivation, Evaluation, exact_numbers, read_values
 from rigidimpact.solve.registry import conduct
@@ -301,9 +304,7 @@ def unknowns_at(collision: SpaceCollision, solution: Solution) -> dict[sp.Symbol
 
 
 def _vector3(value: Any, where: str, symbols: Mapping[str, sp.Symbol]) -> tuple:
-    if not isinstance(value, list) or len(value) != 3:
-        raise InputError(where, "expected a list of three components [x, y, z]")
-    return tuple(parse_expression(c, f"{where}[{i}]", symbols) for i, c in enumerate(value))
+    return vector(value, where, symbols, 3)
 
 
 def _read_body(table: Any, index: int, symbols: Mapping[str, sp.Symbol]) -> Body3:
@@ -360,55 +361,20 @@ def _read_body(table: Any, index: int, symbols: Mapping[str, sp.Symbol]) -> Body
 
 def _read_contact(table: Any, symbols: Mapping[str, sp.Symbol], place: str = "contact",
                   named: bool = False) -> Contact:
-    if not isinstance(table, dict):
-        raise InputError(place, "must be a table")
-    for key in table:
-        if key not in CONTACT_FIELDS:
-            raise InputError(f"{place}.{key}", f"unknown field; expected "
-                             f"{', '.join(CONTACT_FIELDS)}")
-    for key in ("bodies", "normal", "restitution") + (("name",) if named else ()):
-        if key not in table:
-            raise InputError(f"{place}.{key}", "required in a 3-D scene" + (
-                " with several contacts" if key == "name" else ""))
-    bodies = table["bodies"]
-    if not isinstance(bodies, list) or len(bodies) != 2 or \
-            not all(isinstance(b, str) for b in bodies):
-        raise InputError(f"{place}.bodies", "two body names")
-    contact_name = table.get("name", "contact")
-    if not isinstance(contact_name, str) or not contact_name.isidentifier():
-        raise InputError(f"{place}.name", "must be an identifier such as \"cushion\"")
-    friction = {key: parse_expression(table[key], f"{place}.{key}", symbols)
-                for key in ("friction", "tangential_restitution") if key in table}
-    try:
-        return Contact(_vector3(table["normal"], f"{place}.normal", symbols),
-                       parse_expression(table["restitution"], f"{place}.restitution",
-                                        symbols),
-                       table.get("tangential", "smooth"), table.get("law", "newton"),
-                       contact_name, bodies=tuple(bodies),
-                       point=_vector3(table.get("point", [0, 0, 0]), f"{place}.point",
-                                      symbols), **friction)
-    except InputError as exc:  # the contact's own field, at its place in the file
-        if place == "contact":
-            raise
-        raise InputError(f"{place}.{exc.field.split('.')[-1]}", exc.message) from None
+    """A contact of a 3-D scene: the one contact reader, in space."""
+    return read_contact(table, place, symbols, size=3, named=named)
 
 
 def _read_contacts(data: Mapping[str, Any],
                    symbols: Mapping[str, sp.Symbol]) -> tuple[Contact, ...]:
-    """``[contact]``, or the ``[[contacts]]`` entries (each named)."""
-    if "contact" in data and "contacts" in data:
-        raise InputError("contacts", "give either [contact] or [[contacts]], not both")
-    if "contacts" not in data:
-        return (_read_contact(data.get("contact"), symbols),)
-    entries = data["contacts"]
-    if not isinstance(entries, list) or not entries:
-        raise InputError("contacts", "[[contacts]] must hold at least one table")
-    contacts = tuple(_read_contact(t, symbols, f"contacts[{k}]", named=len(entries) > 1)
-                     for k, t in enumerate(entries))
+    """``[contact]``, or the ``[[contacts]]`` entries (each named), as in the plane."""
+    tables = _contact_tables(data)
+    contacts = tuple(_read_contact(t, symbols, place, named=len(tables) > 1)
+                     for t, place in tables)
     seen: set[str] = set()
-    for k, c in enumerate(contacts):
+    for (_, place), c in zip(tables, contacts, strict=True):
         if c.name in seen:
-            raise InputError(f"contacts[{k}].name", f"two contacts are named {c.name!r}")
+            raise InputError(f"{place}.name", f"two contacts are named {c.name!r}")
         seen.add(c.name)
     return contacts
 

@@ -41,6 +41,7 @@ import sympy as sp
 
 from rigidimpact.errors import InputError
 from rigidimpact.laws.compliance import MAX_DAMPING_RATIO, damping_ratio_for, restitution_of
+from rigidimpact.laws.law import Smooth
 from rigidimpact.model.bodies import Body
 from rigidimpact.model.shapes import is_round
 from rigidimpact.scenes.scene import Scene
@@ -663,17 +664,19 @@ def _flown_to(parts: list[_Part], y: np.ndarray, horizon: float, t: float,
 def _rigid_impulse(parts: list[_Part], normal: np.ndarray, law: Any, values: Mapping,
                    y: np.ndarray, rate: float) -> np.ndarray:
     """The state after the contact's restitution law acts in an instant between the
-    touching points, closing at `rate` (a rigid contact, smooth: a straight impulse
-    path, where the law asks a normal velocity after; Newton's ``e`` times the closing
-    speed); the contact's work is added to the last entry."""
+    touching points, closing at `rate` (a rigid contact, smooth: the smooth law's one
+    face, :meth:`~rigidimpact.laws.law.ContactLaw.impulse`, whose normal entry of W is
+    the sum of the two effective masses' inverses; no tangential impulse); the contact's
+    work is added to the last entry."""
     if rate <= 0:
         return y
     first, second = parts
     point = _application_point(first, second, y)
     m1 = _effective_mass(first, y, normal, point)
     m2 = _effective_mass(second, y, normal, point)
-    leaving = as_float(law.leaving(sp.Float(-rate, 30)), values)
-    j = (leaving + rate) / (1 / m1 + 1 / m2)
+    face = Smooth().impulse(sp.diag(sp.Float(1 / m1 + 1 / m2, 30), 1),
+                            sp.Matrix([sp.Float(-rate, 30), 0]), law)
+    j = as_float(face.impulse[0], values)
     before = _energy(parts, y)[0]
     y = y.copy()
     for part, sign in ((first, -1.0), (second, 1.0)):

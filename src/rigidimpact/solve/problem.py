@@ -28,7 +28,7 @@ from rigidimpact.model.impulse import Coordinate, coordinates_of, jacobian, movi
 from rigidimpact.model.joints import Joint, off_body
 from rigidimpact.solve.conditions import sample_points, tidied
 from rigidimpact.solve.registry import Conduct, conduct
-from rigidimpact.solve.solution import Solution, certified
+from rigidimpact.solve.solution import Solution, read_back
 from rigidimpact.symbolic.geometry import perp
 from rigidimpact.symbolic.notation import COMPONENTS, labelled
 from rigidimpact.symbolic.rewrite import tidy
@@ -613,10 +613,9 @@ class ImpactProblem(ImpulseRows):
         joined: dict[str, Any] = {"joints": self.joints, "joint_impulses":
                                   self._joint_impulses(impulses, more.get("tangential") or {})
                                   } if self.joints else {}
-        solution = Solution(before=self.bodies, after=self._after(u), impulses=impulses,
-                            contacts=self.contacts, rule=rule, order=tuple(order),
-                            acted=tuple(acted), passes=passes, **joined, **more)
-        return certified(solution)
+        return read_back(self.contacts, impulses, before=self.bodies, after=self._after(u),
+                         rule=rule, order=order, acted=acted, passes=passes, **joined,
+                         **more)
 
     @property
     def dense(self) -> bool:

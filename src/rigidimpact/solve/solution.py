@@ -38,7 +38,7 @@ from rigidimpact.solve.certificate import as_sympy, assess, residuals
 from rigidimpact.symbolic.notation import aligned, result_lhs, to_latex
 from rigidimpact.symbolic.rewrite import tidy
 
-__all__ = ["Solution", "certified", "rows_solution"]
+__all__ = ["Solution", "certified", "read_back"]
 
 EYE = sp.ImmutableMatrix.eye(2)
 
@@ -430,24 +430,22 @@ def certified(solution: Solution, limits: bool = True) -> Solution:
     return replace(solution, warnings=solution.warnings + new) if new else solution
 
 
-def rows_solution(contacts: Any, impulses: Mapping[str, Any], tangential: Mapping[str, Any],
-                  speeds_before: Any, speeds_after: Any, energies: tuple, courses: Any,
-                  regime: Any, checks: Mapping[str, Any] | None, limits: bool = True,
-                  **more: Any) -> Solution:
-    """The one reading back of a source that keeps no planar bodies (a 3-D collision, a
-    sympy.physics.mechanics system): each contact's normal impulse and its tangential
-    part's size, the generalized speeds before and after, the energies, each contact's
-    course; the rest (a tangent plane's two components, printed equations, joints'
-    impulses, notes, the rule) as the Solution takes them. Certified by the source's
-    own residuals (`checks`; None where no point of a closed form is an impact),
-    `limits` as :func:`certified` takes it; `acted`, unless given, is every contact
-    that pushed."""
-    acted = more.pop("acted", None)
-    solution = Solution(
-        before=(), after=(), impulses=dict(impulses), tangential=dict(tangential),
-        contacts=tuple(contacts), acted=tuple(name for name, p in impulses.items()
-                                              if p != 0) if acted is None else tuple(acted),
-        regime=regime, courses=tuple(courses), energies=energies,
-        speeds_before=tuple(speeds_before), speeds_after=sp.ImmutableMatrix(speeds_after),
-        given_checks=checks, **more)
-    return solution if checks is None else certified(solution, limits=limits)
+def read_back(contacts: Any, impulses: Mapping[str, Any], *, certify: bool = True,
+              limits: bool = True, **fields: Any) -> Solution:
+    """The one builder of a :class:`Solution`, which every source's reading back ends
+    in (the planar shapes' bodies after, a 3-D collision's and a mechanics system's
+    speeds after; the paper's two-body core keeps its own, with the paper's notation):
+    the contacts and each one's normal impulse, the rest as the Solution takes them
+    (`acted`, unless given, is every contact that pushed). Certified on the way out
+    (:func:`certified`, `limits` as it takes it) unless `certify` is False: a closed
+    form no point of whose symbols is an impact has nothing to be checked at."""
+    if fields.get("acted") is None:
+        fields["acted"] = tuple(name for name, p in impulses.items() if p != 0)
+    for key in ("acted", "courses", "speeds_before", "order"):
+        if key in fields:
+            fields[key] = tuple(fields[key])
+    if fields.get("speeds_after") is not None:
+        fields["speeds_after"] = sp.ImmutableMatrix(fields["speeds_after"])
+    solution = Solution(before=fields.pop("before", ()), after=fields.pop("after", ()),
+                        impulses=dict(impulses), contacts=tuple(contacts), **fields)
+    return certified(solution, limits=limits) if certify else solution

@@ -10,7 +10,7 @@ contact's three rows J in its own frame (n, t1, t2: :func:`rigidimpact.laws.cone
 ``u+ = u- + M^-1 J^T P``. Several contacts: where one strikes and the others rest, the
 impact is followed in the striking one's normal impulse (:meth:`SpaceCollision.driven`);
 where several strike, the simultaneous rule: the plane's one implementation on the
-problem of rows (:class:`_SpaceProblem`), exact for smooth contacts and with Coulomb's
+problem of rows (:class:`SpaceRows`), exact for smooth contacts and with Coulomb's
 circular cone in floating point, or with the cone as a pyramid of a stated number of
 edges (``facets``; the rule's own, as in the plane).
 
@@ -64,7 +64,7 @@ from rigidimpact.solve.rules import (
     Simultaneous,
     rule_named,
 )
-from rigidimpact.solve.solution import Solution, rows_solution
+from rigidimpact.solve.solution import Solution, read_back
 from rigidimpact.symbolic.given import given_values
 from rigidimpact.symbolic.notation import Given
 
@@ -298,7 +298,7 @@ class SpaceCollision:
             raise InputError("contacts", "several 3-D contacts are solved where one or more "
                              "of them approach; here none approaches")
         assert isinstance(self.rule, Rule)  # made one in __post_init__
-        found = self.rule.answer(_SpaceProblem.of(self))
+        found = self.rule.answer(SpaceRows.of(self))
         return tuple(self._every_contact(o) for o in found)
 
     def _certificate(self, acting: Sequence[Contact], P: Mapping[str, Sequence[Any]],
@@ -413,11 +413,12 @@ class SpaceCollision:
         """The one 3-D Solution: each acting contact's impulse in its frame (n, t1, t2)
         and the size of its tangential part, the speeds after, the energies, certified
         by its own residuals (none where no point of a closed form is an impact)."""
-        return rows_solution(
-            acting, {c.name: P[c.name][0] for c in acting}, sizes, self.speeds,
-            speeds_after, energies, courses,
-            "; ".join(courses) if regime is None else regime, checks, acted=acted,
-            notes=tuple(notes),
+        return read_back(
+            acting, {c.name: P[c.name][0] for c in acting}, certify=checks is not None,
+            tangential=dict(sizes), speeds_before=self.speeds, speeds_after=speeds_after,
+            energies=energies, courses=courses,
+            regime="; ".join(courses) if regime is None else regime, given_checks=checks,
+            acted=acted, notes=tuple(notes),
             tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
             joint_impulses=pinned, **rule)
 
@@ -432,17 +433,16 @@ class SpaceCollision:
 
 
 @dataclass(frozen=True)
-class _SpaceProblem(RowsProblem):
+class SpaceRows(RowsProblem):
     """A 3-D collision as the one problem of rows every rule reads: its six speeds a
-    free body, its projected M^-1 and each contact's normal row (the smooth contacts
-    the planar rules solve in space). What a rule makes of it comes back as the 3-D
-    Solution, checked by the one certificate (:meth:`SpaceCollision._certificate`)."""
+    free body, its projected M^-1 and each contact's rows (n, t1, t2). What a rule makes
+    of it comes back as the 3-D Solution, checked by the one certificate
+    (:meth:`SpaceCollision._certificate`)."""
 
     space: Any = None
-    smooth_message: str = ""
 
     @classmethod
-    def of(cls, space: SpaceCollision) -> _SpaceProblem:
+    def of(cls, space: SpaceCollision) -> SpaceRows:
         """The one assembly of a 3-D collision into the problem of rows."""
         rows = [space.rows(c) for c in space.contacts]
         return cls(space.contacts, speeds=tuple(map(str, space.speeds)),
