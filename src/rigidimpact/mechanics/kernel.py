@@ -197,10 +197,13 @@ def _states(name: str, value: Any, width: int) -> np.ndarray:
     if array.ndim != 2 or array.shape[1] != width:
         raise InputError(name, f"must be an array (states, {width}) or one state of "
                          f"{width}, not one of shape {np.shape(value)}")
-    bad = np.flatnonzero(~np.isfinite(array).all(axis=1))
-    if bad.size:
-        raise InputError(name, f"must be finite: state {int(bad[0])} holds NaN or an "
-                         "infinity")
+    with np.errstate(over="ignore", invalid="ignore"):  # one pass: a sum of huge finite
+        total = array.sum()  # numbers may overflow, then each state is looked at
+    if not np.isfinite(total):  # the state named only where one is bad
+        bad = np.flatnonzero(~np.isfinite(array).all(axis=1))
+        if bad.size:
+            raise InputError(name, f"must be finite: state {int(bad[0])} holds NaN or an "
+                             "infinity")
     return array
 
 
