@@ -11,7 +11,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import NewtonRestitution, Stick
 from rigidimpact.model.bodies import Body
-from rigidimpact.model.impulse import ImpulseProblem
+from rigidimpact.model.impulse import TouchingPair
 from rigidimpact.solve.impact import Impact
 from rigidimpact.symbolic.notation import symbol
 
@@ -47,7 +47,7 @@ def random_pair(generator: random.Random) -> tuple[Body, Body]:
 def test_W_is_symmetric_positive_and_predicts_the_velocity_change(case):
     generator = random.Random(SEED + case)
     first, second = random_pair(generator)
-    core = ImpulseProblem((first, second))
+    core = TouchingPair((first, second))
     W = core.W
     assert W == W.T
     assert all(value >= 0 for value in W.eigenvals())  # a kinetic-energy form
@@ -70,7 +70,7 @@ def test_the_barbell_W_is_the_papers_denominator():
     # Mungan eq. (5): the impulse is (1 + e) m v 2M / (2M + m(1 + sin^2 theta)), i.e.
     # (1 + e) v / W_nn with W_nn = 1/m + 1/(2M) + sin^2(theta)/(2M)
     m, M, L, theta = (symbol(n) for n in ("m", "M", "L", "theta"))
-    core = ImpulseProblem((Body.particle(m, (1, 0)), Body.barbell(M, L, theta)))
+    core = TouchingPair((Body.particle(m, (1, 0)), Body.barbell(M, L, theta)))
     expected = 1 / m + 1 / (2 * M) + sp.sin(theta) ** 2 / (2 * M)
     assert sp.simplify(core.W[0, 0] - expected) == 0
 
@@ -82,7 +82,7 @@ def test_laws_impose_what_they_print(case):
     # v+_n = -e v-_n and v+_t = 0
     generator = random.Random(SEED - case)
     first, second = random_pair(generator)
-    core = ImpulseProblem((first, second))
+    core = TouchingPair((first, second))
     impulse = sp.Matrix(sp.symbols("P_n P_t", real=True))
     kicked = core.bodies_after(impulse)
     e = sp.Rational(generator.randint(0, 10), 10)

@@ -19,7 +19,7 @@ from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.laws.law import RESTITUTION_LAWS
 from rigidimpact.model.bodies import Body
-from rigidimpact.model.impulse import ImpulseProblem
+from rigidimpact.model.impulse import TouchingPair
 from rigidimpact.paper.problems import derive
 from rigidimpact.solve.impact import Impact
 from rigidimpact.symbolic.notation import symbol
@@ -77,7 +77,7 @@ def integrate(W, v, mu, e, law, width=1e-7):
 
 
 def energy_ratio(bodies, impulse):
-    core = ImpulseProblem(bodies)
+    core = TouchingPair(bodies)
     after = core.bodies_after(sp.Matrix(impulse))
     before = sum(b.kinetic_energy for b in bodies)
     return float(sum(b.kinetic_energy for b in after) / before)
@@ -87,7 +87,7 @@ def energy_ratio(bodies, impulse):
                                         ("energetic", 0.912313)])
 def test_rod_on_a_rough_floor_matches_the_published_ratios(law, ratio):
     bodies = rod_on_floor()
-    core = ImpulseProblem(bodies)
+    core = TouchingPair(bodies)
     (regime,) = routh.regimes(core.W, core.velocity_before, sp.Rational(2, 5),
                               RESTITUTION_LAWS[law](1))
     assert regime.name.startswith("slip-reversal")
@@ -106,7 +106,7 @@ def random_bodies(generator: random.Random) -> tuple[Body, Body]:
     other = Body.fixed("wall") if generator.random() < 0.5 else Body.rigid(
         number(0.5, 3), number(0.1, 2), (number(0.1, 2), number(-2, 2)),
         (number(-1, 0), number(-2, 2)), number(-2, 2), name="b")
-    closing = ImpulseProblem((striker, other)).velocity_before[0]
+    closing = TouchingPair((striker, other)).velocity_before[0]
     if closing == 0:
         return random_bodies(generator)
     if closing > 0:  # moving apart: run the draw backward
@@ -119,7 +119,7 @@ def random_bodies(generator: random.Random) -> tuple[Body, Body]:
 def test_routh_agrees_with_smoothed_integration(case):
     generator = random.Random(SEED + case)
     bodies = random_bodies(generator)
-    core = ImpulseProblem(bodies)
+    core = TouchingPair(bodies)
     mu = generator.choice([0.1, 0.3, 0.8])
     e = generator.choice([0.0, 0.5, 0.9])
     for law in routh.LAWS:
@@ -152,7 +152,7 @@ def test_enough_friction_is_the_sticking_result():
         bodies = random_bodies(random.Random(SEED * 11 + case))
         e = sp.Rational(3, 10)
         stick = Impact(*bodies, Contact(restitution=e, tangential="stick")).solve()
-        core = ImpulseProblem(bodies)
+        core = TouchingPair(bodies)
         mu = 2 * abs(core.W[1, 0] / core.W[1, 1]) + 50  # holds, and stops slip early
         rough = Impact(*bodies, Contact(restitution=e, tangential="coulomb",
                                         friction=mu)).solve()
@@ -181,7 +181,7 @@ def test_slip_throughout_makes_the_three_laws_agree():
        st.sampled_from(["poisson", "energetic"]))
 def test_poisson_and_energetic_never_create_energy(seed, mu, e, law):
     bodies = random_bodies(random.Random(seed))
-    core = ImpulseProblem(bodies)
+    core = TouchingPair(bodies)
     (regime,) = routh.regimes(core.W, core.velocity_before, sp.nsimplify(round(mu, 3)),
                               RESTITUTION_LAWS[law](sp.nsimplify(round(e, 3))))
     assert energy_ratio(bodies, regime.impulse) <= 1 + 1e-12

@@ -76,7 +76,7 @@ def _print_json(data: Any) -> None:
 
 def _has_regimes(d: Any) -> bool:
     # a 3-D contact's course is one of its setup lines (its cone is not Routh's diagram)
-    return d.solution is not None and d.solution.contact.frictional and \
+    return d.solution is not None and d.solution.contact.by_regimes and \
         not d.solution.tangent_impulses
 
 

@@ -161,10 +161,10 @@ class Contact:
         object.__setattr__(self, key, value)
 
     @property
-    def frictional(self) -> bool:
-        """Whether the tangential law is solved by Routh's method or Walton's law rather
-        than as linear conditions."""
-        return TANGENTIAL_LAWS[self.tangential].solved_by_regimes
+    def by_regimes(self) -> bool:
+        """Whether the tangential law picks its course from the numbers (Routh's method,
+        Walton's law) rather than being imposed as linear conditions."""
+        return self.laws[1].solved_by_regimes
 
     @property
     def spatial(self) -> bool:

@@ -40,7 +40,7 @@ from typing import Any
 import sympy as sp
 
 from rigidimpact.errors import InputError
-from rigidimpact.model.impulse import ImpulseProblem
+from rigidimpact.model.impulse import TouchingPair
 from rigidimpact.symbolic.flint_poly import rational_zero
 from rigidimpact.symbolic.rewrite import tidy
 
@@ -395,7 +395,7 @@ def diagram(impact, values: dict) -> Diagram:
     if contact.laws[1].coulomb() is None:
         raise InputError("contact.tangential", "Routh's diagram is drawn for a Coulomb "
                          "contact (tangential = \"coulomb\")")
-    core = ImpulseProblem(impact.before)
+    core = TouchingPair(impact.before)
 
     numbers = {k: sp.sympify(v) for k, v in values.items()}
 

@@ -346,7 +346,7 @@ class SystemImpact:
         """``J M^-1 J^T``: how the contacts' impulses change their velocities."""
         if self._numbers:
             return self.J * self._M_inv_JT
-        return self._out(self._solved[1]).applyfunc(_tidy)
+        return self._out(self._solved[1]).applyfunc(_one_fraction)
 
     def solve(self, rule: Rule | None = None) -> Solution:
         """The speeds after, each contact's impulse, the equations and the energy lost,
@@ -802,10 +802,10 @@ def _no_tan(expr: Any) -> sp.Expr:
 
 def _small(expr: sp.Expr) -> sp.Expr:
     """sin^2 + cos^2 folded where the expression is small enough for that to be quick."""
-    return _tidy(expr) if sp.count_ops(expr) < 150 else expr
+    return _one_fraction(expr) if sp.count_ops(expr) < 150 else expr
 
 
-def _tidy(expr: sp.Expr) -> sp.Expr:
+def _one_fraction(expr: sp.Expr) -> sp.Expr:
     """One rational function, with sin^2 + cos^2 folded."""
     return sp.trigsimp(sp.cancel(sp.expand(expr)))
 

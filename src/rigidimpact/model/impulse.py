@@ -18,7 +18,7 @@ the contact impulse. The energy lost is the work of the impulse, ``-P . (v- + v+
 Examples
 --------
 >>> from rigidimpact.model.bodies import Body
->>> core = ImpulseProblem((Body.particle(1, (2, 0), "a"), Body.particle(3, name="b")))
+>>> core = TouchingPair((Body.particle(1, (2, 0), "a"), Body.particle(3, name="b")))
 >>> core.W
 Matrix([
 [4/3,   0],
@@ -39,7 +39,7 @@ import sympy as sp
 from rigidimpact.model.bodies import Body
 from rigidimpact.symbolic.geometry import cross, spin_cross
 
-__all__ = ["ImpulseProblem", "Coordinate", "coordinates_of", "jacobian", "moving",
+__all__ = ["TouchingPair", "Coordinate", "coordinates_of", "jacobian", "moving",
            "kinetic_energy"]
 
 
@@ -146,7 +146,7 @@ def moving(bodies: Sequence[Body], coordinates: Sequence[Coordinate],
 
 
 @dataclass(frozen=True)
-class ImpulseProblem:
+class TouchingPair:
     """Two bodies touching at O in the contact frame (x along the normal).
 
     Parameters
@@ -158,7 +158,7 @@ class ImpulseProblem:
     --------
     >>> from rigidimpact.model.bodies import Body
     >>> rod = Body.rod(3, 2, sp.pi / 2, -1, pivot=(0, -2), name="rod")
-    >>> core = ImpulseProblem((Body.particle(1, (1, 0), "ball"), rod))
+    >>> core = TouchingPair((Body.particle(1, (1, 0), "ball"), rod))
     >>> [(c.body, c.kind, c.inertia) for c in core.coordinates]
     [('ball', 'vx', 1), ('ball', 'vy', 1), ('rod', 'omega', 4)]
     >>> core.W[0, 0]  # 1/m + (lever arm)^2 / I_pivot
@@ -208,7 +208,7 @@ class ImpulseProblem:
         Examples
         --------
         >>> from rigidimpact.model.bodies import Body
-        >>> core = ImpulseProblem((Body.particle(1, (2, 0), "a"), Body.particle(1, name="b")))
+        >>> core = TouchingPair((Body.particle(1, (2, 0), "a"), Body.particle(1, name="b")))
         >>> core.velocity_after((2, 0)).T
         Matrix([[2, 0]])
         """
@@ -232,7 +232,7 @@ class ImpulseProblem:
 
         Examples
         --------
-        >>> ImpulseProblem.work((2, 0), sp.Matrix([-2, 0]), sp.Matrix([2, 0]))
+        >>> TouchingPair.work((2, 0), sp.Matrix([-2, 0]), sp.Matrix([2, 0]))
         0
         """
         return sp.Matrix(impulse).dot(sp.Matrix(before) + sp.Matrix(after)) / 2

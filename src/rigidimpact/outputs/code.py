@@ -286,7 +286,7 @@ def program_of(target: Any) -> Program:
             regimes = tuple(name for name, _ in cases)
             regime = sp.Piecewise(*((sp.Integer(i), c) for i, (_, c) in enumerate(cases)),
                                   (sp.Integer(-1), True))
-    if solution is not None and (solution.regimes or solution.contact.frictional) \
+    if solution is not None and (solution.regimes or solution.contact.by_regimes) \
             and regime is None:
         notes.append("the course the impact takes (evaluate's regime line) is not "
                      "exported: its outputs' cases are")

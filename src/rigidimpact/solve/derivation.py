@@ -206,7 +206,7 @@ class Derivation:
                               exact=exact_numbers(self.results, at) if exact else None)
         contact = self.solution.contact
         exactly = None
-        if contact.frictional and (dps is None or dps <= _FRICTION_DIGITS):
+        if contact.by_regimes and (dps is None or dps <= _FRICTION_DIGITS):
             # numbers first, then the case analysis: one course, exact (or 50-digit)
             # arithmetic, and no formula over every course evaluated where most of its
             # branches are undefined (a friction coefficient of 0, say)

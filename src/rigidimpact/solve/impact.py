@@ -28,7 +28,7 @@ from rigidimpact.laws import law as laws
 from rigidimpact.laws import routh
 from rigidimpact.laws.contact import Contact
 from rigidimpact.model.bodies import Body
-from rigidimpact.model.impulse import ImpulseProblem
+from rigidimpact.model.impulse import TouchingPair
 from rigidimpact.solve.solution import Solution, certified
 from rigidimpact.symbolic.geometry import spin_cross
 from rigidimpact.symbolic.notation import labelled, make_symbol
@@ -281,7 +281,7 @@ class Impact:
         # with friction the path in impulse space bends: Poisson's and the energetic law
         # are then not Newton's relation, and Routh's method (printed course by course)
         # is what imposes them
-        bent = self.contact.frictional and restitution.splits_on_compression
+        bent = self.contact.by_regimes and restitution.splits_on_compression
         return (*linear, *(tangential.equations(before, after) if smooth else ()), *angular,
                 *(() if bent else restitution.equations(before, after)),
                 *(() if smooth else tangential.equations(before, after)))
@@ -340,7 +340,7 @@ class Impact:
         its physical limits are among its warnings, and one that fails its own laws'
         check is refused in one line, never returned.
 
-        The core (:class:`~rigidimpact.model.impulse.ImpulseProblem`) gives each body's motion
+        The core (:class:`~rigidimpact.model.impulse.TouchingPair`) gives each body's motion
         after an impulse P at O: ``u+ = u- + M^-1 J^T P``. The contact's laws, imposed
         on those motions exactly as they are printed, are linear in P (one equation for
         the normal impulse, one for the tangential); solving them and substituting back
@@ -362,8 +362,8 @@ class Impact:
         return certified(self._solve())
 
     def _solve(self) -> Solution:
-        core = ImpulseProblem(self.before)
-        if self.contact.frictional:
+        core = TouchingPair(self.before)
+        if self.contact.by_regimes:
             return self._solve_frictional(core)
         # the tangential law's one face, in contact space, as every path asks it (the
         # rules, space, a mechanics system); its printed equations show it, in the
@@ -386,7 +386,7 @@ class Impact:
         >>> found
         {V_1fx: 1 - J/2, V_1fy: 0, V_2fx: J/3, V_2fy: 0}
         """
-        core = ImpulseProblem(self.before)
+        core = TouchingPair(self.before)
         kicked = core.bodies_after(sp.ImmutableMatrix([normal, 0]))
         values = {}
         for state, moved in zip(self.after, kicked, strict=True):
@@ -397,7 +397,7 @@ class Impact:
                 values[state.spin] = sp.expand(sp.sympify(moved.spin))
         return values
 
-    def _solved_by(self, core: ImpulseProblem, impulse: tuple[sp.Expr, sp.Expr],
+    def _solved_by(self, core: TouchingPair, impulse: tuple[sp.Expr, sp.Expr],
                    **extra) -> Solution:
         """The solution that a known impulse at O gives."""
         local_impulse = sp.ImmutableMatrix(impulse)
@@ -415,7 +415,7 @@ class Impact:
                                core.velocity_after(local_impulse)))
         return self._solution(values, local_impulse, lost, **extra)
 
-    def _solve_frictional(self, core: ImpulseProblem) -> Solution:
+    def _solve_frictional(self, core: TouchingPair) -> Solution:
         """Friction: the impulse by Routh's method (Coulomb) or Walton's law (rough), one
         solution per course the impact can take; with symbols, their ``Piecewise``."""
         restitution, tangential = self.contact.laws  # the tangential law owns its regimes
