@@ -50,6 +50,7 @@ from rigidimpact.errors import InputError
 from rigidimpact.laws.cone import tangents
 from rigidimpact.laws.contact import Contact
 from rigidimpact.lazy import deferred
+from rigidimpact.model.impulse import kinetic_energy
 from rigidimpact.model.joints import Joint
 from rigidimpact.model.space import SPEEDS, Body3
 from rigidimpact.solve.certificate import residuals
@@ -229,6 +230,13 @@ class SpaceCollision:
     @cached_property
     def _free_M_inverse(self) -> sp.Matrix:
         return sp.diag(*[b.mass_inverse() for b in self.free])
+
+    @cached_property
+    def M(self) -> sp.Matrix:
+        """The free bodies' mass matrix, block diagonal: each body's mass (three times)
+        and its inertia tensor about its centre in the world frame."""
+        return sp.diag(*[sp.diag(b.mass, b.mass, b.mass, sp.Matrix(b.inertia))
+                         for b in self.free])
 
     @cached_property
     def M_inverse(self) -> sp.Matrix:
@@ -478,9 +486,8 @@ class SpaceRows(RowsProblem):
              for c in self.contacts}
         if one:
             P = {name: [sp.radsimp(x) for x in parts] for name, parts in P.items()}
-        moved = [b.moved(u_after[6 * j:6 * j + 6, 0]) for j, b in enumerate(space.free)]
-        before = sum((b.kinetic_energy for b in space.free), sp.Integer(0))
-        lost = before - sum((b.kinetic_energy for b in moved), sp.Integer(0))
+        before = kinetic_energy(space.M, space.u_before)
+        lost = before - kinetic_energy(space.M, u_after)
         pinned = space.joint_impulses(sum(
             (space.rows(c).T * sp.Matrix(P[c.name]) for c in self.contacts),
             sp.zeros(6 * len(space.free), 1))) if space.joints else {}
