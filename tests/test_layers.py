@@ -72,8 +72,8 @@ def test_no_import_circles():
 def test_no_project_imports_inside_functions():
     hidden = {}
     for path in PACKAGE.rglob("*.py"):
-        if path.name in ("cli.py", "__init__.py"):
-            continue
+        if path.name == "__init__.py" or path.parent.name == "cli":
+            continue  # the command line loads lazily, for start-up
         _, inner = _imports(path)
         if inner:
             hidden[str(path.relative_to(SRC))] = inner
