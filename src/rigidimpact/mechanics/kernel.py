@@ -74,53 +74,7 @@ class MapKernel:
     def of(cls, system: Any, values: dict | None = None) -> MapKernel:
         """The kernel of a :class:`~rigidimpact.mechanics.impact.SystemImpact`; see its
         ``kernel``."""
-        if system.fold is not None:
-            raise InputError("system", "the impact map's kernel takes a system without "
-                             "dependent speeds; solve() takes a nonholonomic one")
-        put = given_values({} if values is None else values, signs=False)
-        blocks: list[sp.MatrixBase] = []
-        names: list[str] = []
-        normal: list[int] = []
-        restitution: list[Any] = []
-        kinds: tuple[str, ...]
-        for i, c in enumerate(system.contacts):
-            laws = c.laws
-            first, second = laws.laws
-            if first.together != "velocity" or second.solved_by_regimes:
-                raise InputError(f"{c.name}.laws", "the impact map's kernel takes smooth "
-                                 "or sticking contacts under Newton's law, every contact "
-                                 "acting; solve() takes the rest")
-            if not second.grips:
-                block, kinds = system.J[2 * i:2 * i + 1, :], ("n",)
-            elif system.J_plane is not None:
-                block, kinds = system.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
-            else:
-                block, kinds = system.J[2 * i:2 * i + 2, :], ("n", "t")
-            # the law's own target, v+ = leaving(v-) = -k v- (a law at the velocity
-            # level is linear in the closing speed: checked at two speeds)
-            one, two = (sp.sympify(first.leaving(sp.Integer(x))).xreplace(put)
-                        for x in (-1, -2))
-            e = sp.nsimplify(one) if one.is_number else one
-            if not e.is_number or not 0 <= e <= 1:
-                raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
-                                 f"(values may give it), not {e}")
-            if sp.simplify(two - 2 * one) != 0:
-                raise InputError(f"{c.name}.laws", "the impact map's kernel takes a "
-                                 "restitution law linear in the closing speed; solve() "
-                                 "takes the rest")
-            for k, kind in enumerate(kinds):
-                normal += [len(names)] if kind == "n" else []
-                names.append(f"{c.name}.{kind}")
-                restitution.append(e if kind == "n" else 0)
-                blocks.append(block.row(k))
-        M, J = system.M.xreplace(put), sp.Matrix.vstack(*blocks).xreplace(put)
-        time = me.dynamicsymbols._t
-        left = (M.free_symbols | J.free_symbols) - set(system.q) - {time}
-        left = {s for s in left if not any(s in qi.free_symbols for qi in system.q
-                                           if not qi.is_Symbol)}
-        if left:
-            raise InputError("values", "the kernel needs a number for "
-                             + ", ".join(sorted(map(str, left))))
+        M, J, names, normal, restitution = map_rows(system, values)
         return cls.build(system.q, system.u, M, J, names, normal, restitution)
 
     @classmethod
@@ -218,3 +172,61 @@ def _one_by_one(M: Any, J: Any, right: Any) -> tuple[Any, Any]:
         except np.linalg.LinAlgError:
             continue
     return A, P
+
+
+def map_rows(system: Any, values: dict | None = None
+             ) -> tuple[sp.Matrix, sp.Matrix, list[str], list[int], list[Any]]:
+    """What an impact map of every contact acting is made of: M(q) and the contact rows
+    J(q) with numbers put in for the constants (`values`), each row's name, which rows
+    are normal rows, and each row's restitution (the law's own target, v+ = -e v-; 0 for
+    a tangent row). Each contact's laws are asked, not named: a law at the velocity
+    level, linear in the closing speed, with a tangential law of linear conditions
+    (smooth: a normal row; sticking: its tangent rows too); the rest is refused in one
+    line (``solve()`` takes it). The one assembly of the NumPy kernel and its C
+    export."""
+    if system.fold is not None:
+        raise InputError("system", "the impact map takes a system without dependent "
+                         "speeds; solve() takes a nonholonomic one")
+    put = given_values({} if values is None else values, signs=False)
+    blocks: list[sp.MatrixBase] = []
+    names: list[str] = []
+    normal: list[int] = []
+    restitution: list[Any] = []
+    kinds: tuple[str, ...]
+    for i, c in enumerate(system.contacts):
+        first, second = c.laws.laws
+        if first.together != "velocity" or second.solved_by_regimes:
+            raise InputError(f"{c.name}.laws", "the impact map takes smooth or sticking "
+                             "contacts under a restitution law at the velocity level, every "
+                             "contact acting; solve() takes the rest")
+        if not second.grips:
+            block, kinds = system.J[2 * i:2 * i + 1, :], ("n",)
+        elif system.J_plane is not None:
+            block, kinds = system.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
+        else:
+            block, kinds = system.J[2 * i:2 * i + 2, :], ("n", "t")
+        # the law's own target, v+ = leaving(v-) = -k v- (a law at the velocity level is
+        # linear in the closing speed: checked at two speeds)
+        one, two = (sp.sympify(first.leaving(sp.Integer(x))).xreplace(put)
+                    for x in (-1, -2))
+        e = sp.nsimplify(one) if one.is_number else one
+        if not e.is_number or not 0 <= e <= 1:
+            raise InputError(f"{c.name}.restitution", "must be a number in [0, 1] "
+                             f"(values may give it), not {e}")
+        if sp.simplify(two - 2 * one) != 0:
+            raise InputError(f"{c.name}.laws", "the impact map takes a restitution law "
+                             "linear in the closing speed; solve() takes the rest")
+        for k, kind in enumerate(kinds):
+            normal += [len(names)] if kind == "n" else []
+            names.append(f"{c.name}.{kind}")
+            restitution.append(e if kind == "n" else 0)
+            blocks.append(block.row(k))
+    M, J = system.M.xreplace(put), sp.Matrix.vstack(*blocks).xreplace(put)
+    time = me.dynamicsymbols._t
+    left = (M.free_symbols | J.free_symbols) - set(system.q) - {time}
+    left = {s for s in left if not any(s in qi.free_symbols for qi in system.q
+                                       if not qi.is_Symbol)}
+    if left:
+        raise InputError("values", "the map needs a number for "
+                         + ", ".join(sorted(map(str, left))))
+    return M, J, names, normal, restitution

@@ -34,12 +34,9 @@ from __future__ import annotations
 from typing import Any
 
 import sympy as sp
-import sympy.physics.mechanics as me
 from sympy.printing.c import C99CodePrinter
 
-from rigidimpact.errors import InputError
-from rigidimpact.mechanics.kernel import SINGULAR, TOLERANCE
-from rigidimpact.symbolic.given import given_values
+from rigidimpact.mechanics.kernel import SINGULAR, TOLERANCE, map_rows
 
 __all__ = ["impact_map_code", "map_matrices"]
 
@@ -47,42 +44,10 @@ __all__ = ["impact_map_code", "map_matrices"]
 def map_matrices(system: Any, values: dict | None = None) -> tuple[sp.Matrix, sp.Matrix,
                                                                     list[float], list[int]]:
     """M(q) and the contact rows J(q) of a SystemImpact with numbers put in, each row's
-    restitution and which rows are normal rows: what the kernel's map is made of."""
-    if system.fold is not None:
-        raise InputError("system", "the impact map takes a system without dependent "
-                         "speeds; solve() takes a nonholonomic one")
-    put = given_values({} if values is None else values, signs=False)
-    blocks: list[Any] = []
-    restitution: list[float] = []
-    normal: list[int] = []
-    kinds: tuple[str, ...]
-    for i, c in enumerate(system.contacts):
-        laws = c.laws
-        if laws.law != "newton" or laws.tangential not in ("smooth", "stick"):
-            raise InputError(f"{c.name}.laws", "the impact map takes smooth or sticking "
-                             "contacts under Newton's law, every contact acting")
-        if laws.tangential == "smooth":
-            block, kinds = system.J[2 * i:2 * i + 1, :], ("n",)
-        elif system.J_plane is not None:
-            block, kinds = system.J_plane[3 * i:3 * i + 3, :], ("n", "t1", "t2")
-        else:
-            block, kinds = system.J[2 * i:2 * i + 2, :], ("n", "t")
-        e = sp.sympify(sp.sympify(laws.restitution).xreplace(put))
-        if not e.is_number or not 0 <= e <= 1:
-            raise InputError(f"{c.name}.restitution", f"must be a number in [0, 1], not {e}")
-        for k, kind in enumerate(kinds):
-            normal += [len(restitution)] if kind == "n" else []
-            restitution.append(float(e) if kind == "n" else 0.0)
-            blocks.append(block.row(k))
-    M = sp.Matrix(system.M).xreplace(put)
-    J = sp.Matrix.vstack(*blocks).xreplace(put)
-    left = (M.free_symbols | J.free_symbols) - set(system.q) - {me.dynamicsymbols._t}
-    left = {s for s in left if not any(s in qi.free_symbols for qi in system.q
-                                       if not qi.is_Symbol)}
-    if left:
-        raise InputError("values", "the map needs a number for "
-                         + ", ".join(sorted(map(str, left))))
-    return M, J, restitution, normal
+    restitution and which rows are normal rows: what the kernel's map is made of (its
+    one assembly, :func:`~rigidimpact.mechanics.kernel.map_rows`)."""
+    M, J, _, normal, restitution = map_rows(system, values)
+    return M, J, [float(e) for e in restitution], normal
 
 
 def impact_map_code(system: Any, values: dict | None = None, name: str = "impact_map") -> str:
