@@ -474,7 +474,8 @@ def test_the_kernel_with_a_sticking_tip_agrees_with_solve_at_numbers():
 
 
 def test_the_kernel_refuses_what_it_cannot_map_in_one_line():
-    with pytest.raises(ri.InputError, match="smooth or sticking contacts under a restitution law at the velocity level"):
+    with pytest.raises(ri.InputError, match="smooth or sticking contacts under a "
+                       "restitution law at the velocity level"):
         _tip(tangential="coulomb", friction=mu).kernel({mu: sp.Rational(1, 3)})
     with pytest.raises(ri.InputError, match="needs a number for l1, l2, m1, m2"):
         _tip().kernel({e: 0})
