@@ -310,6 +310,7 @@ def _hinged_chain(n: int) -> str:
                    'restitution = "1/2"\n')
 
 
+@pytest.mark.slow  # 10 s: the slow tier (CI runs it)
 def test_a_chain_of_200_hinged_rods_against_its_constrained_equations(tmp_path, capsys):
     """A ball (mass 1, at 1) strikes the foot of a chain of 200 hinged rods (mass 2,
     length 1, standing on end); e = 1/2. Its answer is held against the impact's own
