@@ -392,6 +392,14 @@ MAP = ri.mechanics.impact(KANE, [C(BOB, N.x, restitution=sp.Rational(1, 2))],
 AB = ri.Kernel.from_expr(sp.Symbol("a") * sp.Symbol("b") + 1)
 
 
+def test_the_map_takes_huge_finite_states_its_one_pass_check_would_overflow_on():
+    # the check sums the states first: a sum of huge finite numbers overflows, and the
+    # states are then looked at one by one (and taken: they are finite), with no warning
+    states = np.full((4, 1), 1e308)
+    found = MAP(states, -states)
+    assert found.speeds_after.shape == (4, 1)
+
+
 @pytest.mark.parametrize("call, needle", [
     (lambda: MAP([[0.1, 0.2]], [[-1.0]]), "q: must be an array (states, 1) or one state of "
                                           "1, not one of shape (1, 2)"),
@@ -403,6 +411,9 @@ AB = ri.Kernel.from_expr(sp.Symbol("a") * sp.Symbol("b") + 1)
     (lambda: MAP([[1j]], [[-1.0]]), "q: must be real numbers"),
     (lambda: MAP(None, [[1.0]]), "q: must be real numbers, an array (states, 1), not "
                                  "NoneType"),
+    (lambda: MAP([[0.1], [0.2], [np.nan]], [[-1.0]] * 3), "q: must be finite: state 2 "
+                                                         "holds NaN or an infinity"),
+    (lambda: MAP([[0.1], [0.2]], [[-1.0], [np.inf]]), "u: must be finite: state 1"),
     (lambda: ri.mechanics.impact(KANE, [C(BOB, N.x, restitution=e)], frame=N).kernel(
         {m: float("nan"), ell: 1, e: 1}), "values.m: must be finite, not nan"),
     (lambda: ri.mechanics.impact(KANE, [C(BOB, N.x)], frame=N).kernel({m: "1", ell: 1}),
