@@ -384,52 +384,6 @@ class SpaceCollision:
         :func:`rigidimpact.solve.rules.driven.driven`, in floating point)."""
         return replace(self, rule=Driven(self.tolerance)).solve()
 
-    def _numeric(self, acting: Sequence[Contact], acted: tuple[str, ...],
-                 P: Mapping[str, Sequence[Any]], u_after: Any, courses: tuple[str, ...],
-                 notes: Sequence[str], energy: tuple[Any, Any],
-                 checks: Mapping[str, Any], pinned: Mapping[str, tuple[Any, ...]],
-                 regime: str | None = None, **rule: Any) -> Solution:
-        """The one Solution of several 3-D contacts solved together (exactly, or in
-        floating point), certified by its own residuals; `pinned`: the joints'
-        impulses the certificate checked, given as they are (in floating point, to
-        17 digits)."""
-        before, lost = energy
-        exact = not any(isinstance(x, (float, np.floating)) or sp.sympify(x).has(sp.Float)
-                        for x in (*u_after, *(x for p in P.values() for x in p)))
-        tidied = sp.simplify if exact and len(acting) == 1 else sp.radsimp
-        if exact:
-            speeds_after = sp.ImmutableMatrix(list(u_after))
-            lost = tidied(lost)
-        else:
-            speeds_after = sp.ImmutableMatrix([x if isinstance(x, sp.Float) else
-                                               sp.Float(x, 17) for x in u_after])
-            pinned = {name: tuple(sp.Float(x, 17) for x in parts)
-                      for name, parts in pinned.items()}
-        return self._solution(
-            acting, acted, P, speeds_after, courses, notes,
-            (before, lost, tidied(lost / before) if exact else lost / before), checks,
-            pinned, {c.name: (sp.simplify if exact and len(acting) == 1 else sp.sympify)(
-                sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)) for c in acting},
-            regime, **rule)  # assessed under its own rule
-
-    def _solution(self, acting: Sequence[Contact], acted: tuple[str, ...],
-                  P: Mapping[str, Sequence[Any]], speeds_after: sp.ImmutableMatrix,
-                  courses: tuple[str, ...], notes: Sequence[str], energies: tuple,
-                  checks: Mapping[str, Any] | None, pinned: Mapping[str, tuple[Any, ...]],
-                  sizes: Mapping[str, Any], regime: str | None = None,
-                  **rule: Any) -> Solution:
-        """The one 3-D Solution: each acting contact's impulse in its frame (n, t1, t2)
-        and the size of its tangential part, the speeds after, the energies, certified
-        by its own residuals (none where no point of a closed form is an impact)."""
-        return read_back(
-            acting, {c.name: P[c.name][0] for c in acting}, certify=checks is not None,
-            tangential=dict(sizes), speeds_before=self.speeds, speeds_after=speeds_after,
-            energies=energies, courses=courses,
-            regime="; ".join(courses) if regime is None else regime, given_checks=checks,
-            acted=acted, notes=tuple(notes),
-            tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in acting},
-            joint_impulses=pinned, **rule)
-
     def at(self, values: Mapping[sp.Symbol, Any]) -> SpaceCollision:
         """The collision with numbers put in for its symbols (Python or SymPy numbers,
         each checked: :func:`~rigidimpact.symbolic.given.given_values`)."""
@@ -474,17 +428,23 @@ class SpaceRows(RowsProblem):
     def outcome(self, rule: str, order: Sequence[str], u: sp.Matrix,
                 impulses: Mapping[str, sp.Expr], acted: Sequence[str], passes: int = 1,
                 **more: Any) -> Solution:
+        """The 3-D reading back: each contact's impulse in its frame (n, t1, t2) and the
+        size of its tangential part, the speeds after, the energies from M, the joints'
+        impulses, certified by the one certificate (exactly, or within 1000 times the
+        integration's tolerance). One contact's closed form is tidied as a formula;
+        an answer in floating point is given to 17 digits."""
         space = self.space
         exact = not any(sp.sympify(x).has(sp.Float) for x in u)
-        one = exact and len(self.contacts) == 1  # a closed form: tidied as a formula
+        one = len(self.contacts) == 1
         # floats as the rule gave them (a sequential run rounded to 60 digits keeps them)
-        u_after = sp.Matrix([sp.piecewise_fold(sp.radsimp(sp.expand(x))) if one else
-                             sp.sympify(x) for x in u])
+        u_after = sp.Matrix([sp.piecewise_fold(sp.radsimp(sp.expand(x))) if exact and one
+                             else sp.sympify(x) for x in u])
         zero = sp.Integer(0)
         sideways = more.get("tangent_impulses") or {}
-        P = {c.name: [impulses[c.name], *sideways.get(c.name, (zero, zero))]
+        P = {c.name: [sp.sympify(x) for x in (impulses[c.name],
+                                              *sideways.get(c.name, (zero, zero)))]
              for c in self.contacts}
-        if one:
+        if exact and one:
             P = {name: [sp.radsimp(x) for x in parts] for name, parts in P.items()}
         before = kinetic_energy(space.M, space.u_before)
         lost = before - kinetic_energy(space.M, u_after)
@@ -498,15 +458,31 @@ class SpaceRows(RowsProblem):
         notes = list(more.get("notes", ()))
         if conduct(rule).summary:
             notes.append(conduct(rule).summary)
-        elif exact and conduct(rule).whole_impact and len(self.contacts) > 1:
+        elif exact and conduct(rule).whole_impact and not one:
             notes.append("every contact smooth: the simultaneous rule's one "
                          "implementation (the plane's), exact")
-        return space._numeric(list(self.contacts), tuple(acted), P, u_after, courses,
-                              notes, (before, lost), checks, pinned, rule=rule,
-                              order=tuple(order),
-                              passes=passes, method=more.get("method", ""),
-                              regime=_course_of(courses[0], self.contacts[0].name)
-                              if len(self.contacts) == 1 else None)
+        written = exact and not any(x.has(sp.Float) for p in P.values() for x in p)
+        tidied = sp.simplify if written and one else sp.radsimp
+        if written:
+            speeds_after, lost = sp.ImmutableMatrix(list(u_after)), tidied(lost)
+            fraction = tidied(lost / before)
+        else:
+            speeds_after = sp.ImmutableMatrix([x if isinstance(x, sp.Float) else
+                                               sp.Float(x, 17) for x in u_after])
+            pinned = {name: tuple(sp.Float(x, 17) for x in parts)
+                      for name, parts in pinned.items()}
+            fraction = lost / before
+        sizes = {c.name: (sp.simplify if written and one else sp.sympify)(
+            sp.sqrt(P[c.name][1] ** 2 + P[c.name][2] ** 2)) for c in self.contacts}
+        return read_back(
+            self.contacts, {c.name: P[c.name][0] for c in self.contacts},
+            certify=checks is not None, tangential=sizes, speeds_before=space.speeds,
+            speeds_after=speeds_after, energies=(before, lost, fraction), courses=courses,
+            regime=_course_of(courses[0], self.contacts[0].name) if one
+            else "; ".join(courses), given_checks=checks, acted=acted, notes=tuple(notes),
+            tangent_impulses={c.name: (P[c.name][1], P[c.name][2]) for c in self.contacts},
+            joint_impulses=pinned, rule=rule, order=order, passes=passes,
+            method=more.get("method", ""))  # assessed under its own rule
 
 
 def _course_of(line: str, name: str) -> str:
