@@ -63,16 +63,14 @@ class SystemRows(RowsProblem):
         """One contact in the plane of its normal and tangent under a law of linear
         conditions (smooth, stick): the system's own closed form, ``M u+ - J^T P = M u-``
         with the law's two conditions solved fraction-free (an arithmetic choice of
-        the linear case, the system's equations printed), under `rule`. A law by
+        the linear case, the system's equations printed; the door reports it under the
+        rule asked). A law by
         regimes (Coulomb, rough) or a tangent plane: the rules' one-contact step, once
         the numbers its course turns on are given."""
         system = self.system
         tangential = self.contacts[0].laws[1]
         if system.J_plane is None and not tangential.solved_by_regimes:
-            solved = system._linear()
-            return solved if solved.rule == rule.name else replace(
-                solved, rule=rule.name, order=(self.contacts[0].name,) if rule.in_turn
-                else ())
+            return system._linear()
         if tangential.solved_by_regimes:
             system._course_needs_numbers()
         return None

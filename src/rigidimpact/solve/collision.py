@@ -151,14 +151,9 @@ class Collision(ImpactProblem):
 
     def own_answer(self, rule: Rule) -> Solution | None:
         """One contact without joints: the two-body core's answer (:meth:`alone`), with
-        the paper's printed laws, reported under `rule` (the answer of every rule)."""
-        if self.joints:
-            return None
-        solved = self.alone()
-        if solved.rule == rule.name:
-            return solved
-        return replace(solved, rule=rule.name, order=(
-            (self.contacts[0].name,) if rule.in_turn else ()))
+        the paper's printed laws (the answer of every rule; the door reports it under
+        the rule asked)."""
+        return None if self.joints else self.alone()
 
     def alone(self) -> Solution:
         """The one contact's impact, exactly, by the two-body core

@@ -104,9 +104,9 @@ class ImpulseRows:
                                   "its source's Solution")
 
     def own_answer(self, rule: Any) -> Solution | None:
-        """A source's own closed form for its one contact, in its own notation, as
-        `rule`'s answer (the paper's two bodies: the two-body core and its printed
-        laws); None where the rules' one-contact step is the answer."""
+        """A source's own closed form for its one contact, in its own notation (the
+        paper's two bodies: the two-body core and its printed laws), which the door
+        reports under `rule`; None where the rules' one-contact step is the answer."""
         return None
 
     def smooth_only(self, where: str) -> None:

@@ -4,7 +4,7 @@ check of a whole-number argument.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, ClassVar, NamedTuple
 
 import sympy as sp
@@ -123,7 +123,12 @@ class Rule(Conduct):
         or more are :meth:`outcomes`, checked (:meth:`checked_outcomes`)."""
         if len(problem.contacts) == 1:
             own = problem.own_answer(self)
-            return (self.one_contact(problem) if own is None else own,)
+            if own is None:
+                return (self.one_contact(problem),)
+            if own.rule == self.name:
+                return (own,)
+            return (replace(own, rule=self.name, order=(
+                (problem.contacts[0].name,) if self.in_turn else ())),)
         return self.checked_outcomes(problem)
 
     def one_contact(self, problem: ImpulseRows) -> Solution:
